@@ -1,0 +1,205 @@
+//! Plot helpers shared by the commands: an embedded font, line plots on linear or log axes, and
+//! PNG output written atomically (temporary file, then rename).
+
+use anyhow::{Context, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::Path;
+use std::sync::Once;
+
+static FONT: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
+
+/// Register the embedded DejaVu Sans as the "sans-serif" family (once per process).
+pub fn init_font() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        // Registration only fails if the bytes are not a font, which include_bytes! rules out.
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+    });
+}
+
+/// A colour from a palette that stays distinguishable for up to ten series.
+pub fn palette(i: usize) -> RGBColor {
+    const COLOURS: [RGBColor; 10] = [
+        RGBColor(31, 119, 180),
+        RGBColor(214, 39, 40),
+        RGBColor(44, 160, 44),
+        RGBColor(255, 127, 14),
+        RGBColor(148, 103, 189),
+        RGBColor(140, 86, 75),
+        RGBColor(227, 119, 194),
+        RGBColor(127, 127, 127),
+        RGBColor(188, 189, 34),
+        RGBColor(23, 190, 207),
+    ];
+    COLOURS[i % COLOURS.len()]
+}
+
+/// One curve of a line plot.
+pub struct Series {
+    /// Legend label.
+    pub label: String,
+    /// (x, y) points in drawing order.
+    pub points: Vec<(f64, f64)>,
+    /// Line colour.
+    pub colour: RGBColor,
+    /// Draw markers instead of a line (for measured data).
+    pub markers: bool,
+}
+
+/// Axes and title of a line plot.
+pub struct LinePlot<'a> {
+    pub title: &'a str,
+    pub x_label: &'a str,
+    pub y_label: &'a str,
+    /// Logarithmic y axis (non-positive values are dropped).
+    pub log_y: bool,
+}
+
+/// Draw `series` into a PNG of `size` pixels at `path`.
+pub fn line_plot_png(path: &Path, size: (u32, u32), plot: &LinePlot, series: &[Series]) -> Result<()> {
+    render_png(path, size, |root| draw_line_plot(root, plot, series))
+}
+
+/// Draw a line plot into any drawing area (so that several plots can share one image).
+pub fn draw_line_plot<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    plot: &LinePlot,
+    series: &[Series],
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let finite = |&(x, y): &(f64, f64)| x.is_finite() && y.is_finite() && (!plot.log_y || y > 0.0);
+    let all: Vec<(f64, f64)> = series.iter().flat_map(|s| s.points.iter().copied().filter(finite)).collect();
+    anyhow::ensure!(!all.is_empty(), "nothing to plot in '{}'", plot.title);
+    let (mut x0, mut x1) = min_max(all.iter().map(|p| p.0));
+    let (mut y0, mut y1) = min_max(all.iter().map(|p| p.1));
+    if x1 <= x0 {
+        x0 -= 0.5;
+        x1 += 0.5;
+    }
+    let series_iter = series.iter().enumerate();
+    if plot.log_y {
+        y0 = y0.max(y1 * 1e-12);
+        if y1 <= y0 {
+            y1 = y0 * 10.0;
+        }
+        let mut chart = ChartBuilder::on(root)
+            .caption(plot.title, ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x0..x1, (y0 / 1.5..y1 * 1.5).log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc(plot.x_label)
+            .y_desc(plot.y_label)
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .label_style(("sans-serif", 13))
+            .draw()?;
+        for (_, s) in series_iter {
+            let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(finite).collect();
+            draw_series(&mut chart, s, pts)?;
+        }
+        finish_legend(&mut chart)?;
+    } else {
+        if y1 <= y0 {
+            y0 -= 0.5;
+            y1 += 0.5;
+        }
+        let pad = 0.05 * (y1 - y0);
+        let mut chart = ChartBuilder::on(root)
+            .caption(plot.title, ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x0..x1, y0 - pad..y1 + pad)?;
+        chart
+            .configure_mesh()
+            .x_desc(plot.x_label)
+            .y_desc(plot.y_label)
+            .label_style(("sans-serif", 13))
+            .draw()?;
+        for (_, s) in series_iter {
+            let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(finite).collect();
+            draw_series(&mut chart, s, pts)?;
+        }
+        finish_legend(&mut chart)?;
+    }
+    Ok(())
+}
+
+fn draw_series<'a, DB, X, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    s: &Series,
+    pts: Vec<(f64, f64)>,
+) -> Result<()>
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let colour = s.colour;
+    let anno = if s.markers {
+        chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 2, colour.filled())))?
+    } else {
+        chart.draw_series(LineSeries::new(pts, colour.stroke_width(2)))?
+    };
+    if !s.label.is_empty() {
+        anno.label(s.label.clone())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
+    }
+    Ok(())
+}
+
+fn finish_legend<'a, DB, X, Y>(chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>) -> Result<()>
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 13))
+        .draw()?;
+    Ok(())
+}
+
+fn min_max(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))
+}
+
+/// Render with `draw` into an RGB buffer of `size` and write it to `path` as PNG, atomically.
+pub fn render_png(
+    path: &Path,
+    size: (u32, u32),
+    draw: impl FnOnce(&DrawingArea<BitMapBackend, Shift>) -> Result<()>,
+) -> Result<()> {
+    init_font();
+    let mut buf = vec![255u8; size.0 as usize * size.1 as usize * 3];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, size).into_drawing_area();
+        root.fill(&WHITE)?;
+        draw(&root)?;
+        root.present()?;
+    }
+    let img = image::RgbImage::from_raw(size.0, size.1, buf).context("plot buffer has the wrong size")?;
+    save_image_atomic(path, &image::DynamicImage::ImageRgb8(img))
+}
+
+/// Write an image (format from the extension) through a temporary file and a rename.
+pub fn save_image_atomic(path: &Path, img: &image::DynamicImage) -> Result<()> {
+    let format = image::ImageFormat::from_path(path)
+        .with_context(|| format!("{}: unknown image extension (use .png)", path.display()))?;
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let mut tmp = tempfile::NamedTempFile::new_in(dir).with_context(|| format!("{}: cannot create file", path.display()))?;
+    img.write_to(&mut std::io::BufWriter::new(tmp.as_file_mut()), format)
+        .with_context(|| format!("{}: cannot encode image", path.display()))?;
+    tmp.persist(path).with_context(|| format!("{}: cannot write", path.display()))?;
+    Ok(())
+}

@@ -1,0 +1,91 @@
+//! Measurement geometry shared by the scattering methods: incidence and in-plane scattering
+//! directions in the conventions of `shared/docs/physics.md`, detectors with a circular aperture,
+//! and the in-plane curve that every method returns.
+
+use glam::DVec3;
+use std::f64::consts::PI;
+
+/// Direction toward a source at incidence `theta_i` (radians) in the x-z plane, at negative x:
+/// `wi = (-sin ti, 0, cos ti)`.
+pub fn incidence_direction(theta_i: f64) -> DVec3 {
+    DVec3::new(-theta_i.sin(), 0.0, theta_i.cos())
+}
+
+/// Direction toward an in-plane detector at the signed scattering angle `theta_s` (radians):
+/// `wo = (sin ts, 0, cos ts)`; the specular peak of incidence ti is at `ts = +ti`.
+pub fn inplane_direction(theta_s: f64) -> DVec3 {
+    DVec3::new(theta_s.sin(), 0.0, theta_s.cos())
+}
+
+/// Direction `(ts, ps)` with `ps = 0` on the specular side:
+/// `wo = (sin ts cos ps, sin ts sin ps, cos ts)`.
+pub fn spherical_direction(theta: f64, phi: f64) -> DVec3 {
+    DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos())
+}
+
+/// Solid angle of a cone of half-angle `alpha` (radians): `2π(1 - cos alpha)` steradians.
+pub fn cone_solid_angle(alpha: f64) -> f64 {
+    2.0 * PI * (1.0 - alpha.cos())
+}
+
+/// A detector: a cone of half-angle `half_angle` (radians) about a unit `direction`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Detector {
+    pub direction: DVec3,
+    pub half_angle: f64,
+}
+
+impl Detector {
+    /// The solid angle the detector subtends, in steradians.
+    pub fn solid_angle(&self) -> f64 {
+        cone_solid_angle(self.half_angle)
+    }
+}
+
+/// One point of an in-plane curve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurvePoint {
+    /// Signed scattering angle in degrees (specular at +incidence).
+    pub scatter_deg: f64,
+    /// BRDF averaged over the detector, 1/sr.
+    pub brdf_per_sr: f64,
+    /// Reflectance collected by the detector, `rho ≈ f Omega cos ts`.
+    pub reflectance: f64,
+    /// Relative standard uncertainty of `reflectance` (Poisson, from hit counts) where the method
+    /// counts hits; `None` otherwise.
+    pub rel_uncertainty: Option<f64>,
+}
+
+/// An in-plane curve at one incidence (and wavelength, for wave methods).
+#[derive(Debug, Clone, PartialEq)]
+pub struct InplaneCurve {
+    /// Method or model name as written in the `method` column ("ray", "kirchhoff", "beckmann", ...).
+    pub method: String,
+    /// Wavelength in nm, when the result depends on it.
+    pub wavelength_nm: Option<f64>,
+    /// Incidence angle in degrees.
+    pub incidence_deg: f64,
+    /// Points in increasing scatter angle.
+    pub points: Vec<CurvePoint>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// physics.md: alpha = 1.4° gives Omega = 1.8756e-3 sr.
+    #[test]
+    fn starr_aperture_solid_angle() {
+        let omega = cone_solid_angle(1.4f64.to_radians());
+        assert!((omega - 1.8756e-3).abs() < 5e-8, "{omega}");
+    }
+
+    #[test]
+    fn specular_of_incidence_is_positive_scatter() {
+        let ti = 0.3;
+        let wi = incidence_direction(ti);
+        let mirror = DVec3::new(-wi.x, -wi.y, wi.z);
+        assert!((mirror - inplane_direction(ti)).length() < 1e-15);
+        assert!((spherical_direction(ti, 0.0) - inplane_direction(ti)).length() < 1e-15);
+    }
+}

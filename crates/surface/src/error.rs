@@ -1,0 +1,53 @@
+//! The error type of the `surface` crate: every failure names the file (when there is one) and
+//! what was wrong with it.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong while reading, writing or processing a height map.
+#[derive(Debug, thiserror::Error)]
+pub enum SurfaceError {
+    /// The file could not be opened, read or written.
+    #[error("{path}: {source}")]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// The file was read but its content is not a valid height map of the detected format.
+    #[error("{path}: {format}: {message}")]
+    Format {
+        path: PathBuf,
+        format: &'static str,
+        message: String,
+    },
+    /// No reader recognised the file's content or extension.
+    #[error(
+        "{path}: unknown height-map format (supported: X3P, SDF, GSF, Gwyddion ASCII, Zygo .dat, Wyko .opd, Sensofar .plu, Digital Surf .sur, Alicona .al3d)"
+    )]
+    UnknownFormat { path: PathBuf },
+    /// A height map that breaks the invariants of [`crate::HeightMap`] (bad spacing, NaN, size).
+    #[error("invalid height map: {0}")]
+    Invalid(String),
+}
+
+impl SurfaceError {
+    /// A format error for `path` in the given format.
+    pub fn format(path: impl Into<PathBuf>, format: &'static str, message: impl Into<String>) -> Self {
+        SurfaceError::Format {
+            path: path.into(),
+            format,
+            message: message.into(),
+        }
+    }
+
+    /// An I/O error for `path`.
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        SurfaceError::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}
+
+/// Result with [`SurfaceError`].
+pub type Result<T, E = SurfaceError> = std::result::Result<T, E>;
