@@ -13,8 +13,8 @@
 //! perpendicular elevation `b`; its solid-angle element is `cos b da db`.
 
 use crate::quadrature::gauss_legendre_on;
-use gonio_brdf::Ior;
 use glam::DVec3;
+use gonio_brdf::Ior;
 
 /// Refractive index of the black-glass primary standard of ISO 2813 / ASTM D523.
 pub const STANDARD_INDEX: f64 = 1.567;
@@ -85,7 +85,11 @@ pub struct Smooth(pub Ior);
 impl Specimen for Smooth {
     fn reflectance_into(&self, wi: DVec3, window: &Window) -> f64 {
         let mirror = DVec3::new(-wi.x, -wi.y, wi.z);
-        if window.contains(mirror) { self.0.reflectance(wi.z) } else { 0.0 }
+        if window.contains(mirror) {
+            self.0.reflectance(wi.z)
+        } else {
+            0.0
+        }
     }
 }
 
@@ -250,7 +254,11 @@ pub fn measure(specimen: &dyn Specimen) -> GlossReport {
         gu60: gu(60),
         gu85: gu(85),
         haze: 100.0 * haze / standard,
-        doi: if specular > 0.0 { 100.0 * (specular - near) / specular } else { 0.0 },
+        doi: if specular > 0.0 {
+            100.0 * (specular - near) / specular
+        } else {
+            0.0
+        },
     }
 }
 
@@ -277,7 +285,8 @@ mod tests {
     fn lambertian_reading_is_projected_solid_angle() {
         let lambert = BrdfSpecimen::new(|_wi: DVec3, _wo: DVec3| std::f64::consts::FRAC_1_PI);
         let g = Geometry::iso2813(60).unwrap();
-        let omega = g.receptor.aperture.in_plane * 2.0 * (0.5 * g.receptor.aperture.perpendicular).sin();
+        let omega =
+            g.receptor.aperture.in_plane * 2.0 * (0.5 * g.receptor.aperture.perpendicular).sin();
         let expect = g.theta.cos() * omega / std::f64::consts::PI;
         let got = g.reading(&lambert, 8);
         assert!((got / expect - 1.0).abs() < 2e-3, "{got} vs {expect}");

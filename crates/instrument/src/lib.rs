@@ -1,6 +1,8 @@
 //! Virtual instruments for gonio: gloss meters (ISO 2813 / ASTM D523), reflection haze and
 //! distinctness of image (ASTM E430), and the comparison of measured and computed in-plane curves.
 
+pub mod compare;
+pub mod curves;
 pub mod gloss;
 mod quadrature;
 

@@ -28,7 +28,10 @@ pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
 /// Nodes and weights mapped to [a, b].
 pub fn gauss_legendre_on(n: usize, a: f64, b: f64) -> Vec<(f64, f64)> {
     let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
-    gauss_legendre(n).into_iter().map(|(x, w)| (mid + half * x, half * w)).collect()
+    gauss_legendre(n)
+        .into_iter()
+        .map(|(x, w)| (mid + half * x, half * w))
+        .collect()
 }
 
 /// P_n(x) and P_n'(x) by the three-term recurrence.
@@ -57,10 +60,17 @@ mod tests {
             let rule = gauss_legendre(n);
             let deg = 2 * n - 1;
             let sum: f64 = rule.iter().map(|&(x, w)| w * x.powi(deg as i32 - 1)).sum();
-            let exact = if (deg - 1) % 2 == 0 { 2.0 / deg as f64 } else { 0.0 };
+            let exact = if (deg - 1) % 2 == 0 {
+                2.0 / deg as f64
+            } else {
+                0.0
+            };
             assert!((sum - exact).abs() < 1e-13, "n={n}: {sum} vs {exact}");
         }
-        let s: f64 = gauss_legendre_on(20, 0.0, PI).iter().map(|&(x, w)| w * x.sin()).sum();
+        let s: f64 = gauss_legendre_on(20, 0.0, PI)
+            .iter()
+            .map(|&(x, w)| w * x.sin())
+            .sum();
         assert!((s - 2.0).abs() < 1e-13);
     }
 }

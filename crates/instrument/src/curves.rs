@@ -1,0 +1,225 @@
+//! In-plane curves as CSV: the columns `gonio inplane` writes
+//! (`method,wavelength_nm,incidence_deg,scatter_deg,brdf_per_sr,reflectance`, optionally followed
+//! by `rel_uncertainty`) and the simple measured form `incidence_deg,scatter_deg,reflectance`.
+
+use gonio_scatter::{CurvePoint, InplaneCurve};
+use std::collections::BTreeMap;
+use std::io::Write;
+use std::path::Path;
+
+/// Errors reading or writing curve files.
+#[derive(Debug, thiserror::Error)]
+pub enum CurveError {
+    #[error("{path}: {message}")]
+    Read { path: String, message: String },
+    #[error("{path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+const COLUMNS: [&str; 7] = [
+    "method",
+    "wavelength_nm",
+    "incidence_deg",
+    "scatter_deg",
+    "brdf_per_sr",
+    "reflectance",
+    "rel_uncertainty",
+];
+
+/// Write curves as CSV to `path` atomically (temporary file, then rename).
+pub fn write_csv(path: &Path, curves: &[InplaneCurve]) -> Result<(), CurveError> {
+    let io_err = |source| CurveError::Io {
+        path: path.display().to_string(),
+        source,
+    };
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(io_err)?;
+    {
+        let mut w = std::io::BufWriter::new(tmp.as_file_mut());
+        write_csv_to(&mut w, curves).map_err(io_err)?;
+        w.flush().map_err(io_err)?;
+    }
+    tmp.persist(path).map_err(|e| io_err(e.error))?;
+    Ok(())
+}
+
+/// Write curves as CSV to any writer.
+pub fn write_csv_to(w: &mut impl Write, curves: &[InplaneCurve]) -> std::io::Result<()> {
+    writeln!(w, "{}", COLUMNS.join(","))?;
+    for c in curves {
+        let wl = c.wavelength_nm.map(|v| format!("{v}")).unwrap_or_default();
+        for p in &c.points {
+            let unc = p
+                .rel_uncertainty
+                .map(|v| format!("{v:.6e}"))
+                .unwrap_or_default();
+            writeln!(
+                w,
+                "{},{},{},{},{:.8e},{:.8e},{}",
+                c.method, wl, c.incidence_deg, p.scatter_deg, p.brdf_per_sr, p.reflectance, unc
+            )?;
+        }
+    }
+    Ok(())
+}
+
+/// Read curves from a CSV file in either of the two layouts. Rows are grouped into curves by
+/// (method, wavelength, incidence), in the order they first appear; points are sorted by angle.
+/// The simple layout gives the method "measured" and no BRDF column (it is derived from the
+/// reflectance only when `aperture_sr` is given: `f = rho / (Omega cos ts)`).
+pub fn read_csv(path: &Path, aperture_sr: Option<f64>) -> Result<Vec<InplaneCurve>, CurveError> {
+    let err = |message: String| CurveError::Read {
+        path: path.display().to_string(),
+        message,
+    };
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .from_path(path)
+        .map_err(|e| err(e.to_string()))?;
+    let headers = reader.headers().map_err(|e| err(e.to_string()))?.clone();
+    let col = |name: &str| headers.iter().position(|h| h == name);
+    let (Some(ci), Some(cs), Some(cr)) =
+        (col("incidence_deg"), col("scatter_deg"), col("reflectance"))
+    else {
+        return Err(err(format!(
+            "needs the columns incidence_deg, scatter_deg and reflectance (found: {})",
+            headers.iter().collect::<Vec<_>>().join(",")
+        )));
+    };
+    let (cm, cw, cb, cu) = (
+        col("method"),
+        col("wavelength_nm"),
+        col("brdf_per_sr"),
+        col("rel_uncertainty"),
+    );
+    let mut order: Vec<(String, Option<u64>, u64)> = Vec::new();
+    let mut groups: BTreeMap<(String, Option<u64>, u64), InplaneCurve> = BTreeMap::new();
+    for (i, record) in reader.records().enumerate() {
+        let line = i + 2;
+        let record = record.map_err(|e| err(format!("line {line}: {e}")))?;
+        let number = |c: usize, name: &str| -> Result<f64, CurveError> {
+            let text = record.get(c).unwrap_or("");
+            let v: f64 = text
+                .parse()
+                .map_err(|_| err(format!("line {line}: {name} '{text}' is not a number")))?;
+            if v.is_finite() {
+                Ok(v)
+            } else {
+                Err(err(format!("line {line}: {name} is not finite")))
+            }
+        };
+        let optional = |c: Option<usize>, name: &str| -> Result<Option<f64>, CurveError> {
+            match c.and_then(|c| record.get(c)).filter(|t| !t.is_empty()) {
+                None => Ok(None),
+                Some(_) => number(c.unwrap(), name).map(Some),
+            }
+        };
+        let method = cm
+            .and_then(|c| record.get(c))
+            .unwrap_or("measured")
+            .to_string();
+        let wavelength = optional(cw, "wavelength_nm")?;
+        let incidence = number(ci, "incidence_deg")?;
+        let scatter = number(cs, "scatter_deg")?;
+        let reflectance = number(cr, "reflectance")?;
+        let brdf = match optional(cb, "brdf_per_sr")? {
+            Some(b) => b,
+            None => aperture_sr
+                .map(|omega| reflectance / (omega * scatter.to_radians().cos()))
+                .unwrap_or(f64::NAN),
+        };
+        let key = (
+            method.clone(),
+            wavelength.map(f64::to_bits),
+            incidence.to_bits(),
+        );
+        let curve = groups.entry(key.clone()).or_insert_with(|| {
+            order.push(key);
+            InplaneCurve {
+                method,
+                wavelength_nm: wavelength,
+                incidence_deg: incidence,
+                points: Vec::new(),
+            }
+        });
+        curve.points.push(CurvePoint {
+            scatter_deg: scatter,
+            brdf_per_sr: brdf,
+            reflectance,
+            rel_uncertainty: optional(cu, "rel_uncertainty")?,
+        });
+    }
+    if order.is_empty() {
+        return Err(err("no data rows".into()));
+    }
+    Ok(order
+        .into_iter()
+        .map(|k| {
+            let mut c = groups.remove(&k).expect("every key was inserted");
+            c.points
+                .sort_by(|a, b| a.scatter_deg.total_cmp(&b.scatter_deg));
+            c
+        })
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn round_trip_and_simple_layout() {
+        let dir = tempfile::tempdir().unwrap();
+        let curve = InplaneCurve {
+            method: "ray".into(),
+            wavelength_nm: None,
+            incidence_deg: 20.0,
+            points: vec![
+                CurvePoint {
+                    scatter_deg: -1.0,
+                    brdf_per_sr: 0.5,
+                    reflectance: 1e-3,
+                    rel_uncertainty: Some(0.1),
+                },
+                CurvePoint {
+                    scatter_deg: 20.0,
+                    brdf_per_sr: 20.0,
+                    reflectance: 0.04,
+                    rel_uncertainty: None,
+                },
+            ],
+        };
+        let path = dir.path().join("c.csv");
+        write_csv(&path, std::slice::from_ref(&curve)).unwrap();
+        let back = read_csv(&path, None).unwrap();
+        assert_eq!(back.len(), 1);
+        assert_eq!(back[0].method, "ray");
+        assert_eq!(back[0].points[1].reflectance, 0.04);
+        assert_eq!(back[0].points[0].rel_uncertainty, Some(0.1));
+
+        let simple = dir.path().join("m.csv");
+        std::fs::write(
+            &simple,
+            "incidence_deg,scatter_deg,reflectance\n45,40,0.01\n45,45,0.5\n60,60,0.6\n",
+        )
+        .unwrap();
+        let m = read_csv(&simple, Some(1e-3)).unwrap();
+        assert_eq!(m.len(), 2);
+        assert_eq!(m[0].method, "measured");
+        let expect = 0.5 / (1e-3 * 45f64.to_radians().cos());
+        assert!((m[0].points[1].brdf_per_sr - expect).abs() < 1e-9);
+
+        let bad = dir.path().join("b.csv");
+        std::fs::write(&bad, "incidence_deg,scatter_deg,reflectance\n45,x,0.01\n").unwrap();
+        let e = read_csv(&bad, None).unwrap_err().to_string();
+        assert!(e.contains("b.csv") && e.contains("line 2"), "{e}");
+    }
+}
