@@ -1,0 +1,20 @@
+//! Surface topography for gonio: height maps read from instrument files or synthesised, their
+//! levelling, cropping and rotation, ISO 25178-2 statistics and facet normals.
+//!
+//! ```no_run
+//! let map = gonio_surface::io::read(std::path::Path::new("sample.x3p"))?;
+//! println!("{} × {} points, dx = {} m", map.nx(), map.ny(), map.dx());
+//! # Ok::<(), gonio_surface::SurfaceError>(())
+//! ```
+
+pub mod error;
+mod fft2;
+pub mod heightmap;
+pub mod io;
+pub mod normals;
+pub mod ops;
+pub mod spline;
+pub mod synth;
+
+pub use error::{Result, SurfaceError};
+pub use heightmap::{HeightMap, Metadata};

@@ -1,0 +1,336 @@
+//! Synthesis of periodic Gaussian random surfaces by spectral filtering, and the roughness series
+//! of the NIST epoxy samples.
+//!
+//! Method (the standard FFT filter, e.g. Garcia & Stoll, Phys. Rev. Lett. 52, 1798 (1984);
+//! Persson et al., J. Phys.: Condens. Matter 17, R1 (2005)): white Gaussian noise on the grid is
+//! transformed, multiplied by the square root of the power spectral density, and transformed back.
+//! The PSD is the discrete Fourier transform of the requested autocorrelation sampled on the
+//! periodic grid (distances taken to the nearest periodic image), so the expected autocorrelation
+//! of the result is exactly that periodic ACF at the grid points. The mean (zero-frequency term)
+//! is removed, and the heights are scaled so that Sq after least-squares levelling, as
+//! [`crate::stats`] computes it, equals the request to rounding. The map stays periodic: the
+//! plane is not subtracted, so the raw rms may exceed `sq` by the tiny tilt of one realisation.
+
+use crate::error::{Result, SurfaceError};
+use crate::fft2;
+use crate::heightmap::HeightMap;
+use crate::ops;
+use ndarray::{Array2, Zip};
+use rand_distr::{Distribution, StandardNormal};
+use rand_pcg::Pcg64;
+use rayon::prelude::*;
+
+/// Shape of the autocorrelation function `C(r)` of a random surface of rms height `sigma` and
+/// correlation length `T`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Acf {
+    /// `C(r) = sigma² exp(-r²/T²)`: rms slope (total) `2 sigma / T`, ISO Sal = `T √(ln 5)`.
+    Gaussian,
+    /// `C(r) = sigma² exp(-r/T)`: a fractal-like surface whose rms slope grows without bound as
+    /// the spacing shrinks; ISO Sal = `T ln 5`.
+    Exponential,
+}
+
+impl Acf {
+    /// `C(r)/sigma²` at distance `r` for correlation length `t` (same units).
+    pub fn normalised(self, r: f64, t: f64) -> f64 {
+        match self {
+            Acf::Gaussian => (-(r / t).powi(2)).exp(),
+            Acf::Exponential => (-r / t).exp(),
+        }
+    }
+}
+
+/// Request for a periodic Gaussian random surface (SI units: metres).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GaussianSurface {
+    /// rms height Sq, metres.
+    pub sq: f64,
+    /// Correlation length T, metres.
+    pub corr_length: f64,
+    /// Shape of the autocorrelation.
+    pub acf: Acf,
+    /// Points along x.
+    pub nx: usize,
+    /// Points along y.
+    pub ny: usize,
+    /// Spacing along x, metres.
+    pub dx: f64,
+    /// Spacing along y, metres.
+    pub dy: f64,
+    /// Seed of the random numbers: the same request and seed give the same map on any machine
+    /// and thread count.
+    pub seed: u64,
+}
+
+impl GaussianSurface {
+    /// Synthesise the surface. Fails if a length is not positive and finite or the grid has
+    /// fewer than 2 points along an axis.
+    pub fn generate(&self) -> Result<HeightMap> {
+        self.check()?;
+        let (nx, ny) = (self.nx, self.ny);
+        let amplitude = self.filter();
+        let mut spectrum = fft2::forward(self.white_noise().view());
+        Zip::from(&mut spectrum.data)
+            .and(&amplitude)
+            .par_for_each(|s, &a| *s *= a);
+        spectrum.data[[0, 0]] = Default::default();
+        let raw = HeightMap::new(fft2::inverse(spectrum), self.dx, self.dy)?;
+        let plane = ops::fit_plane(&raw)?;
+        let rms = ops::subtract_plane(&raw, &plane)
+            .heights()
+            .iter()
+            .map(|z| z * z)
+            .sum::<f64>();
+        let rms = (rms / (nx * ny) as f64).sqrt();
+        if rms <= 0.0 {
+            return Err(SurfaceError::Invalid(format!(
+                "a {nx} × {ny} grid is too small to hold a random surface"
+            )));
+        }
+        let mut map = raw.with_heights(raw.heights() * (self.sq / rms))?;
+        map.meta.instrument = Some("gonio synthetic".into());
+        map.meta.extra = vec![
+            ("acf".into(), format!("{:?}", self.acf).to_lowercase()),
+            ("sq_m".into(), format!("{:e}", self.sq)),
+            ("corr_length_m".into(), format!("{:e}", self.corr_length)),
+            ("seed".into(), self.seed.to_string()),
+        ];
+        Ok(map)
+    }
+
+    fn check(&self) -> Result<()> {
+        for (name, v) in [
+            ("sq", self.sq),
+            ("corr_length", self.corr_length),
+            ("dx", self.dx),
+            ("dy", self.dy),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(SurfaceError::Invalid(format!(
+                    "{name} = {v} m must be a positive, finite length"
+                )));
+            }
+        }
+        if self.nx < 2 || self.ny < 2 {
+            return Err(SurfaceError::Invalid(format!(
+                "grid {} × {} is too small: need at least 2 × 2 points",
+                self.nx, self.ny
+            )));
+        }
+        if self.nx.saturating_mul(self.ny) > crate::heightmap::MAX_POINTS {
+            return Err(SurfaceError::Invalid(format!(
+                "grid {} × {} exceeds the limit of {} points",
+                self.nx,
+                self.ny,
+                crate::heightmap::MAX_POINTS
+            )));
+        }
+        Ok(())
+    }
+
+    /// Square root of the PSD on the half spectrum: the DFT of the ACF sampled at the nearest
+    /// periodic image of each grid offset. Tiny negative values (truncation of the ACF at the
+    /// period) are clipped to zero.
+    fn filter(&self) -> Array2<f64> {
+        let (nx, ny) = (self.nx, self.ny);
+        let wrap = |i: usize, n: usize| i.min(n - i) as f64;
+        let acf = Array2::from_shape_fn((ny, nx), |(iy, ix)| {
+            let r = (wrap(ix, nx) * self.dx).hypot(wrap(iy, ny) * self.dy);
+            self.acf.normalised(r, self.corr_length)
+        });
+        fft2::forward(acf.view())
+            .data
+            .mapv(|s| s.re.max(0.0).sqrt())
+    }
+
+    /// Independent standard normal numbers; row `iy` comes from its own PCG stream, so that rows
+    /// can be drawn in parallel and the result does not depend on the thread count.
+    fn white_noise(&self) -> Array2<f64> {
+        let (nx, ny) = (self.nx, self.ny);
+        let mut noise = vec![0.0; nx * ny];
+        noise.par_chunks_mut(nx).enumerate().for_each(|(iy, row)| {
+            let mut rng = Pcg64::new(u128::from(self.seed) << 64 | 0x5851_f42d, iy as u128);
+            row.iter_mut()
+                .for_each(|v| *v = StandardNormal.sample(&mut rng));
+        });
+        Array2::from_shape_vec((ny, nx), noise).expect("shape matches the length")
+    }
+}
+
+/// Sq of the NIST epoxy roughness series, metres: 3, 50, 150, 201, 400 and 805 nm.
+///
+/// The NIST study of clear epoxy samples of graded roughness spans Sq from 3 nm (nearly
+/// smooth) to 805 nm and includes 3, 150, 201 and 805 nm; 50 and 400 nm fill the gaps on a roughly
+/// logarithmic scale (the same list as the default of `gonio study`).
+pub const EPOXY_SQ_M: [f64; 6] = [3e-9, 50e-9, 150e-9, 201e-9, 400e-9, 805e-9];
+
+/// Default correlation length of the epoxy series: 6 µm (Gaussian ACF).
+pub const EPOXY_CORR_LENGTH_M: f64 = 6e-6;
+/// Default grid of the epoxy series: 1024 × 1024 points...
+pub const EPOXY_N: usize = 1024;
+/// ...at 0.5 µm spacing (a 512 µm square, about 85 correlation lengths across, and 12 points
+/// per correlation length, so that the forward differences of [`crate::stats`] see 99.8% of the
+/// true rms slope).
+pub const EPOXY_SPACING_M: f64 = 0.5e-6;
+
+/// The request for the epoxy sample of rms height `sq` metres with the default correlation
+/// length, grid and a Gaussian ACF.
+pub fn epoxy_surface(sq: f64, seed: u64) -> GaussianSurface {
+    GaussianSurface {
+        sq,
+        corr_length: EPOXY_CORR_LENGTH_M,
+        acf: Acf::Gaussian,
+        nx: EPOXY_N,
+        ny: EPOXY_N,
+        dx: EPOXY_SPACING_M,
+        dy: EPOXY_SPACING_M,
+        seed,
+    }
+}
+
+/// The whole epoxy series ([`EPOXY_SQ_M`]), synthesised with the same seed (so the samples
+/// differ only in scale) and returned as `(sq, map)` pairs.
+pub fn epoxy_series(seed: u64) -> Result<Vec<(f64, HeightMap)>> {
+    EPOXY_SQ_M
+        .iter()
+        .map(|&sq| Ok((sq, epoxy_surface(sq, seed).generate()?)))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn request(acf: Acf, n: usize, seed: u64) -> GaussianSurface {
+        GaussianSurface {
+            sq: 201e-9,
+            corr_length: 4e-6,
+            acf,
+            nx: n,
+            ny: n / 2,
+            dx: 0.4e-6,
+            dy: 0.5e-6,
+            seed,
+        }
+    }
+
+    fn levelled_rms(map: &HeightMap) -> f64 {
+        let lev = ops::level(map).unwrap();
+        (lev.heights().iter().map(|z| z * z).sum::<f64>() / lev.valid_count() as f64).sqrt()
+    }
+
+    #[test]
+    fn sq_is_exact_and_mean_is_zero() {
+        for acf in [Acf::Gaussian, Acf::Exponential] {
+            let req = request(acf, 128, 7);
+            let map = req.generate().unwrap();
+            assert_eq!((map.nx(), map.ny()), (128, 64));
+            assert!((levelled_rms(&map) / req.sq - 1.0).abs() < 1e-9, "{acf:?}");
+            let mean = map.heights().mean().unwrap();
+            assert!(mean.abs() < 1e-12 * req.sq, "{acf:?} mean {mean}");
+        }
+    }
+
+    #[test]
+    fn same_seed_same_map_whatever_the_thread_count() {
+        let req = request(Acf::Gaussian, 64, 42);
+        let run = |threads| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| req.generate().unwrap())
+        };
+        let one = run(1);
+        assert_eq!(one.heights(), run(3).heights());
+        let other = GaussianSurface {
+            seed: 43,
+            ..req.clone()
+        }
+        .generate()
+        .unwrap();
+        assert_ne!(one.heights(), other.heights());
+    }
+
+    /// The realised autocorrelation along x at lag T is C(T)/C(0) = 1/e for both shapes (both
+    /// equal e^-1 at r = T). The estimate from a map of area A has a standard deviation of about
+    /// sqrt(∫ (ρ² + ρ(r+τ)ρ(r-τ)) d²r / A) <= sqrt(π T² / A) (Bartlett's formula; ∫ ρ² d²r = π T²/2
+    /// for both shapes), so the mean over 8 maps is held to 4 of those standard deviations.
+    #[test]
+    fn autocorrelation_at_the_correlation_length() {
+        for acf in [Acf::Gaussian, Acf::Exponential] {
+            let req = GaussianSurface {
+                ny: 256,
+                ..request(acf, 256, 0)
+            };
+            let lag = (req.corr_length / req.dx).round() as usize; // 10 points
+            let realisations = 8;
+            let mut mean = 0.0;
+            for seed in 0..realisations {
+                let map = GaussianSurface {
+                    seed,
+                    ..req.clone()
+                }
+                .generate()
+                .unwrap();
+                let (mut c0, mut c) = (0.0, 0.0);
+                for row in map.heights().rows() {
+                    for ix in 0..req.nx {
+                        c0 += row[ix] * row[ix];
+                        c += row[ix] * row[(ix + lag) % req.nx];
+                    }
+                }
+                mean += c / c0 / realisations as f64;
+            }
+            let area = req.nx as f64 * req.dx * req.ny as f64 * req.dy;
+            let sigma = (std::f64::consts::PI * req.corr_length.powi(2) / area).sqrt()
+                / (realisations as f64).sqrt();
+            let expect = acf.normalised(lag as f64 * req.dx, req.corr_length);
+            assert!(
+                (mean - expect).abs() < 4.0 * sigma,
+                "{acf:?}: {mean} vs {expect} ± {sigma}"
+            );
+        }
+    }
+
+    #[test]
+    fn bad_requests_are_errors() {
+        let ok = request(Acf::Gaussian, 16, 0);
+        for bad in [
+            GaussianSurface {
+                sq: 0.0,
+                ..ok.clone()
+            },
+            GaussianSurface {
+                corr_length: f64::NAN,
+                ..ok.clone()
+            },
+            GaussianSurface {
+                dx: -1.0,
+                ..ok.clone()
+            },
+            GaussianSurface {
+                nx: 1,
+                ..ok.clone()
+            },
+        ] {
+            assert!(bad.generate().is_err(), "{bad:?}");
+        }
+    }
+
+    #[test]
+    fn epoxy_series_spans_3_to_805_nm() {
+        assert_eq!(EPOXY_SQ_M.first(), Some(&3e-9));
+        assert_eq!(EPOXY_SQ_M.last(), Some(&805e-9));
+        for sq in [150e-9, 201e-9] {
+            assert!(EPOXY_SQ_M.contains(&sq));
+        }
+        let small = GaussianSurface {
+            nx: 64,
+            ny: 64,
+            ..epoxy_surface(805e-9, 1)
+        };
+        assert!((levelled_rms(&small.generate().unwrap()) / 805e-9 - 1.0).abs() < 1e-9);
+    }
+}
