@@ -1,0 +1,149 @@
+//! The HTML report the demo writes: one self-contained page (images embedded as base64 PNG)
+//! that a person reads top to bottom, with what was computed, figures, tables and timings.
+
+use anyhow::{Context, Result};
+use base64::Engine;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// One piece of a section.
+pub enum Block {
+    /// A paragraph of plain text.
+    Text(String),
+    /// A table with a header row.
+    Table { headers: Vec<String>, rows: Vec<Vec<String>> },
+    /// A PNG image from a file, embedded in the page, with a caption.
+    Image { path: PathBuf, caption: String },
+    /// Preformatted text (command lines, small listings).
+    Code(String),
+}
+
+/// A section of the report with the time its computation took.
+pub struct Section {
+    pub title: String,
+    pub blocks: Vec<Block>,
+    pub seconds: f64,
+}
+
+/// The whole report.
+pub struct Report {
+    pub title: String,
+    pub intro: String,
+    pub sections: Vec<Section>,
+}
+
+/// Escape text for HTML.
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
+impl Report {
+    /// Render the page; images are read and embedded.
+    pub fn to_html(&self) -> Result<String> {
+        let mut h = String::new();
+        let total: f64 = self.sections.iter().map(|s| s.seconds).sum();
+        write!(
+            h,
+            "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+             <title>{t}</title><style>{css}</style></head><body>\n<h1>{t}</h1>\n<p>{intro}</p>\n",
+            t = esc(&self.title),
+            css = CSS,
+            intro = esc(&self.intro)
+        )?;
+        h.push_str("<h2>Contents</h2>\n<table><tr><th>section</th><th>time (s)</th></tr>\n");
+        for (i, s) in self.sections.iter().enumerate() {
+            writeln!(
+                h,
+                "<tr><td><a href=\"#s{i}\">{}</a></td><td class=\"num\">{:.1}</td></tr>",
+                esc(&s.title),
+                s.seconds
+            )?;
+        }
+        writeln!(h, "<tr><td><b>total</b></td><td class=\"num\"><b>{total:.1}</b></td></tr></table>")?;
+        for (i, s) in self.sections.iter().enumerate() {
+            writeln!(h, "<section id=\"s{i}\"><h2>{}</h2>", esc(&s.title))?;
+            for b in &s.blocks {
+                match b {
+                    Block::Text(t) => writeln!(h, "<p>{}</p>", esc(t))?,
+                    Block::Code(t) => writeln!(h, "<pre>{}</pre>", esc(t))?,
+                    Block::Table { headers, rows } => {
+                        h.push_str("<table><tr>");
+                        for c in headers {
+                            write!(h, "<th>{}</th>", esc(c))?;
+                        }
+                        h.push_str("</tr>\n");
+                        for r in rows {
+                            h.push_str("<tr>");
+                            for c in r {
+                                write!(h, "<td>{}</td>", esc(c))?;
+                            }
+                            h.push_str("</tr>\n");
+                        }
+                        h.push_str("</table>\n");
+                    }
+                    Block::Image { path, caption } => {
+                        let bytes = std::fs::read(path)
+                            .with_context(|| format!("{}: cannot read image for the report", path.display()))?;
+                        let data = base64::engine::general_purpose::STANDARD.encode(bytes);
+                        writeln!(
+                            h,
+                            "<figure><img src=\"data:image/png;base64,{data}\" alt=\"{c}\"><figcaption>{c}</figcaption></figure>",
+                            c = esc(caption)
+                        )?;
+                    }
+                }
+            }
+            writeln!(h, "<p class=\"time\">computed in {:.1} s</p></section>", s.seconds)?;
+        }
+        h.push_str("</body></html>\n");
+        Ok(h)
+    }
+
+    /// Write the page to `path` atomically.
+    pub fn write(&self, path: &Path) -> Result<()> {
+        let html = self.to_html()?;
+        let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        std::fs::create_dir_all(dir).with_context(|| format!("{}: cannot create", dir.display()))?;
+        let mut tmp = tempfile::NamedTempFile::new_in(dir)?;
+        std::io::Write::write_all(&mut tmp, html.as_bytes())?;
+        tmp.persist(path).with_context(|| format!("{}: cannot write", path.display()))?;
+        Ok(())
+    }
+}
+
+const CSS: &str = "body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222;line-height:1.45}\
+h1{border-bottom:2px solid #345}h2{margin-top:2em;color:#234}\
+table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:3px 8px;text-align:left}\
+th{background:#eef}td.num{text-align:right}figure{margin:1em 0}img{max-width:100%;border:1px solid #ccc}\
+figcaption{font-size:90%;color:#555}pre{background:#f4f4f4;padding:.6em;overflow-x:auto}.time{color:#777;font-size:85%}";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn html_escapes_and_embeds() {
+        let dir = tempfile::tempdir().unwrap();
+        let png = dir.path().join("a.png");
+        image::RgbImage::from_pixel(2, 2, image::Rgb([10, 20, 30])).save(&png).unwrap();
+        let report = Report {
+            title: "T <1>".into(),
+            intro: "a & b".into(),
+            sections: vec![Section {
+                title: "S".into(),
+                blocks: vec![
+                    Block::Text("x < y".into()),
+                    Block::Image { path: png, caption: "cap".into() },
+                    Block::Table { headers: vec!["h".into()], rows: vec![vec!["1".into()]] },
+                ],
+                seconds: 1.5,
+            }],
+        };
+        let html = report.to_html().unwrap();
+        assert!(html.contains("T &lt;1&gt;") && html.contains("a &amp; b") && html.contains("x &lt; y"));
+        assert!(html.contains("data:image/png;base64,iVBOR"));
+        let out = dir.path().join("r/report.html");
+        report.write(&out).unwrap();
+        assert!(out.exists());
+    }
+}
