@@ -14,6 +14,7 @@ pub mod io;
 pub mod normals;
 pub mod ops;
 pub mod spline;
+pub mod stats;
 pub mod synth;
 
 pub use error::{Result, SurfaceError};

@@ -14,13 +14,16 @@
 //!
 //! Invalid (NaN) points split rows and columns into runs of valid points, each with its own
 //! spline; a cell with an invalid corner evaluates to NaN. Points outside the grid evaluate to NaN
-//! (no extrapolation).
+//! (no extrapolation), except within 1e-9 of a spacing of the edge.
 
 use crate::error::{Result, SurfaceError};
 use crate::heightmap::HeightMap;
 use glam::DVec2;
 use ndarray::{Array2, ArrayView2};
 use rayon::prelude::*;
+
+/// How far outside the grid, in spacings, a position may lie and still count as on the edge.
+const EDGE_TOLERANCE: f64 = 1e-9;
 
 /// A bicubic spline through a height map, built once and evaluated many times.
 ///
@@ -127,12 +130,15 @@ impl BicubicSpline {
 
     /// The cell containing `(x, y)` with the Hermite weights of the point inside it.
     fn patch(&self, x: f64, y: f64) -> Option<Patch<'_>> {
-        let u = x / self.dx;
-        let v = y / self.dy;
+        // Positions within EDGE_TOLERANCE of a spacing outside the grid (rounding in a caller's
+        // coordinate arithmetic) count as on its edge.
         let (umax, vmax) = ((self.nx - 1) as f64, (self.ny - 1) as f64);
-        if !(u >= 0.0 && u <= umax && v >= 0.0 && v <= vmax) {
+        let inside = |w: f64, max: f64| w >= -EDGE_TOLERANCE && w <= max + EDGE_TOLERANCE;
+        let (u, v) = (x / self.dx, y / self.dy);
+        if !(inside(u, umax) && inside(v, vmax)) {
             return None;
         }
+        let (u, v) = (u.clamp(0.0, umax), v.clamp(0.0, vmax));
         let ix = (u as usize).min(self.nx - 2);
         let iy = (v as usize).min(self.ny - 2);
         let i00 = iy * self.nx + ix;
