@@ -1,0 +1,361 @@
+//! The scalar Kirchhoff approximation over a measured height map (Beckmann & Spizzichino 1963,
+//! ch. 3 and 5, as written in `shared/docs/physics.md`): with `v = -k (wi + wo)`,
+//!
+//! ```text
+//! E(v) = ∫∫ W(x, y) exp(i (vx x + vy y + vz h(x, y))) dx dy
+//! f    = R(iota) k² cos ti |F E(v)|² / (4π² cos to ∫∫ W² dx dy)
+//! ```
+//!
+//! `W` is the radial Schwartz window `exp(-1/(1 - (ρ/R)²))` over a circular spot (by default the
+//! largest circle that fits the map), so a flat patch conserves energy and its lobe is the
+//! window's diffraction pattern. Unlike the ray method the result depends on the wavelength and
+//! shows the coherent specular spike of smooth surfaces.
+//!
+//! Discretisation: the surface is the bicubic spline through the map, cut into cells `r` times
+//! finer than the map; on each cell it is replaced by its tangent plane at the cell centre and the
+//! integral over the cell is done exactly (a product of two sinc factors). The refinement `r` is
+//! chosen per direction from the data: the largest departure of the surface from a cell's tangent
+//! plane, `C/(8 r²)` with `C` the 99.9th percentile of the map's second differences over the spot,
+//! must keep the neglected phase `|vz| C/(8 r²)` below [`KirchhoffOptions::phase_tolerance`].
+//! A detector's reading sums `|E|²` over the wave vectors its cone holds, on the lattice the spot
+//! resolves (see `aperture`); pointwise BRDFs use the direct sum; full-hemisphere maps use FFTs
+//! (see `hemisphere`). Method and accuracy: `docs/kirchhoff.md`.
+
+mod aperture;
+mod facets;
+mod kernel;
+
+use crate::error::{Result, ScatterError};
+use crate::geometry::{CurvePoint, Detector, InplaneCurve, incidence_direction, inplane_direction};
+use facets::FacetGrid;
+use glam::DVec3;
+use gonio_brdf::Ior;
+use gonio_surface::HeightMap;
+use gonio_surface::spline::BicubicSpline;
+use rayon::prelude::*;
+use std::f64::consts::{PI, TAU};
+use std::sync::OnceLock;
+
+/// Largest refinement of the map's cells.
+pub const MAX_REFINEMENT: usize = 16;
+
+/// Largest number of facets in one refined grid (16.8 million; 32 bytes each).
+pub const MAX_FACETS: usize = 1 << 24;
+
+/// A circular illuminated spot on the map: centre in the map's coordinates (point `(ix, iy)` at
+/// `(ix·dx, iy·dy)`), metres, and diameter, metres.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Spot {
+    pub center: (f64, f64),
+    pub diameter: f64,
+}
+
+impl Spot {
+    /// The largest circle that fits the map, centred on it.
+    pub fn largest(map: &HeightMap) -> Spot {
+        let (w, h) = map_extent(map);
+        Spot {
+            center: (0.5 * w, 0.5 * h),
+            diameter: w.min(h),
+        }
+    }
+
+    /// `count` spots of `diameter` metres on a square lattice of that pitch, centred on the map,
+    /// taken row by row: non-overlapping spots for speckle averaging. Fails when fewer fit.
+    pub fn tiled(map: &HeightMap, diameter: f64, count: usize) -> Result<Vec<Spot>> {
+        let (w, h) = map_extent(map);
+        let (cols, rows) = ((w / diameter) as usize, (h / diameter) as usize);
+        if !(diameter > 0.0) || count == 0 || cols * rows < count {
+            return Err(ScatterError::Invalid(format!(
+                "{count} spots of {:.1} µm do not fit side by side on a {:.1} × {:.1} µm map \
+                 ({} fit); use a smaller spot or fewer spots",
+                diameter * 1e6,
+                w * 1e6,
+                h * 1e6,
+                cols * rows
+            )));
+        }
+        let (x0, y0) = (
+            0.5 * (w - cols as f64 * diameter),
+            0.5 * (h - rows as f64 * diameter),
+        );
+        Ok((0..count)
+            .map(|i| Spot {
+                center: (
+                    x0 + ((i % cols) as f64 + 0.5) * diameter,
+                    y0 + ((i / cols) as f64 + 0.5) * diameter,
+                ),
+                diameter,
+            })
+            .collect())
+    }
+}
+
+/// Width and height of the map between its first and last points, metres.
+fn map_extent(map: &HeightMap) -> (f64, f64) {
+    (
+        (map.nx() - 1) as f64 * map.dx(),
+        (map.ny() - 1) as f64 * map.dy(),
+    )
+}
+
+/// Settings of the Kirchhoff engine.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KirchhoffOptions {
+    /// Refractive index of the coating.
+    pub ior: Ior,
+    /// The illuminated spot; `None` for the largest circle that fits the map.
+    pub spot: Option<Spot>,
+    /// Largest phase, radians, by which the surface may depart from a facet's tangent plane
+    /// (default 0.3).
+    pub phase_tolerance: f64,
+}
+
+impl KirchhoffOptions {
+    /// Default settings for a coating of index `ior`.
+    pub fn new(ior: Ior) -> Self {
+        KirchhoffOptions {
+            ior,
+            spot: None,
+            phase_tolerance: 0.3,
+        }
+    }
+}
+
+/// The Kirchhoff engine for one spot of one height map: the spline, the spot and the facet grids
+/// of each refinement used so far.
+pub struct Kirchhoff {
+    spline: BicubicSpline,
+    spot: Spot,
+    ior: Ior,
+    phase_tolerance: f64,
+    curvature: f64,
+    grids: Vec<OnceLock<FacetGrid>>,
+}
+
+impl Kirchhoff {
+    /// Set up the engine. Fails if the spot does not lie on the map or holds fewer than 8 × 8
+    /// points, or the phase tolerance is not positive.
+    pub fn new(map: &HeightMap, options: KirchhoffOptions) -> Result<Self> {
+        let spot = options.spot.unwrap_or_else(|| Spot::largest(map));
+        let (w, h) = map_extent(map);
+        let r = 0.5 * spot.diameter;
+        let (cx, cy) = spot.center;
+        let eps = 1e-9 * w.max(h);
+        if !(r > 0.0 && cx - r >= -eps && cy - r >= -eps && cx + r <= w + eps && cy + r <= h + eps)
+        {
+            return Err(ScatterError::Invalid(format!(
+                "spot of diameter {:.2} µm at ({:.2}, {:.2}) µm does not lie on the \
+                 {:.2} × {:.2} µm map; choose a smaller spot",
+                spot.diameter * 1e6,
+                cx * 1e6,
+                cy * 1e6,
+                w * 1e6,
+                h * 1e6
+            )));
+        }
+        if spot.diameter < 8.0 * map.dx().max(map.dy()) {
+            return Err(ScatterError::Invalid(format!(
+                "spot of diameter {:.3} µm spans fewer than 8 points of the map; the Kirchhoff \
+                 integral needs a larger spot",
+                spot.diameter * 1e6
+            )));
+        }
+        if !(options.phase_tolerance > 0.0) {
+            return Err(ScatterError::Invalid(format!(
+                "phase tolerance {} rad must be positive",
+                options.phase_tolerance
+            )));
+        }
+        let spline = BicubicSpline::from_map(map)?;
+        let curvature = facets::curvature_percentile(map.heights(), map.dx(), map.dy(), &spot);
+        Ok(Kirchhoff {
+            spline,
+            spot,
+            ior: options.ior,
+            phase_tolerance: options.phase_tolerance,
+            curvature,
+            grids: (0..MAX_REFINEMENT).map(|_| OnceLock::new()).collect(),
+        })
+    }
+
+    /// The illuminated spot.
+    pub fn spot(&self) -> Spot {
+        self.spot
+    }
+
+    /// Refinement (cells per map cell along each axis) for a wave vector of z component `vz`:
+    /// the smallest `r` with `|vz| C/(8 r²) ≤ phase_tolerance`.
+    pub fn refinement(&self, vz: f64) -> Result<usize> {
+        let r = (vz.abs() * self.curvature / (8.0 * self.phase_tolerance))
+            .sqrt()
+            .ceil()
+            .max(1.0) as usize;
+        let cells = {
+            let n = |d: f64| (self.spot.diameter / d * r as f64).ceil() as usize;
+            n(self.spline.dx()) * n(self.spline.dy())
+        };
+        if r > MAX_REFINEMENT || cells > MAX_FACETS {
+            return Err(ScatterError::Invalid(format!(
+                "the map is too coarse for this wavelength and direction: it would need \
+                 {r}× finer cells ({cells} facets; limits {MAX_REFINEMENT}× and {MAX_FACETS}); \
+                 use a smaller spot, a longer wavelength or a finer measurement"
+            )));
+        }
+        Ok(r)
+    }
+
+    /// The facet grid of refinement `r`, built on first use.
+    fn grid(&self, r: usize) -> &FacetGrid {
+        self.grids[r - 1].get_or_init(|| FacetGrid::build(&self.spline, &self.spot, r))
+    }
+
+    /// The facet grid for the wave vector `v`.
+    fn grid_for(&self, v: DVec3) -> Result<&FacetGrid> {
+        Ok(self.grid(self.refinement(v.z)?))
+    }
+
+    /// Facets of the spot left out because they touch non-measured points (at refinement 1).
+    pub fn invalid_facets(&self) -> usize {
+        self.grid(1).invalid_cells
+    }
+
+    /// BRDF (1/sr) for light of `wavelength` (metres) from `wi` into `wo`, unit vectors away from
+    /// the surface: the direct sum at exactly this pair of directions, with its speckle.
+    pub fn brdf(&self, wavelength: f64, wi: DVec3, wo: DVec3) -> Result<f64> {
+        if wi.z <= 0.0 || wo.z <= 0.0 {
+            return Ok(0.0);
+        }
+        let k = TAU / wavelength;
+        let v = -k * (wi + wo);
+        let grid = self.grid_for(v)?;
+        let e = grid.field([v.x, v.y, v.z], [v.x, v.y, v.z]);
+        Ok(
+            aperture::brdf_factor(self.ior, wi, wo) * k * k * wi.z * e.norm_sqr()
+                / (4.0 * PI * PI * wo.z * grid.w2_area),
+        )
+    }
+
+    /// Reflectance `∫_cone f cos t dω` collected by `detector` for light of `wavelength` metres
+    /// from `wi`.
+    pub fn reflectance(&self, wavelength: f64, wi: DVec3, detector: &Detector) -> Result<f64> {
+        if !(wavelength > 0.0 && wavelength.is_finite()) {
+            return Err(ScatterError::Invalid(format!(
+                "wavelength {wavelength} m must be positive and finite"
+            )));
+        }
+        if !(detector.half_angle > 0.0 && detector.half_angle < 0.5 * PI) {
+            return Err(ScatterError::Invalid(format!(
+                "detector half-angle {}° must lie in (0, 90)",
+                detector.half_angle.to_degrees()
+            )));
+        }
+        let k = TAU / wavelength;
+        let grid = self.grid_for(-k * (wi + detector.direction.normalize()))?;
+        aperture::cone_reflectance(grid, self.ior, k, wi, detector)
+    }
+
+    /// In-plane curves for every wavelength (metres) and incidence (radians), in that order, with
+    /// detectors of half-angle `half_angle` at signed scatter angles `scatter` (radians). The
+    /// detectors run in parallel; `on_done` is called after each.
+    pub fn inplane(
+        &self,
+        wavelengths: &[f64],
+        incidences: &[f64],
+        scatter: &[f64],
+        half_angle: f64,
+        on_done: &(dyn Fn() + Sync),
+    ) -> Result<Vec<InplaneCurve>> {
+        let jobs: Vec<(f64, f64, f64)> = wavelengths
+            .iter()
+            .flat_map(|&l| {
+                incidences
+                    .iter()
+                    .flat_map(move |&ti| scatter.iter().map(move |&ts| (l, ti, ts)))
+            })
+            .collect();
+        // Build the grids first, in order, so that parallel jobs never wait on one another.
+        for &(l, ti, ts) in &jobs {
+            let k = TAU / l;
+            self.grid_for(-k * (incidence_direction(ti) + inplane_direction(ts)))?;
+        }
+        let readings: Vec<f64> = jobs
+            .par_iter()
+            .map(|&(l, ti, ts)| {
+                let detector = Detector {
+                    direction: inplane_direction(ts),
+                    half_angle,
+                };
+                let rho = self.reflectance(l, incidence_direction(ti), &detector);
+                on_done();
+                rho
+            })
+            .collect::<Result<_>>()?;
+        let omega = crate::geometry::cone_solid_angle(half_angle);
+        Ok(readings
+            .chunks(scatter.len().max(1))
+            .zip(jobs.chunks(scatter.len().max(1)))
+            .map(|(rho, job)| InplaneCurve {
+                method: "kirchhoff".into(),
+                wavelength_nm: Some(job[0].0 * 1e9),
+                incidence_deg: job[0].1.to_degrees(),
+                points: rho
+                    .iter()
+                    .zip(job)
+                    .map(|(&rho, &(_, _, ts))| CurvePoint {
+                        scatter_deg: ts.to_degrees(),
+                        brdf_per_sr: rho / (omega * ts.cos()),
+                        reflectance: rho,
+                        rel_uncertainty: None,
+                    })
+                    .collect(),
+            })
+            .collect())
+    }
+}
+
+/// Average several sets of curves point by point (speckle averaging over spots or realisations):
+/// every set must hold the same curves at the same angles.
+pub fn average_curves(sets: &[Vec<InplaneCurve>]) -> Result<Vec<InplaneCurve>> {
+    let Some(first) = sets.first() else {
+        return Err(ScatterError::Invalid("no curves to average".into()));
+    };
+    let same = |a: &InplaneCurve, b: &InplaneCurve| {
+        a.wavelength_nm == b.wavelength_nm
+            && a.incidence_deg == b.incidence_deg
+            && a.points.len() == b.points.len()
+            && a.points
+                .iter()
+                .zip(&b.points)
+                .all(|(p, q)| p.scatter_deg == q.scatter_deg)
+    };
+    if sets
+        .iter()
+        .any(|s| s.len() != first.len() || !s.iter().zip(first).all(|(a, b)| same(a, b)))
+    {
+        return Err(ScatterError::Invalid(
+            "curves to average differ in wavelength, incidence or angles".into(),
+        ));
+    }
+    let n = sets.len() as f64;
+    Ok(first
+        .iter()
+        .enumerate()
+        .map(|(c, curve)| InplaneCurve {
+            points: curve
+                .points
+                .iter()
+                .enumerate()
+                .map(|(i, p)| CurvePoint {
+                    brdf_per_sr: sets.iter().map(|s| s[c].points[i].brdf_per_sr).sum::<f64>() / n,
+                    reflectance: sets.iter().map(|s| s[c].points[i].reflectance).sum::<f64>() / n,
+                    ..*p
+                })
+                .collect(),
+            ..curve.clone()
+        })
+        .collect())
+}
+
+#[cfg(test)]
+mod tests;
