@@ -17,7 +17,9 @@
 
 pub mod adaptation;
 pub mod cie;
+pub mod ciede2000;
 pub mod error;
+pub mod hero;
 mod mat3;
 pub mod reduce;
 pub mod spectrum;
@@ -26,7 +28,9 @@ pub mod tristimulus;
 pub mod xyz;
 
 pub use cie::{ColorMatchingFunctions, Illuminant, Observer};
+pub use ciede2000::{ciede2000, ciede2000_weighted};
 pub use error::{ColorError, Result};
+pub use hero::{HERO_COUNT, HeroSampler, SpectralFilm};
 pub use mat3::Mat3;
 pub use reduce::SpectralToXyz;
 pub use spectrum::Spectrum;
