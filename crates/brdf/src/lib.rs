@@ -1,0 +1,15 @@
+//! BRDFs for gonio: Fresnel reflectance, microfacet distributions, analytic models, tabulated
+//! BRDFs and their file formats.
+
+pub mod bxdf;
+pub mod error;
+pub mod fit;
+pub mod fresnel;
+pub mod microfacet;
+pub mod models;
+pub mod sampling;
+pub mod validate;
+
+pub use bxdf::{Brdf, BrdfSample, Rgb};
+pub use error::{BrdfError, Result};
+pub use fresnel::Ior;
