@@ -1,9 +1,11 @@
 //! The `gonio` command: parses flags, calls into the gonio crates and formats their results.
 //! No physics lives here.
 
+mod color;
 mod compare;
 mod report;
 mod plot;
+mod surface;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -21,14 +23,22 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Height maps: statistics, synthesis, conversion, levelling, cropping, rotation, plots.
+    #[command(subcommand)]
+    Surface(surface::SurfaceCommand),
     /// Compare measured and computed in-plane curves (RMS of log reflectance, peaks, FWHM).
     Compare(compare::CompareArgs),
+    /// Colorimetry of spectra: `gonio color xyz --spectrum FILE.csv` prints CIE XYZ, xyY,
+    /// CIELAB and sRGB.
+    Color(color::ColorArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result: anyhow::Result<()> = match cli.command {
+        Command::Surface(cmd) => surface::run(cmd),
         Command::Compare(args) => compare::run(args),
+        Command::Color(args) => color::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

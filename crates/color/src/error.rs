@@ -10,12 +10,12 @@ pub type Result<T, E = ColorError> = std::result::Result<T, E>;
 #[derive(Debug, thiserror::Error)]
 pub enum ColorError {
     /// A spectrum file could not be opened or read.
-    #[error("{}: cannot read the file: {source}", file.display())]
+    #[error("{}: cannot read the file: {cause}", file.display())]
     Io {
         /// The file.
         file: PathBuf,
-        /// The operating system's error.
-        source: std::io::Error,
+        /// The operating system's error (in the message, so not repeated as a source).
+        cause: std::io::Error,
     },
     /// A line of a spectrum file is malformed.
     #[error("{}, line {line}: {problem}", file.display())]

@@ -161,9 +161,9 @@ impl Spectrum {
     /// Read a `wavelength_nm,value` CSV file: a header line whose first column is `wavelength_nm`,
     /// then one sample per line, wavelengths increasing. Blank lines are skipped.
     pub fn read_csv(path: &Path) -> Result<Spectrum> {
-        let text = std::fs::read_to_string(path).map_err(|source| ColorError::Io {
+        let text = std::fs::read_to_string(path).map_err(|cause| ColorError::Io {
             file: path.to_path_buf(),
-            source,
+            cause,
         })?;
         Self::parse_csv(&text, path)
     }
