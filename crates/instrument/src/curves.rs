@@ -2,23 +2,11 @@
 //! (`method,wavelength_nm,incidence_deg,scatter_deg,brdf_per_sr,reflectance`, optionally followed
 //! by `rel_uncertainty`) and the simple measured form `incidence_deg,scatter_deg,reflectance`.
 
+use crate::error::InstrumentError;
 use gonio_scatter::{CurvePoint, InplaneCurve};
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::Path;
-
-/// Errors reading or writing curve files.
-#[derive(Debug, thiserror::Error)]
-pub enum CurveError {
-    #[error("{path}: {message}")]
-    Read { path: String, message: String },
-    #[error("{path}: {source}")]
-    Io {
-        path: String,
-        #[source]
-        source: std::io::Error,
-    },
-}
 
 const COLUMNS: [&str; 7] = [
     "method",
@@ -31,8 +19,8 @@ const COLUMNS: [&str; 7] = [
 ];
 
 /// Write curves as CSV to `path` atomically (temporary file, then rename).
-pub fn write_csv(path: &Path, curves: &[InplaneCurve]) -> Result<(), CurveError> {
-    let io_err = |source| CurveError::Io {
+pub fn write_csv(path: &Path, curves: &[InplaneCurve]) -> Result<(), InstrumentError> {
+    let io_err = |source| InstrumentError::Io {
         path: path.display().to_string(),
         source,
     };
@@ -74,8 +62,11 @@ pub fn write_csv_to(w: &mut impl Write, curves: &[InplaneCurve]) -> std::io::Res
 /// (method, wavelength, incidence), in the order they first appear; points are sorted by angle.
 /// The simple layout gives the method "measured" and no BRDF column (it is derived from the
 /// reflectance only when `aperture_sr` is given: `f = rho / (Omega cos ts)`).
-pub fn read_csv(path: &Path, aperture_sr: Option<f64>) -> Result<Vec<InplaneCurve>, CurveError> {
-    let err = |message: String| CurveError::Read {
+pub fn read_csv(
+    path: &Path,
+    aperture_sr: Option<f64>,
+) -> Result<Vec<InplaneCurve>, InstrumentError> {
+    let err = |message: String| InstrumentError::Read {
         path: path.display().to_string(),
         message,
     };
@@ -105,7 +96,7 @@ pub fn read_csv(path: &Path, aperture_sr: Option<f64>) -> Result<Vec<InplaneCurv
     for (i, record) in reader.records().enumerate() {
         let line = i + 2;
         let record = record.map_err(|e| err(format!("line {line}: {e}")))?;
-        let number = |c: usize, name: &str| -> Result<f64, CurveError> {
+        let number = |c: usize, name: &str| -> Result<f64, InstrumentError> {
             let text = record.get(c).unwrap_or("");
             let v: f64 = text
                 .parse()
@@ -116,7 +107,7 @@ pub fn read_csv(path: &Path, aperture_sr: Option<f64>) -> Result<Vec<InplaneCurv
                 Err(err(format!("line {line}: {name} is not finite")))
             }
         };
-        let optional = |c: Option<usize>, name: &str| -> Result<Option<f64>, CurveError> {
+        let optional = |c: Option<usize>, name: &str| -> Result<Option<f64>, InstrumentError> {
             match c.and_then(|c| record.get(c)).filter(|t| !t.is_empty()) {
                 None => Ok(None),
                 Some(_) => number(c.unwrap(), name).map(Some),

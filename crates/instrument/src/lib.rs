@@ -3,7 +3,10 @@
 
 pub mod compare;
 pub mod curves;
+pub mod error;
 pub mod gloss;
 mod quadrature;
+pub mod study;
 
+pub use error::{InstrumentError, Result};
 pub use gloss::{GlossReport, Specimen, measure};

@@ -1,0 +1,147 @@
+//! The roughness study: for a series of surfaces, in-plane curves by the ray method and the
+//! Kirchhoff approximation at the STARR geometry, ISO 25178 statistics, and the peak height and
+//! width of every curve, so that appearance can be followed across the series.
+
+use crate::compare::{Peak, peak};
+use crate::error::{InstrumentError, Result};
+use gonio_brdf::Ior;
+use gonio_scatter::InplaneCurve;
+use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions};
+use gonio_scatter::ray::{RayEngine, RayOptions};
+use gonio_surface::HeightMap;
+use gonio_surface::stats::{Statistics, statistics};
+
+/// What to compute for every sample.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StudyConfig {
+    /// Refractive index of the coating.
+    pub ior: f64,
+    /// Incidence angles, degrees.
+    pub incidences_deg: Vec<f64>,
+    /// Signed scatter angles, degrees (specular at +incidence).
+    pub scatter_deg: Vec<f64>,
+    /// Detector half-angle, radians.
+    pub half_angle: f64,
+    /// Wavelengths of the Kirchhoff curves, nm.
+    pub wavelengths_nm: Vec<f64>,
+    /// Whether to compute Kirchhoff curves (the ray method is always computed).
+    pub kirchhoff: bool,
+}
+
+impl StudyConfig {
+    /// The NIST STARR geometry: incidence 20/45/60/70°, scatter -75..75° in 1° steps, a 1.4°
+    /// detector; wavelengths 500, 550, 600 nm; index 1.55.
+    pub fn starr() -> Self {
+        StudyConfig {
+            ior: 1.55,
+            incidences_deg: vec![20.0, 45.0, 60.0, 70.0],
+            scatter_deg: (-75..=75).map(f64::from).collect(),
+            half_angle: 1.4f64.to_radians(),
+            wavelengths_nm: vec![500.0, 550.0, 600.0],
+            kirchhoff: true,
+        }
+    }
+}
+
+/// One sample of the study.
+pub struct Sample {
+    pub label: String,
+    pub map: HeightMap,
+}
+
+/// What the study found for one sample.
+#[derive(Debug, Clone)]
+pub struct SampleResult {
+    pub label: String,
+    pub statistics: Statistics,
+    /// Ray curves (one per incidence), then Kirchhoff curves (per wavelength and incidence).
+    pub curves: Vec<InplaneCurve>,
+}
+
+/// The peak of one curve of one sample.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct PeakRow {
+    pub label: String,
+    pub sq_m: f64,
+    pub method: String,
+    pub wavelength_nm: Option<f64>,
+    pub incidence_deg: f64,
+    pub peak: Peak,
+}
+
+impl SampleResult {
+    /// The peak (position, height, FWHM) of each curve with a positive maximum.
+    pub fn peaks(&self) -> Vec<PeakRow> {
+        self.curves
+            .iter()
+            .filter_map(|c| {
+                Some(PeakRow {
+                    label: self.label.clone(),
+                    sq_m: self.statistics.sq,
+                    method: c.method.clone(),
+                    wavelength_nm: c.wavelength_nm,
+                    incidence_deg: c.incidence_deg,
+                    peak: peak(c)?,
+                })
+            })
+            .collect()
+    }
+}
+
+/// Run the study over `samples`; `progress` is told what each step is about to do.
+pub fn run(
+    samples: &[Sample],
+    config: &StudyConfig,
+    progress: &dyn Fn(&str),
+) -> Result<Vec<SampleResult>> {
+    if config.incidences_deg.is_empty() || config.scatter_deg.is_empty() {
+        return Err(InstrumentError::Invalid(
+            "the study needs incidence and scatter angles".into(),
+        ));
+    }
+    let ior = Ior::Dielectric(config.ior);
+    samples
+        .iter()
+        .map(|s| {
+            progress(&format!("{}: statistics", s.label));
+            let stats = statistics(&s.map)?;
+            progress(&format!("{}: ray method", s.label));
+            let engine = RayEngine::new(
+                &s.map,
+                RayOptions {
+                    ior,
+                    ..RayOptions::default()
+                },
+            )?;
+            let mut curves = config
+                .incidences_deg
+                .iter()
+                .map(|&ti| engine.inplane(ti, &config.scatter_deg, config.half_angle))
+                .collect::<Result<Vec<_>, _>>()?;
+            if config.kirchhoff && !config.wavelengths_nm.is_empty() {
+                progress(&format!("{}: Kirchhoff", s.label));
+                let k = Kirchhoff::new(&s.map, KirchhoffOptions::new(ior))?;
+                let wavelengths: Vec<f64> =
+                    config.wavelengths_nm.iter().map(|l| l * 1e-9).collect();
+                let incidences: Vec<f64> = config
+                    .incidences_deg
+                    .iter()
+                    .map(|t| t.to_radians())
+                    .collect();
+                let scatter: Vec<f64> = config.scatter_deg.iter().map(|t| t.to_radians()).collect();
+                curves.extend(k.inplane(
+                    &wavelengths,
+                    &incidences,
+                    &scatter,
+                    config.half_angle,
+                    &|| {},
+                )?);
+            }
+            Ok(SampleResult {
+                label: s.label.clone(),
+                statistics: stats,
+                curves,
+            })
+        })
+        .collect()
+}
