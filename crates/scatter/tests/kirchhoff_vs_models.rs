@@ -1,0 +1,193 @@
+//! The Kirchhoff integral over synthetic Gaussian surfaces against the Beckmann-Spizzichino series
+//! and the ray method: the Done-when of issue 4.
+//!
+//! Statistics behind the tolerances. One detector of half-angle alpha over a spot of diameter D
+//! averages about π(alpha D/λ)² speckle grains, each an independent exponential variate, so its
+//! reading scatters by 1/√(grains) about the ensemble mean; averaging R realisations divides that
+//! by √R. The Schwartz window weights the centre of the spot: `(∫W²)²/∫W⁴` is about 30% of the
+//! disc, so with D = 128 µm and λ = 500 nm a 2° cone holds about 60 grains (13% per realisation,
+//! 4.6% over 8) and a 3° cone about 135 (8.6%, 2.2% over 16). The realisation's own surface
+//! statistics matter more in the tails: the spot sees only ~400 correlation areas, and a 1% error
+//! in the rms slope moves the 1%-of-peak point by about 9% (physics.md), so the series is
+//! evaluated with each spot's own W²-weighted rms height and slope along x and then averaged.
+//! The largest of ~30 deviations then stays within 15% (measured: 7% for the moderate case, 10%
+//! against the series and 12% against the ray method for the rough one), while a wrong
+//! normalisation, a missing F factor or a wrong g (also tested by the flat and smooth cases)
+//! would miss by far more. The ray method sees the whole map uniformly, the Kirchhoff spot its
+//! windowed centre, which adds to their difference in the tails.
+
+use gonio_brdf::Ior;
+use gonio_scatter::InplaneCurve;
+use gonio_scatter::analytic::{AnalyticModel, GaussianModel};
+use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions, Spot, average_curves};
+use gonio_scatter::ray::{RayEngine, RayOptions};
+use gonio_surface::HeightMap;
+use gonio_surface::normals::NormalMethod;
+use gonio_surface::spline::BicubicSpline;
+use gonio_surface::synth::{Acf, GaussianSurface};
+
+const N: f64 = 1.55;
+const WAVELENGTH: f64 = 500e-9;
+
+fn surface(sigma: f64, t: f64, seed: u64) -> HeightMap {
+    GaussianSurface {
+        sq: sigma,
+        corr_length: t,
+        acf: Acf::Gaussian,
+        nx: 257,
+        ny: 257,
+        dx: 0.5e-6,
+        dy: 0.5e-6,
+        seed,
+    }
+    .generate()
+    .unwrap()
+}
+
+fn scatter() -> Vec<f64> {
+    (-70..=70)
+        .step_by(5)
+        .map(|d| f64::from(d).to_radians())
+        .collect()
+}
+
+/// Kirchhoff curves at 20° averaged over the realisations, and the maps.
+fn kirchhoff_average(
+    sigma: f64,
+    t: f64,
+    alpha: f64,
+    realisations: u64,
+) -> (InplaneCurve, Vec<HeightMap>) {
+    let maps: Vec<_> = (0..realisations)
+        .map(|s| surface(sigma, t, 100 + s))
+        .collect();
+    let sets: Vec<Vec<InplaneCurve>> = maps
+        .iter()
+        .map(|map| {
+            Kirchhoff::new(map, KirchhoffOptions::new(Ior::Dielectric(N)))
+                .unwrap()
+                .inplane(
+                    &[WAVELENGTH],
+                    &[20f64.to_radians()],
+                    &scatter(),
+                    alpha,
+                    &|| {},
+                )
+                .unwrap()
+        })
+        .collect();
+    (average_curves(&sets).unwrap().remove(0), maps)
+}
+
+/// The rms height of the part of `map` the spot sees and its total rms slope `√2 sx` from the
+/// rms slope along x, the plane of incidence, which sets the in-plane lobe; both weighted as the
+/// field is, by the squared window (`W²` over the default spot, slopes of the bicubic spline).
+fn spot_statistics(map: &HeightMap) -> (f64, f64) {
+    let spot = Spot::largest(map);
+    let spline = BicubicSpline::from_map(map).unwrap();
+    let radius = 0.5 * spot.diameter;
+    let (mut sw, mut sh, mut sh2, mut ss2) = (0.0, 0.0, 0.0, 0.0);
+    for iy in 0..map.ny() {
+        for ix in 0..map.nx() {
+            let x = ix as f64 * map.dx() - spot.center.0;
+            let y = iy as f64 * map.dy() - spot.center.1;
+            let t2 = (x * x + y * y) / (radius * radius);
+            if t2 >= 1.0 {
+                continue;
+            }
+            let w2 = (-2.0 / (1.0 - t2)).exp();
+            let h = map.heights()[[iy, ix]];
+            let g = spline.node_gradient(ix, iy);
+            sw += w2;
+            sh += w2 * h;
+            sh2 += w2 * h * h;
+            ss2 += w2 * g.x * g.x;
+        }
+    }
+    let mean = sh / sw;
+    ((sh2 / sw - mean * mean).sqrt(), (2.0 * ss2 / sw).sqrt())
+}
+
+/// The Beckmann-Spizzichino curve averaged over the realisations, each evaluated with the rms
+/// height and slope its spot actually has (physics.md, "Testing against a model": a 1% error in
+/// the rms slope moves the 1%-of-peak point by about 9%).
+fn series_average(maps: &[HeightMap], alpha: f64) -> InplaneCurve {
+    let sets: Vec<Vec<InplaneCurve>> = maps
+        .iter()
+        .map(|map| {
+            let (sigma, slope) = spot_statistics(map);
+            let model = GaussianModel::new(sigma, 2.0 * sigma / slope, Ior::Dielectric(N)).unwrap();
+            let ti = 20f64.to_radians();
+            vec![model.inplane(AnalyticModel::Beckmann, WAVELENGTH, ti, &scatter(), alpha)]
+        })
+        .collect();
+    average_curves(&sets).unwrap().remove(0)
+}
+
+/// Largest relative difference of `a` from the reference `b` where `b` exceeds 1% of its peak.
+fn worst(a: &InplaneCurve, b: &InplaneCurve) -> f64 {
+    let peak = b.points.iter().map(|p| p.brdf_per_sr).fold(0.0, f64::max);
+    a.points
+        .iter()
+        .zip(&b.points)
+        .filter(|(_, q)| q.brdf_per_sr > 0.01 * peak)
+        .map(|(p, q)| (p.brdf_per_sr / q.brdf_per_sr - 1.0).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Moderately rough: sigma = 0.12 µm, T = 2 µm (rms slope 0.12), g = 8 at 20° and 500 nm.
+#[test]
+fn moderately_rough_matches_beckmann_series() {
+    let (sigma, t) = (0.12e-6, 2e-6);
+    let alpha = 2f64.to_radians();
+    let ti = 20f64.to_radians();
+    let g = (4.0 * std::f64::consts::PI * sigma * ti.cos() / WAVELENGTH).powi(2);
+    assert!((5.0..20.0).contains(&g), "g = {g}");
+    let (kirchhoff, maps) = kirchhoff_average(sigma, t, alpha, 8);
+    let series = series_average(&maps, alpha);
+    let w = worst(&kirchhoff, &series);
+    assert!(w < 0.15, "worst relative difference {w}");
+}
+
+/// Rough: sigma = 0.3 µm, T = 3 µm (rms slope 0.2), g = 50 at 20° and 500 nm; against the series
+/// and against the ray method on the same maps (spline normals, no shadowing, as Kirchhoff has
+/// none).
+#[test]
+fn rough_matches_beckmann_series_and_ray_method() {
+    let (sigma, t) = (0.3e-6, 3e-6);
+    let alpha = 3f64.to_radians();
+    let ti = 20f64.to_radians();
+    let g = (4.0 * std::f64::consts::PI * sigma * ti.cos() / WAVELENGTH).powi(2);
+    assert!(g > 40.0, "g = {g}");
+    let (kirchhoff, maps) = kirchhoff_average(sigma, t, alpha, 16);
+    let series = series_average(&maps, alpha);
+    let ws = worst(&kirchhoff, &series);
+    let scatter_deg: Vec<f64> = scatter().iter().map(|s| s.to_degrees()).collect();
+    let options = RayOptions {
+        ior: Ior::Dielectric(N),
+        normals: NormalMethod::Spline,
+        shadowing: false,
+        ..RayOptions::default()
+    };
+    let rays: Vec<Vec<InplaneCurve>> = maps
+        .iter()
+        .map(|m| {
+            vec![
+                RayEngine::new(m, options)
+                    .unwrap()
+                    .inplane(20.0, &scatter_deg, alpha)
+                    .unwrap(),
+            ]
+        })
+        .collect();
+    let ray = average_curves(&rays).unwrap().remove(0);
+    let w = worst(&kirchhoff, &ray);
+    assert!(
+        ws < 0.15,
+        "against the series: worst relative difference {ws}"
+    );
+    assert!(
+        w < 0.15,
+        "against the ray method: worst relative difference {w}"
+    );
+}
