@@ -6,6 +6,7 @@ mod compare;
 mod report;
 mod plot;
 mod surface;
+mod surface;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -26,6 +27,9 @@ enum Command {
     /// Height maps: statistics, synthesis, conversion, levelling, cropping, rotation, plots.
     #[command(subcommand)]
     Surface(surface::SurfaceCommand),
+    /// Height maps: statistics, synthesis, conversion, levelling, cropping, rotation, plots.
+    #[command(subcommand)]
+    Surface(surface::SurfaceCommand),
     /// Compare measured and computed in-plane curves (RMS of log reflectance, peaks, FWHM).
     Compare(compare::CompareArgs),
     /// Colorimetry of spectra: `gonio color xyz --spectrum FILE.csv` prints CIE XYZ, xyY,
@@ -36,6 +40,7 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result: anyhow::Result<()> = match cli.command {
+        Command::Surface(cmd) => surface::run(cmd),
         Command::Surface(cmd) => surface::run(cmd),
         Command::Compare(args) => compare::run(args),
         Command::Color(args) => color::run(args),

@@ -203,3 +203,135 @@ pub fn save_image_atomic(path: &Path, img: &image::DynamicImage) -> Result<()> {
     tmp.persist(path).with_context(|| format!("{}: cannot write", path.display()))?;
     Ok(())
 }
+
+/// A false-colour image of a grid of values (heights, BRDF maps, ...) with a colour bar.
+pub struct Raster<'a> {
+    /// Title above the image.
+    pub title: &'a str,
+    /// Values row-major, `width × height`; row 0 is drawn at the bottom (y up). NaN is grey.
+    pub values: &'a [f64],
+    pub width: usize,
+    pub height: usize,
+    /// Physical height over physical width of one cell (dy/dx), so that the image keeps the
+    /// true aspect ratio.
+    pub cell_aspect: f64,
+    /// Values mapped to the ends of the colour scale (others are clamped).
+    pub range: (f64, f64),
+    /// Label of the colour bar, with its unit ("height (nm)").
+    pub colour_label: &'a str,
+    /// A scale bar: its length in cell widths and its label ("50 µm").
+    pub scale_bar: Option<(f64, String)>,
+}
+
+/// The largest 1, 2 or 5 × 10^k not above `x > 0` (a round length for scale bars and ticks).
+pub fn nice_number(x: f64) -> f64 {
+    let p = 10f64.powf(x.log10().floor());
+    [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * p)
+        .find(|&v| v <= x * (1.0 + 1e-12))
+        .unwrap_or(p)
+}
+
+/// Draw `raster` (viridis colours) into a PNG of `size` pixels at `path`.
+pub fn raster_png(path: &Path, size: (u32, u32), raster: &Raster) -> Result<()> {
+    anyhow::ensure!(
+        raster.values.len() == raster.width * raster.height
+            && raster.width > 0
+            && raster.height > 0,
+        "raster of {} values is not {} × {}",
+        raster.values.len(),
+        raster.width,
+        raster.height
+    );
+    render_png(path, size, |root| draw_raster(root, raster))
+}
+
+fn draw_raster(root: &DrawingArea<BitMapBackend, Shift>, r: &Raster) -> Result<()> {
+    let (w, h) = root.dim_in_pixel();
+    let (w, h) = (w as i32, h as i32);
+    root.draw(&Text::new(
+        r.title.to_string(),
+        (20, 12),
+        ("sans-serif", 20).into_font(),
+    ))?;
+    // Image box: left part, below the title; the colour bar takes the right 130 pixels.
+    let (bx, by, bw, bh) = (20, 50, (w - 170).max(10), (h - 70).max(10));
+    let phys_w = r.width as f64;
+    let phys_h = r.height as f64 * r.cell_aspect;
+    let scale = (bw as f64 / phys_w).min(bh as f64 / phys_h);
+    let (iw, ih) = (
+        (phys_w * scale).round().max(1.0) as i32,
+        (phys_h * scale).round().max(1.0) as i32,
+    );
+    let (lo, hi) = r.range;
+    let span = if hi > lo { hi - lo } else { 1.0 };
+    let grey = RGBColor(160, 160, 160);
+    for py in 0..ih {
+        // Pixel row py from the top shows grid row (height - 1) at the top.
+        let row = ((ih - 1 - py) as f64 / ih as f64 * r.height as f64) as usize;
+        let row = row.min(r.height - 1);
+        for px in 0..iw {
+            let col = ((px as f64 / iw as f64 * r.width as f64) as usize).min(r.width - 1);
+            let v = r.values[row * r.width + col];
+            let colour = if v.is_nan() {
+                grey
+            } else {
+                ViridisRGB::get_color_normalized(((v - lo) / span).clamp(0.0, 1.0), 0.0, 1.0)
+            };
+            root.draw_pixel((bx + px, by + py), &colour)?;
+        }
+    }
+    root.draw(&Rectangle::new(
+        [(bx - 1, by - 1), (bx + iw, by + ih)],
+        BLACK,
+    ))?;
+    if let Some((cells, label)) = &r.scale_bar {
+        let len = (cells * scale).round() as i32;
+        let (x0, y0) = (bx + 12, by + ih - 16);
+        root.draw(&Rectangle::new(
+            [(x0 - 3, y0 - 22), (x0 + len + 3, y0 + 9)],
+            WHITE.mix(0.75).filled(),
+        ))?;
+        root.draw(&Rectangle::new(
+            [(x0, y0), (x0 + len, y0 + 6)],
+            BLACK.filled(),
+        ))?;
+        root.draw(&Text::new(
+            label.clone(),
+            (x0, y0 - 19),
+            ("sans-serif", 14).into_font(),
+        ))?;
+    }
+    // Colour bar with ticks at round values.
+    let (cx, cw) = (bx + iw + 25, 22);
+    let (cy0, cy1) = (by, by + ih.max(120));
+    for py in cy0..cy1 {
+        let t = 1.0 - (py - cy0) as f64 / (cy1 - cy0 - 1).max(1) as f64;
+        let c = ViridisRGB::get_color_normalized(t, 0.0, 1.0);
+        root.draw(&PathElement::new(vec![(cx, py), (cx + cw, py)], c))?;
+    }
+    root.draw(&Rectangle::new([(cx, cy0), (cx + cw, cy1)], BLACK))?;
+    let step = nice_number(span / 4.0);
+    let mut tick = (lo / step).ceil() * step;
+    while tick <= hi + 1e-9 * span {
+        let py = cy1 - 1 - ((tick - lo) / span * (cy1 - cy0 - 1) as f64).round() as i32;
+        root.draw(&PathElement::new(
+            vec![(cx + cw, py), (cx + cw + 5, py)],
+            BLACK,
+        ))?;
+        let text = format!("{}", (tick / step).round() * step);
+        root.draw(&Text::new(
+            text,
+            (cx + cw + 8, py - 7),
+            ("sans-serif", 13).into_font(),
+        ))?;
+        tick += step;
+    }
+    root.draw(&Text::new(
+        r.colour_label.to_string(),
+        (cx - 4, cy1 + 8),
+        ("sans-serif", 13).into_font(),
+    ))?;
+    Ok(())
+}

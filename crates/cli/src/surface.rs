@@ -1,0 +1,404 @@
+//! `gonio surface ...`: inspect, synthesise, convert, level, crop, rotate and plot height maps.
+//! Lengths on the command line are in the unit their flag names (`--sq-nm`, `--dx-um`); files
+//! and JSON hold SI metres.
+
+use crate::plot::{self, Raster};
+use anyhow::{Context, Result, bail};
+use clap::{Args, Subcommand, ValueEnum};
+use gonio_surface::stats::{self, Statistics};
+use gonio_surface::synth::{Acf, GaussianSurface};
+use gonio_surface::{HeightMap, io, ops};
+use indicatif::{ProgressBar, ProgressStyle};
+use serde_json::{Value, json};
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+/// Height maps: statistics, synthesis and editing.
+///
+/// Formats read: X3P, SDF, Gwyddion GSF and ASCII, Zygo .dat, Wyko .opd, Sensofar .plu,
+/// Digital Surf .sur, Alicona .al3d (detected from the content). Written: .x3p and .gsf, chosen
+/// by the output file's extension.
+#[derive(Subcommand)]
+pub enum SurfaceCommand {
+    /// Print the grid, metadata and ISO 25178-2 statistics (after plane levelling) of a file.
+    Info(InfoArgs),
+    /// Synthesise a periodic Gaussian random surface (FFT spectral filtering).
+    Gen(GenArgs),
+    /// Convert a height map to another format (the output extension picks .x3p or .gsf).
+    Convert(ConvertArgs),
+    /// Subtract the least-squares plane.
+    Level(EditArgs),
+    /// Cut out a rectangle, given in micrometres or in points.
+    Crop(CropArgs),
+    /// Rotate about the centre (bicubic resampling; points that leave the map become invalid).
+    Rotate(RotateArgs),
+    /// Draw a false-colour height image (levelled) with a scale bar and a colour bar.
+    Plot(PlotArgs),
+}
+
+#[derive(Args)]
+pub struct InfoArgs {
+    /// Height-map file.
+    file: PathBuf,
+    /// Print one JSON object (lengths in metres: keys ending in _m).
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum AcfArg {
+    /// sigma² exp(-r²/T²)
+    Gaussian,
+    /// sigma² exp(-r/T)
+    Exponential,
+}
+
+#[derive(Args)]
+pub struct GenArgs {
+    /// rms height Sq in nanometres (exact after levelling).
+    #[arg(long)]
+    sq_nm: f64,
+    /// Correlation length T in micrometres.
+    #[arg(long)]
+    corr_um: f64,
+    /// Shape of the autocorrelation function.
+    #[arg(long, value_enum, default_value = "gaussian")]
+    acf: AcfArg,
+    /// Points along each side (the map is size × size).
+    #[arg(long)]
+    size: usize,
+    /// Spacing between points in micrometres (both axes).
+    #[arg(long)]
+    dx_um: f64,
+    /// Seed of the random numbers (same seed, same map on any machine).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Output file, .x3p or .gsf.
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+#[derive(Args)]
+pub struct ConvertArgs {
+    /// Input height-map file.
+    input: PathBuf,
+    /// Output file, .x3p or .gsf.
+    output: PathBuf,
+}
+
+#[derive(Args)]
+pub struct EditArgs {
+    /// Input height-map file.
+    input: PathBuf,
+    /// Output file, .x3p or .gsf.
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+#[derive(Args)]
+pub struct CropArgs {
+    /// Input height-map file.
+    input: PathBuf,
+    /// Left edge in micrometres from the first column (default 0).
+    #[arg(long)]
+    x_um: Option<f64>,
+    /// Bottom edge in micrometres from the first row (default 0).
+    #[arg(long)]
+    y_um: Option<f64>,
+    /// Width in micrometres (default: to the right edge).
+    #[arg(long)]
+    width_um: Option<f64>,
+    /// Height in micrometres (default: to the top edge).
+    #[arg(long)]
+    height_um: Option<f64>,
+    /// Left edge in points (instead of --x-um).
+    #[arg(long, conflicts_with_all = ["x_um", "y_um", "width_um", "height_um"])]
+    x_px: Option<usize>,
+    /// Bottom edge in points (instead of --y-um).
+    #[arg(long, conflicts_with_all = ["x_um", "y_um", "width_um", "height_um"])]
+    y_px: Option<usize>,
+    /// Width in points (instead of --width-um).
+    #[arg(long, conflicts_with_all = ["x_um", "y_um", "width_um", "height_um"])]
+    width_px: Option<usize>,
+    /// Height in points (instead of --height-um).
+    #[arg(long, conflicts_with_all = ["x_um", "y_um", "width_um", "height_um"])]
+    height_px: Option<usize>,
+    /// Output file, .x3p or .gsf.
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+#[derive(Args)]
+pub struct RotateArgs {
+    /// Input height-map file.
+    input: PathBuf,
+    /// Angle in degrees, counter-clockwise (from +x toward +y).
+    #[arg(long, allow_hyphen_values = true)]
+    angle_deg: f64,
+    /// Output file, .x3p or .gsf.
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+#[derive(Args)]
+pub struct PlotArgs {
+    /// Height-map file.
+    file: PathBuf,
+    /// Output image (.png).
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+/// Run a `gonio surface` command.
+pub fn run(cmd: SurfaceCommand) -> Result<()> {
+    match cmd {
+        SurfaceCommand::Info(a) => info(&a),
+        SurfaceCommand::Gen(a) => generate(&a),
+        SurfaceCommand::Convert(a) => write(&read(&a.input)?, &a.output),
+        SurfaceCommand::Level(a) => write(&ops::level(&read(&a.input)?)?, &a.output),
+        SurfaceCommand::Crop(a) => crop(&a),
+        SurfaceCommand::Rotate(a) => {
+            let map = read(&a.input)?;
+            let rotated = busy("rotating", || ops::rotate(&map, a.angle_deg.to_radians()))?;
+            write(&rotated, &a.output)
+        }
+        SurfaceCommand::Plot(a) => plot_map(&a),
+    }
+}
+
+/// Read a height map, printing the reader's warnings (e.g. a checksum mismatch) to stderr.
+pub fn read(path: &Path) -> Result<HeightMap> {
+    let map = io::read(path)?;
+    for w in map.meta.warnings() {
+        eprintln!("warning: {w}");
+    }
+    Ok(map)
+}
+
+fn write(map: &HeightMap, path: &Path) -> Result<()> {
+    io::write(map, path)?;
+    Ok(())
+}
+
+/// Run `work` with a spinner on a terminal (nothing when stderr is a pipe).
+fn busy<T>(message: &str, work: impl FnOnce() -> T) -> T {
+    let bar = ProgressBar::new_spinner().with_message(message.to_string());
+    if let Ok(style) = ProgressStyle::with_template("{spinner} {msg} {elapsed}") {
+        bar.set_style(style);
+    }
+    bar.enable_steady_tick(Duration::from_millis(120));
+    let out = work();
+    bar.finish_and_clear();
+    out
+}
+
+fn info(a: &InfoArgs) -> Result<()> {
+    let map = read(&a.file)?;
+    let st = busy("computing statistics", || stats::statistics(&map))
+        .with_context(|| format!("{}: statistics", a.file.display()))?;
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&info_json(&map, &st))?);
+    } else {
+        print!("{}", info_text(&a.file, &map, &st));
+    }
+    Ok(())
+}
+
+/// A finite number as JSON, anything else as null.
+fn num(v: f64) -> Value {
+    if v.is_finite() { json!(v) } else { Value::Null }
+}
+
+fn info_json(map: &HeightMap, st: &Statistics) -> Value {
+    let meta = &map.meta;
+    let extra: serde_json::Map<String, Value> = meta
+        .extra
+        .iter()
+        .filter(|(k, _)| k != gonio_surface::heightmap::WARNING_KEY)
+        .map(|(k, v)| (k.clone(), json!(v)))
+        .collect();
+    json!({
+        "nx": map.nx(),
+        "ny": map.ny(),
+        "dx_m": map.dx(),
+        "dy_m": map.dy(),
+        "valid_fraction": map.valid_fraction(),
+        "sq_m": num(st.sq),
+        "sa_m": num(st.sa),
+        "ssk": num(st.ssk),
+        "sku": num(st.sku),
+        "sdq": num(st.sdq),
+        "sal_m": st.sal.map_or(Value::Null, num),
+        "str": st.str.map_or(Value::Null, num),
+        "format": meta.format,
+        "instrument": meta.instrument,
+        "date": meta.date,
+        "source": meta.source.as_ref().map(|p| p.display().to_string()),
+        "metadata": extra,
+        "warnings": meta.warnings().collect::<Vec<_>>(),
+    })
+}
+
+fn info_text(path: &Path, map: &HeightMap, st: &Statistics) -> String {
+    let meta = &map.meta;
+    let um = |m: f64| m * 1e6;
+    let opt = |v: Option<f64>, f: &dyn Fn(f64) -> String| v.map_or("undefined".into(), f);
+    let mut s = format!("{}\n", path.display());
+    s += &format!("  format      {}\n", meta.format.as_deref().unwrap_or("?"));
+    if let Some(i) = &meta.instrument {
+        s += &format!("  instrument  {i}\n");
+    }
+    if let Some(d) = &meta.date {
+        s += &format!("  date        {d}\n");
+    }
+    s += &format!(
+        "  grid        {} × {} points, spacing {:.4} × {:.4} µm, field {:.1} × {:.1} µm\n",
+        map.nx(),
+        map.ny(),
+        um(map.dx()),
+        um(map.dy()),
+        um(map.dx() * map.nx() as f64),
+        um(map.dy() * map.ny() as f64)
+    );
+    s += &format!(
+        "  valid       {:.2}% of points\n",
+        100.0 * map.valid_fraction()
+    );
+    s += "  after least-squares levelling (ISO 25178-2):\n";
+    s += &format!("  Sq  {:>12.3} nm    rms height\n", st.sq * 1e9);
+    s += &format!("  Sa  {:>12.3} nm    mean absolute height\n", st.sa * 1e9);
+    s += &format!("  Ssk {:>12.4}       skewness\n", st.ssk);
+    s += &format!("  Sku {:>12.4}       kurtosis\n", st.sku);
+    s += &format!("  Sdq {:>12.5}       rms gradient\n", st.sdq);
+    s += &format!(
+        "  Sal {:>12} µm    autocorrelation length (s = 0.2)\n",
+        opt(st.sal, &|v| format!("{:.3}", um(v)))
+    );
+    s += &format!(
+        "  Str {:>12}       texture aspect ratio\n",
+        opt(st.str, &|v| format!("{v:.4}"))
+    );
+    for (k, v) in meta
+        .extra
+        .iter()
+        .filter(|(k, _)| k != gonio_surface::heightmap::WARNING_KEY)
+    {
+        s += &format!("  {k}: {v}\n");
+    }
+    s
+}
+
+fn generate(a: &GenArgs) -> Result<()> {
+    let request = GaussianSurface {
+        sq: a.sq_nm * 1e-9,
+        corr_length: a.corr_um * 1e-6,
+        acf: match a.acf {
+            AcfArg::Gaussian => Acf::Gaussian,
+            AcfArg::Exponential => Acf::Exponential,
+        },
+        nx: a.size,
+        ny: a.size,
+        dx: a.dx_um * 1e-6,
+        dy: a.dx_um * 1e-6,
+        seed: a.seed,
+    };
+    let map = busy("synthesising", || request.generate()).context(
+        "cannot synthesise the surface (check --sq-nm, --corr-um, --dx-um > 0 and --size >= 2)",
+    )?;
+    write(&map, &a.output)?;
+    eprintln!(
+        "wrote {}: {n} × {n} points at {} µm, Sq {} nm, T {} µm",
+        a.output.display(),
+        a.dx_um,
+        a.sq_nm,
+        a.corr_um,
+        n = a.size
+    );
+    Ok(())
+}
+
+fn crop(a: &CropArgs) -> Result<()> {
+    let map = read(&a.input)?;
+    let pixels = |start_um: Option<f64>,
+                  len_um: Option<f64>,
+                  d: f64,
+                  name: &str|
+     -> Result<(Option<usize>, Option<usize>)> {
+        let to_px = |v: f64, flag: &str| -> Result<usize> {
+            if !(v.is_finite() && v >= 0.0) {
+                bail!("--{flag} = {v}: give a length >= 0 in micrometres");
+            }
+            Ok((v * 1e-6 / d).round() as usize)
+        };
+        Ok((
+            start_um
+                .map(|v| to_px(v, if name == "x" { "x-um" } else { "y-um" }))
+                .transpose()?,
+            len_um
+                .map(|v| to_px(v, if name == "x" { "width-um" } else { "height-um" }))
+                .transpose()?,
+        ))
+    };
+    let (x0, w) = match pixels(a.x_um, a.width_um, map.dx(), "x")? {
+        (None, None) => (a.x_px, a.width_px),
+        um => um,
+    };
+    let (y0, h) = match pixels(a.y_um, a.height_um, map.dy(), "y")? {
+        (None, None) => (a.y_px, a.height_px),
+        um => um,
+    };
+    let (x0, y0) = (x0.unwrap_or(0), y0.unwrap_or(0));
+    let w = w.unwrap_or(map.nx().saturating_sub(x0));
+    let h = h.unwrap_or(map.ny().saturating_sub(y0));
+    let out = ops::crop(&map, x0, y0, w, h).with_context(|| {
+        format!(
+            "{}: choose a rectangle inside the map (spacing {:.4} × {:.4} µm)",
+            a.input.display(),
+            map.dx() * 1e6,
+            map.dy() * 1e6
+        )
+    })?;
+    write(&out, &a.output)
+}
+
+fn plot_map(a: &PlotArgs) -> Result<()> {
+    let map = read(&a.file)?;
+    let lev = ops::level(&map).with_context(|| format!("{}: levelling", a.file.display()))?;
+    let heights = lev.heights();
+    let mut valid: Vec<f64> = heights.iter().copied().filter(|z| !z.is_nan()).collect();
+    valid.sort_unstable_by(f64::total_cmp);
+    // Colour range from the 0.1 and 99.9 percentiles, so that a few spikes do not wash it out.
+    let pick = |p: f64| valid[((valid.len() - 1) as f64 * p).round() as usize];
+    let (lo, hi) = (pick(0.001), pick(0.999));
+    let (unit, factor) = if hi - lo >= 1e-5 {
+        ("µm", 1e6)
+    } else {
+        ("nm", 1e9)
+    };
+    // Row 0 of the map is y = 0, drawn at the bottom; heights() is already row-major.
+    let values: Vec<f64> = heights.iter().map(|z| z * factor).collect();
+    let width_um = map.dx() * map.nx() as f64 * 1e6;
+    let bar_um = plot::nice_number(width_um / 5.0);
+    let sq = stats::height_parameters(&lev).0;
+    let name = a.file.file_name().map_or_else(
+        || a.file.display().to_string(),
+        |n| n.to_string_lossy().into(),
+    );
+    let title = format!(
+        "{name}: {} × {} points, Sq = {:.1} nm (levelled)",
+        map.nx(),
+        map.ny(),
+        sq * 1e9
+    );
+    let raster = Raster {
+        title: &title,
+        values: &values,
+        width: map.nx(),
+        height: map.ny(),
+        cell_aspect: map.dy() / map.dx(),
+        range: (lo * factor, hi * factor),
+        colour_label: &format!("height ({unit})"),
+        scale_bar: Some((bar_um * 1e-6 / map.dx(), format!("{bar_um} µm"))),
+    };
+    plot::raster_png(&a.output, (900, 760), &raster)
+}
