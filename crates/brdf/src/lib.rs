@@ -4,10 +4,13 @@
 pub mod bxdf;
 pub mod error;
 pub mod fit;
+pub mod formats;
 pub mod fresnel;
+pub mod gbrdf;
 pub mod microfacet;
 pub mod models;
 pub mod sampling;
+pub mod table;
 pub mod validate;
 
 pub use bxdf::{Brdf, BrdfSample, Rgb};

@@ -1,0 +1,171 @@
+//! The MERL BRDF database's `.binary` files (Matusik, Pfister, Brand & McMillan, "A data-driven
+//! reflectance model", SIGGRAPH 2003; layout as read by the database's public `BRDFRead.cpp`):
+//!
+//! - three little-endian i32: the node counts along theta_h, theta_d and phi_d (90, 90, 180);
+//! - then 3 × the product of those f64 values, all red, then all green, then all blue, each
+//!   index `phi_d + n_phi_d (theta_d + n_theta_d theta_h)`;
+//! - stored values times the channel scales 1/1500, 1.15/1500, 1.66/1500 are the BRDF in 1/sr;
+//!   negative values mark cells without a measurement.
+//!
+//! theta_h node j lies at `90° (j/n)²`, theta_d node j at `90° j/n`, phi_d node j at `180° j/n`:
+//! phi_d covers half a turn because MERL assumes reciprocity (phi_d and phi_d + 180° are the
+//! same pair with wi and wo swapped). These are the nodes of gonio's own grid, so an isotropic
+//! table of `n_theta_h × n_theta_d × 2 n_phi_d` cells maps onto a MERL file cell for cell.
+
+use crate::error::{BrdfError, Result};
+use crate::gbrdf::write_atomic;
+use crate::table::{BrdfTable, Cell, Channels, HalfDiff, Provenance, Resolution, TableBuilder};
+use std::io::Write;
+use std::path::Path;
+
+/// The channel scales of the MERL files (stored value × scale = f in 1/sr).
+pub const SCALES: [f64; 3] = [1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0];
+
+/// Node counts of the MERL database files.
+pub const DIMS: [usize; 3] = [90, 90, 180];
+
+/// Read a MERL `.binary` file into an isotropic RGB table of `n_theta_h × n_theta_d ×
+/// 2 n_phi_d` cells; negative (unmeasured) values become "no data".
+pub fn read(path: &Path) -> Result<BrdfTable> {
+    let bytes = std::fs::read(path).map_err(|e| BrdfError::io(path, e))?;
+    let bad = |p: String| BrdfError::format(path, p);
+    if bytes.len() < 12 {
+        return Err(bad(
+            "too short for a MERL .binary file (12-byte header)".into()
+        ));
+    }
+    let dim = |k: usize| i32::from_le_bytes(bytes[4 * k..4 * k + 4].try_into().expect("4 bytes"));
+    let dims = [dim(0), dim(1), dim(2)];
+    if dims.iter().any(|&d| !(1..=10_000).contains(&d)) {
+        return Err(bad(format!(
+            "implausible dimensions {dims:?} in the header (not a MERL file?)"
+        )));
+    }
+    let [nh, nd, np] = dims.map(|d| d as usize);
+    let n = nh * nd * np;
+    if bytes.len() != 12 + 3 * 8 * n {
+        return Err(bad(format!(
+            "header says {nh} × {nd} × {np} cells ({} bytes) but the file has {} bytes",
+            12 + 24 * n,
+            bytes.len()
+        )));
+    }
+    let value = |c: usize, i: usize| {
+        let o = 12 + 8 * (c * n + i);
+        f64::from_le_bytes(bytes[o..o + 8].try_into().expect("8 bytes"))
+    };
+    let res = Resolution::isotropic(nh, nd, 2 * np);
+    let mut b = TableBuilder::new(res, Channels::Rgb)
+        .map_err(|e| bad(e.to_string()))?
+        .with_provenance(Provenance::new(path.display().to_string(), "import:merl"));
+    let stored: Vec<usize> = b.cells().map(|c| c.index).collect();
+    for cell in stored {
+        let [_, th, td, pd] = res.cell_indices(cell);
+        let i = (th * nd + td) * np + pd % np;
+        for (c, scale) in SCALES.iter().enumerate() {
+            let v = value(c, i);
+            let v = if v < 0.0 { f64::NAN } else { v * scale };
+            b.set(cell, c, v)?;
+        }
+    }
+    b.build()
+}
+
+/// Write `table` as a MERL `.binary` file of the standard 90 × 90 × 180 cells: each cell holds
+/// the mean of the table at its pair of directions and at the swapped pair (MERL stores one
+/// value for both), in linear RGB; cells below the horizon hold -1.
+pub fn write(table: &BrdfTable, path: &Path) -> Result<()> {
+    let [nh, nd, np] = DIMS;
+    let res = Resolution::isotropic(nh, nd, 2 * np);
+    let nc = table.channel_count();
+    let n = nh * nd * np;
+    let mut out = vec![-1.0f64; 3 * n];
+    let mut buf = vec![0.0; nc];
+    for th in 0..nh {
+        for td in 0..nd {
+            for pd in 0..np {
+                let cell = res.cell_index(0, th, td, pd);
+                let a = res.cell_angles(cell);
+                let (wi, wo) = a.to_dirs();
+                if !(Cell {
+                    index: cell,
+                    wi,
+                    wo,
+                    angles: a,
+                })
+                .is_above_horizon()
+                {
+                    continue;
+                }
+                let mut rgb = glam::DVec3::ZERO;
+                for phi_d in [a.phi_d, a.phi_d + std::f64::consts::PI] {
+                    table.eval_angles(&HalfDiff { phi_d, ..a }, &mut buf);
+                    rgb += table.to_rgb(&buf) * 0.5;
+                }
+                let i = (th * nd + td) * np + pd;
+                for c in 0..3 {
+                    out[c * n + i] = rgb[c] / SCALES[c];
+                }
+            }
+        }
+    }
+    write_atomic(path, |w| {
+        for d in DIMS {
+            w.write_all(&(d as i32).to_le_bytes())?;
+        }
+        let mut bytes = Vec::with_capacity(8 * out.len());
+        out.iter()
+            .for_each(|v| bytes.extend_from_slice(&v.to_le_bytes()));
+        w.write_all(&bytes)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    /// A reciprocal, colourful, glossy test BRDF.
+    fn glossy(wi: DVec3, wo: DVec3) -> [f64; 3] {
+        let h = (wi + wo).normalize();
+        let spec = 0.5 * (-(1.0 - h.z * h.z) / (h.z * h.z) / 0.01).exp() / (wi.z * wo.z).sqrt();
+        [0.1 + spec, 0.2 + 0.8 * spec, 0.05 + 1.2 * spec]
+    }
+
+    #[test]
+    fn round_trip_on_the_merl_grid_is_exact_to_f32() {
+        let res = Resolution::isotropic(90, 90, 360);
+        let mut b = TableBuilder::new(res, Channels::Rgb).unwrap();
+        b.fill(|c, out| out.copy_from_slice(&glossy(c.wi, c.wo)));
+        let t = b.build().unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("g.binary");
+        write(&t, &path).unwrap();
+        assert_eq!(
+            std::fs::metadata(&path).unwrap().len(),
+            12 + 24 * 90 * 90 * 180
+        );
+        let back = read(&path).unwrap();
+        assert_eq!(back.resolution(), res);
+        let mut worst = 0.0f64;
+        for (a, b) in t.values().iter().zip(back.values()) {
+            assert_eq!(a.is_nan(), b.is_nan());
+            if !a.is_nan() {
+                worst = worst.max(((a - b) / a).abs() as f64);
+            }
+        }
+        // The only loss is f32 → f64 → f32 through the scale factors.
+        assert!(worst < 1e-6, "worst relative difference {worst}");
+    }
+
+    #[test]
+    fn truncated_and_foreign_files_are_rejected() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("x.binary");
+        std::fs::write(&path, [90u8, 0, 0, 0, 90, 0, 0, 0, 180, 0, 0, 0, 1, 2, 3]).unwrap();
+        let msg = read(&path).unwrap_err().to_string();
+        assert!(msg.contains("x.binary") && msg.contains("bytes"), "{msg}");
+        std::fs::write(&path, b"GBRDF\0\r\n and more").unwrap();
+        assert!(read(&path).unwrap_err().to_string().contains("dimensions"));
+    }
+}

@@ -1,0 +1,7 @@
+//! Exchange formats of tabulated BRDFs: import of the Cornell ASTM measurements, MERL `.binary`
+//! and CSV samples; export to MERL, the Mitsuba 3 / pbrt-v4 tensor `.bsdf`, Radiance PAB-Opto
+//! data files and CSV. Scattered samples become tables through [`scattered`].
+
+pub mod astm;
+pub mod merl;
+pub mod scattered;

@@ -1,0 +1,242 @@
+//! Filling a table: from any [`Brdf`] (tabulating an analytic model), from a closure, or cell by
+//! cell from another engine (the scattering methods), which reads each cell's pair of directions
+//! from [`TableBuilder::cells`] and writes values with [`TableBuilder::set`].
+
+use super::{BrdfTable, Channels, HalfDiff, MIN_COS, Provenance, Resolution, Storage};
+use crate::bxdf::Brdf;
+use crate::error::{BrdfError, Result};
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// One cell (grid node) of a table: its index and the pair of directions it stands for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cell {
+    /// Linear index, see [`Resolution::cell_index`].
+    pub index: usize,
+    /// Direction toward the light, unit length, local frame.
+    pub wi: DVec3,
+    /// Direction toward the viewer.
+    pub wo: DVec3,
+    /// The half/difference angles of the pair.
+    pub angles: HalfDiff,
+}
+
+impl Cell {
+    fn of(res: &Resolution, index: usize) -> Cell {
+        let angles = res.cell_angles(index);
+        let (wi, wo) = angles.to_dirs();
+        Cell {
+            index,
+            wi,
+            wo,
+            angles,
+        }
+    }
+
+    /// Whether both directions are above the horizon (by more than 0.06°), i.e. the cell holds
+    /// data; other cells stay NaN.
+    pub fn is_above_horizon(&self) -> bool {
+        self.wi.z > MIN_COS && self.wo.z > MIN_COS
+    }
+}
+
+/// A table under construction. Cells above the horizon start at zero, the others are NaN.
+pub struct TableBuilder {
+    res: Resolution,
+    channels: Channels,
+    provenance: Provenance,
+    values: Vec<f32>,
+}
+
+impl TableBuilder {
+    /// An empty table of this grid and these channels.
+    pub fn new(res: Resolution, channels: Channels) -> Result<TableBuilder> {
+        res.validate().map_err(BrdfError::Invalid)?;
+        channels.validate().map_err(BrdfError::Invalid)?;
+        let nc = channels.count();
+        let mut values = vec![0.0f32; res.cell_count() * nc];
+        values.par_chunks_mut(nc).enumerate().for_each(|(i, v)| {
+            if !Cell::of(&res, i).is_above_horizon() {
+                v.fill(f32::NAN);
+            }
+        });
+        Ok(TableBuilder {
+            res,
+            channels,
+            provenance: Provenance::default(),
+            values,
+        })
+    }
+
+    /// Set where the table comes from.
+    pub fn with_provenance(mut self, provenance: Provenance) -> TableBuilder {
+        self.provenance = provenance;
+        self
+    }
+
+    /// The grid.
+    pub fn resolution(&self) -> Resolution {
+        self.res
+    }
+
+    /// The channels.
+    pub fn channels(&self) -> &Channels {
+        &self.channels
+    }
+
+    /// The cells that hold data (both directions above the horizon), in index order.
+    pub fn cells(&self) -> impl Iterator<Item = Cell> + '_ {
+        (0..self.res.cell_count())
+            .map(|i| Cell::of(&self.res, i))
+            .filter(Cell::is_above_horizon)
+    }
+
+    /// The cell of a linear index.
+    pub fn cell(&self, index: usize) -> Cell {
+        Cell::of(&self.res, index)
+    }
+
+    /// Set one channel of one cell (f in 1/sr). Cells below the horizon and out-of-range indices
+    /// are errors.
+    pub fn set(&mut self, cell: usize, channel: usize, value: f64) -> Result<()> {
+        let nc = self.channels.count();
+        if cell >= self.res.cell_count() || channel >= nc {
+            return Err(BrdfError::Invalid(format!(
+                "cell {cell} channel {channel} is outside a {} table of {nc} channels",
+                self.res.describe()
+            )));
+        }
+        let slot = &mut self.values[cell * nc + channel];
+        if slot.is_nan() {
+            return Err(BrdfError::Invalid(format!(
+                "cell {cell} lies below the horizon"
+            )));
+        }
+        *slot = value as f32;
+        Ok(())
+    }
+
+    /// Fill every cell above the horizon from a function of the cell, in parallel; the function
+    /// writes the channel values into its slice. Deterministic whatever the thread count.
+    pub fn fill(&mut self, f: impl Fn(&Cell, &mut [f64]) + Sync) {
+        let res = self.res;
+        let nc = self.channels.count();
+        self.values.par_chunks_mut(nc).enumerate().for_each_init(
+            || vec![0.0f64; nc],
+            |buf, (i, out)| {
+                let cell = Cell::of(&res, i);
+                if cell.is_above_horizon() {
+                    buf.fill(0.0);
+                    f(&cell, buf);
+                    for (o, v) in out.iter_mut().zip(buf.iter()) {
+                        *o = *v as f32;
+                    }
+                }
+            },
+        );
+    }
+
+    /// The finished table.
+    pub fn build(self) -> Result<BrdfTable> {
+        BrdfTable::from_storage(
+            self.res,
+            self.channels,
+            self.provenance,
+            Storage::Owned(self.values),
+        )
+    }
+}
+
+impl BrdfTable {
+    /// Tabulate any BRDF on a grid: RGB channels, or one channel (the mean of the three) when
+    /// `mono` is set.
+    pub fn from_brdf(
+        brdf: &dyn Brdf,
+        res: Resolution,
+        mono: bool,
+        provenance: Provenance,
+    ) -> Result<BrdfTable> {
+        let channels = if mono { Channels::Mono } else { Channels::Rgb };
+        let mut b = TableBuilder::new(res, channels)?.with_provenance(provenance);
+        b.fill(|cell, out| {
+            let f = brdf.eval(cell.wo, cell.wi);
+            if mono {
+                out[0] = (f.x + f.y + f.z) / 3.0;
+            } else {
+                out.copy_from_slice(&f.to_array());
+            }
+        });
+        b.build()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::table::coords::dir;
+    use std::f64::consts::PI;
+
+    /// A smooth, isotropic, non-reciprocal test function of the two directions.
+    fn smooth(wi: DVec3, wo: DVec3) -> f64 {
+        0.3 + 0.2 * wi.z + 0.1 * wo.z * wo.z + 0.05 * wi.dot(wo)
+    }
+
+    #[test]
+    fn cells_reproduce_their_function_and_interpolation_converges() {
+        let mut errs = vec![];
+        for n in [8usize, 16, 32] {
+            let mut b =
+                TableBuilder::new(Resolution::isotropic(n, n, 2 * n), Channels::Mono).unwrap();
+            b.fill(|c, out| out[0] = smooth(c.wi, c.wo));
+            let t = b.build().unwrap();
+            // At the cells themselves the table is exact (to f32).
+            for c in (0..t.resolution().cell_count())
+                .step_by(7)
+                .map(|i| Cell::of(&t.resolution(), i))
+            {
+                if c.is_above_horizon() {
+                    let mut v = [0.0];
+                    t.eval_angles(&c.angles, &mut v);
+                    assert!((v[0] - smooth(c.wi, c.wo)).abs() < 1e-6);
+                }
+            }
+            // Between cells the interpolation error falls with the spacing.
+            let mut max = 0.0f64;
+            for k in 0..400 {
+                let wi = dir(
+                    0.05 + 1.3 * ((k * 37 % 400) as f64 / 400.0),
+                    2.0 * PI * (k as f64 / 400.0),
+                );
+                let wo = dir(
+                    0.05 + 1.3 * ((k * 91 % 400) as f64 / 400.0),
+                    0.3 + 5.0 * (k as f64 / 400.0),
+                );
+                let mut v = [0.0];
+                t.eval_channels(wo, wi, &mut v);
+                max = max.max((v[0] - smooth(wi, wo)).abs());
+            }
+            errs.push(max);
+        }
+        assert!(
+            errs[2] < errs[0] / 2.5,
+            "interpolation does not converge: {errs:?}"
+        );
+        assert!(errs[2] < 0.02, "{errs:?}");
+    }
+
+    #[test]
+    fn set_checks_its_arguments() {
+        let mut b = TableBuilder::new(Resolution::isotropic(4, 4, 4), Channels::Rgb).unwrap();
+        let first = b.cells().next().unwrap();
+        assert!(b.set(first.index, 2, 0.5).is_ok());
+        assert!(b.set(first.index, 3, 0.5).is_err());
+        assert!(b.set(usize::MAX / 8, 0, 0.5).is_err());
+        let below = (0..64)
+            .map(|i| b.cell(i))
+            .find(|c| !c.is_above_horizon())
+            .unwrap();
+        assert!(b.set(below.index, 0, 1.0).is_err());
+        let t = b.build().unwrap();
+        assert_eq!(t.cell_values(first.index)[2], 0.5);
+    }
+}

@@ -1,0 +1,316 @@
+//! The half/difference parameterisation of Rusinkiewicz ("A new change of variables for efficient
+//! BRDF representation", EGWR 1998) and the grid of a tabulated BRDF over it.
+//!
+//! `h = normalize(wi + wo)` has polar angles (theta_h, phi_h); the difference vector `d` is `wi`
+//! expressed in the frame of `h`: `d = Ry(-theta_h) Rz(-phi_h) wi`, with polar angles
+//! (theta_d, phi_d). Swapping `wi` and `wo` maps `d` to `-d`, i.e. `phi_d` to `phi_d + π` with the
+//! other three angles unchanged, which is what makes reciprocity a property of the grid.
+//!
+//! Nodes (as in the MERL tables of Matusik et al. 2003, "A data-driven reflectance model"):
+//! `theta_h[j] = (π/2) (j/N)²` (square-root spacing: node density grows as `1/sqrt(theta_h)`
+//! toward the specular direction), `theta_d[j] = (π/2) j/N`, `phi_d[j] = 2π j/N` and
+//! `phi_h[j] = 2π j/N` (both periodic). Queries beyond the last theta node take its value.
+
+use glam::DVec3;
+use std::f64::consts::{FRAC_PI_2, TAU};
+
+/// The four Rusinkiewicz angles of a pair of directions, in radians.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HalfDiff {
+    /// Polar angle of the half vector, [0, π/2] for directions above the surface.
+    pub theta_h: f64,
+    /// Azimuth of the half vector, [0, 2π).
+    pub phi_h: f64,
+    /// Polar angle of `wi` about the half vector, [0, π/2].
+    pub theta_d: f64,
+    /// Azimuth of `wi` about the half vector, [0, 2π).
+    pub phi_d: f64,
+}
+
+fn rot_z(v: DVec3, a: f64) -> DVec3 {
+    let (s, c) = a.sin_cos();
+    DVec3::new(v.x * c - v.y * s, v.x * s + v.y * c, v.z)
+}
+
+fn rot_y(v: DVec3, a: f64) -> DVec3 {
+    let (s, c) = a.sin_cos();
+    DVec3::new(v.x * c + v.z * s, v.y, -v.x * s + v.z * c)
+}
+
+fn wrap_2pi(a: f64) -> f64 {
+    let w = a.rem_euclid(TAU);
+    if w >= TAU { 0.0 } else { w }
+}
+
+impl HalfDiff {
+    /// The angles of the pair (`wi` toward the light, `wo` toward the viewer), both unit length.
+    /// `None` when `wi + wo` vanishes (opposite directions).
+    pub fn from_dirs(wi: DVec3, wo: DVec3) -> Option<HalfDiff> {
+        let h = (wi + wo).try_normalize()?;
+        let theta_h = h.z.clamp(-1.0, 1.0).acos();
+        let phi_h = wrap_2pi(h.y.atan2(h.x));
+        let d = rot_y(rot_z(wi, -phi_h), -theta_h);
+        let theta_d = d.z.clamp(-1.0, 1.0).acos();
+        let phi_d = wrap_2pi(d.y.atan2(d.x));
+        Some(HalfDiff {
+            theta_h,
+            phi_h,
+            theta_d,
+            phi_d,
+        })
+    }
+
+    /// The pair of directions `(wi, wo)` with these angles (inverse of [`HalfDiff::from_dirs`]).
+    pub fn to_dirs(&self) -> (DVec3, DVec3) {
+        let (sh, ch) = self.theta_h.sin_cos();
+        let (sph, cph) = self.phi_h.sin_cos();
+        let h = DVec3::new(sh * cph, sh * sph, ch);
+        let (sd, cd) = self.theta_d.sin_cos();
+        let (spd, cpd) = self.phi_d.sin_cos();
+        let d = DVec3::new(sd * cpd, sd * spd, cd);
+        let wi = rot_z(rot_y(d, self.theta_h), self.phi_h);
+        let wo = 2.0 * wi.dot(h) * h - wi;
+        (wi, wo)
+    }
+}
+
+/// Number of nodes along each of the four angles. `phi_h == 1` means an isotropic table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Resolution {
+    pub theta_h: usize,
+    pub theta_d: usize,
+    pub phi_d: usize,
+    pub phi_h: usize,
+}
+
+impl Resolution {
+    /// An isotropic table (3 angles).
+    pub fn isotropic(theta_h: usize, theta_d: usize, phi_d: usize) -> Resolution {
+        Resolution {
+            theta_h,
+            theta_d,
+            phi_d,
+            phi_h: 1,
+        }
+    }
+
+    /// An anisotropic table (4 angles).
+    pub fn anisotropic(theta_h: usize, theta_d: usize, phi_d: usize, phi_h: usize) -> Resolution {
+        Resolution {
+            theta_h,
+            theta_d,
+            phi_d,
+            phi_h,
+        }
+    }
+
+    /// MERL's resolution (90 × 90 × 180 over half the phi_d circle) on the full phi_d circle:
+    /// 90 × 90 × 360 nodes.
+    pub fn merl_like() -> Resolution {
+        Resolution::isotropic(90, 90, 360)
+    }
+
+    /// Whether the table has no phi_h dependence.
+    pub fn is_isotropic(&self) -> bool {
+        self.phi_h == 1
+    }
+
+    /// Total number of nodes.
+    pub fn cell_count(&self) -> usize {
+        self.theta_h * self.theta_d * self.phi_d * self.phi_h
+    }
+
+    /// Check the counts: at least 2 theta nodes, an even number (>= 2) of phi_d nodes so that
+    /// every node has its reciprocal, and phi_h either 1 or >= 2.
+    pub fn validate(&self) -> Result<(), String> {
+        if self.theta_h < 2 || self.theta_d < 2 {
+            return Err(format!(
+                "resolution {}: theta_h and theta_d need at least 2 nodes",
+                self.describe()
+            ));
+        }
+        if self.phi_d < 2 || !self.phi_d.is_multiple_of(2) {
+            return Err(format!(
+                "resolution {}: phi_d needs an even number of nodes (>= 2), so that each node's \
+                 reciprocal phi_d + 180° is a node",
+                self.describe()
+            ));
+        }
+        if self.phi_h == 0 {
+            return Err(format!(
+                "resolution {}: phi_h must be 1 (isotropic) or more",
+                self.describe()
+            ));
+        }
+        let nodes =
+            self.theta_h as u128 * self.theta_d as u128 * self.phi_d as u128 * self.phi_h as u128;
+        if nodes > 1 << 32 {
+            return Err(format!(
+                "resolution {}: more than 2^32 nodes",
+                self.describe()
+            ));
+        }
+        Ok(())
+    }
+
+    /// `theta_h x theta_d x phi_d [x phi_h]`.
+    pub fn describe(&self) -> String {
+        if self.is_isotropic() {
+            format!("{} x {} x {}", self.theta_h, self.theta_d, self.phi_d)
+        } else {
+            format!(
+                "{} x {} x {} x {}",
+                self.theta_h, self.theta_d, self.phi_d, self.phi_h
+            )
+        }
+    }
+
+    /// Linear node index of (phi_h, theta_h, theta_d, phi_d) indices.
+    #[inline]
+    pub fn cell_index(&self, ph: usize, th: usize, td: usize, pd: usize) -> usize {
+        ((ph * self.theta_h + th) * self.theta_d + td) * self.phi_d + pd
+    }
+
+    /// The (phi_h, theta_h, theta_d, phi_d) indices of a linear node index.
+    #[inline]
+    pub fn cell_indices(&self, node: usize) -> [usize; 4] {
+        let pd = node % self.phi_d;
+        let rest = node / self.phi_d;
+        let td = rest % self.theta_d;
+        let rest = rest / self.theta_d;
+        let th = rest % self.theta_h;
+        [rest / self.theta_h, th, td, pd]
+    }
+
+    /// The angles of a node.
+    pub fn cell_angles(&self, node: usize) -> HalfDiff {
+        let [ph, th, td, pd] = self.cell_indices(node);
+        let u = th as f64 / self.theta_h as f64;
+        HalfDiff {
+            theta_h: FRAC_PI_2 * u * u,
+            phi_h: TAU * ph as f64 / self.phi_h as f64,
+            theta_d: FRAC_PI_2 * td as f64 / self.theta_d as f64,
+            phi_d: TAU * pd as f64 / self.phi_d as f64,
+        }
+    }
+
+    /// The node whose `phi_d` is half a turn from `node`'s: the same pair with `wi` and `wo`
+    /// swapped.
+    #[inline]
+    pub fn reciprocal_cell(&self, node: usize) -> usize {
+        let pd = node % self.phi_d;
+        node - pd + (pd + self.phi_d / 2) % self.phi_d
+    }
+
+    /// Interpolation stencil of a point: for each of (phi_h, theta_h, theta_d, phi_d) the two
+    /// bracketing node indices and the weight of the second.
+    #[inline]
+    pub fn stencil(&self, a: &HalfDiff) -> [(usize, usize, f64); 4] {
+        let th = clamped(
+            (a.theta_h.max(0.0) / FRAC_PI_2).sqrt() * self.theta_h as f64,
+            self.theta_h,
+        );
+        let td = clamped(
+            a.theta_d.max(0.0) / FRAC_PI_2 * self.theta_d as f64,
+            self.theta_d,
+        );
+        let pd = periodic(a.phi_d / TAU * self.phi_d as f64, self.phi_d);
+        let ph = if self.phi_h == 1 {
+            (0, 0, 0.0)
+        } else {
+            periodic(a.phi_h / TAU * self.phi_h as f64, self.phi_h)
+        };
+        [ph, th, td, pd]
+    }
+}
+
+/// Bracketing nodes of a coordinate `x` (in node units) on a grid of `n` nodes, clamped at the
+/// last node.
+#[inline]
+fn clamped(x: f64, n: usize) -> (usize, usize, f64) {
+    let last = (n - 1) as f64;
+    if x.is_nan() || x >= last {
+        return (n - 1, n - 1, 0.0);
+    }
+    let i = x.floor() as usize;
+    (i, i + 1, x - i as f64)
+}
+
+/// Bracketing nodes of `x` on a periodic grid of `n` nodes.
+#[inline]
+fn periodic(x: f64, n: usize) -> (usize, usize, f64) {
+    let x = x.rem_euclid(n as f64);
+    let i = (x.floor() as usize).min(n - 1);
+    (i, (i + 1) % n, x - i as f64)
+}
+
+/// Polar angle of a unit direction, stable near the pole (`2 asin(|d - z| / 2)`).
+pub fn theta_of(d: DVec3) -> f64 {
+    let dist = (d.x * d.x + d.y * d.y + (d.z - 1.0) * (d.z - 1.0)).sqrt();
+    2.0 * (0.5 * dist).min(1.0).asin()
+}
+
+/// Unit direction from polar angle and azimuth.
+pub fn dir(theta: f64, phi: f64) -> DVec3 {
+    let (st, ct) = theta.sin_cos();
+    let (sp, cp) = phi.sin_cos();
+    DVec3::new(st * cp, st * sp, ct)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn half_diff_round_trip_and_reciprocity() {
+        let mut rng = 12345u64;
+        let mut next = || {
+            rng = rng
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (rng >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..1000 {
+            let wi = dir(next() * 1.5, next() * TAU);
+            let wo = dir(next() * 1.5, next() * TAU);
+            let a = HalfDiff::from_dirs(wi, wo).unwrap();
+            let (wi2, wo2) = a.to_dirs();
+            assert!((wi - wi2).length() < 1e-12 && (wo - wo2).length() < 1e-12);
+            let b = HalfDiff::from_dirs(wo, wi).unwrap();
+            assert!((a.theta_h - b.theta_h).abs() < 1e-12 && (a.theta_d - b.theta_d).abs() < 1e-12);
+            let dphi = (b.phi_d - a.phi_d).rem_euclid(TAU);
+            assert!((dphi - PI).abs() < 1e-9, "phi_d does not turn by π: {dphi}");
+        }
+    }
+
+    #[test]
+    fn cell_indices_and_reciprocal_cells() {
+        let r = Resolution::anisotropic(5, 4, 6, 3);
+        for node in 0..r.cell_count() {
+            let [ph, th, td, pd] = r.cell_indices(node);
+            assert_eq!(r.cell_index(ph, th, td, pd), node);
+            let rec = r.reciprocal_cell(node);
+            assert_eq!(r.reciprocal_cell(rec), node);
+            let (a, b) = (r.cell_angles(node), r.cell_angles(rec));
+            assert!(((b.phi_d - a.phi_d).rem_euclid(TAU) - PI).abs() < 1e-12);
+        }
+        assert!(Resolution::isotropic(4, 4, 5).validate().is_err());
+        assert!(Resolution::isotropic(1, 4, 4).validate().is_err());
+    }
+
+    #[test]
+    fn stencil_hits_nodes_exactly() {
+        let r = Resolution::anisotropic(9, 7, 8, 4);
+        for node in 0..r.cell_count() {
+            let s = r.stencil(&r.cell_angles(node));
+            let [ph, th, td, pd] = r.cell_indices(node);
+            for (k, want) in [ph, th, td, pd].into_iter().enumerate() {
+                let (i0, i1, t) = s[k];
+                let got = if t < 0.5 { i0 } else { i1 };
+                assert!(!(1e-9..=1.0 - 1e-9).contains(&t), "weight {t}");
+                assert_eq!(got, want, "axis {k} of node {node}");
+            }
+        }
+    }
+}

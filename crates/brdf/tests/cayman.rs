@@ -1,0 +1,59 @@
+//! The Cornell Cayman measurement (tests/data/cayman.astm, Cornell University Program of
+//! Computer Graphics reflectance data) turned into a table by the smoothing interpolation
+//! reproduces held-out measurements: every tenth geometry is left out of the fit, and the table
+//! is evaluated there. Numbers are quoted in docs/brdf-tables.md.
+
+use gonio_brdf::formats::astm;
+use gonio_brdf::formats::scattered::{NOISE_FLOOR_PER_SR, Sample, ScatteredFit, residual_of};
+use gonio_brdf::table::Channels;
+use std::path::Path;
+
+#[test]
+fn held_out_geometries_are_reproduced() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cayman.astm");
+    let file = astm::read(&path).unwrap();
+    assert_eq!(file.samples.len(), 1439);
+    assert_eq!(file.wavelengths_nm.len(), 31);
+    let held: Vec<Sample> = file.samples.iter().step_by(10).cloned().collect();
+    let train: Vec<Sample> = file
+        .samples
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| i % 10 != 0)
+        .map(|(_, s)| s.clone())
+        .collect();
+    let fit = ScatteredFit::new(&train, None).unwrap();
+    let channels = Channels::Spectral {
+        wavelengths_nm: file.wavelengths_nm.clone(),
+    };
+    let table = fit
+        .to_table(astm::default_resolution(), channels, Default::default())
+        .unwrap();
+
+    // Per band, every value above the noise floor.
+    let per_band = residual_of(&held, NOISE_FLOOR_PER_SR, |s, out| {
+        table.eval_channels(s.wo, s.wi, out)
+    });
+    // Per geometry, the mean over the 31 bands (every held-out geometry).
+    let mut band_mean: Vec<f64> = held
+        .iter()
+        .map(|s| {
+            let mut out = vec![0.0; s.values.len()];
+            table.eval_channels(s.wo, s.wi, &mut out);
+            let (m, p) = (s.values.iter().sum::<f64>(), out.iter().sum::<f64>());
+            ((p - m) / m).abs()
+        })
+        .collect();
+    band_mean.sort_by(f64::total_cmp);
+    let band_mean_median = band_mean[band_mean.len() / 2];
+    println!(
+        "bandwidths {:?}; held-out per band {per_band:?}; band-mean median {band_mean_median}",
+        fit.bandwidths()
+    );
+    assert!(per_band.count > 1000, "{per_band:?}");
+    assert!(per_band.median_relative < 0.10, "{per_band:?}");
+    assert!(
+        band_mean_median < 0.10,
+        "band-mean median relative error {band_mean_median}"
+    );
+}
