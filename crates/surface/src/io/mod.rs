@@ -1,0 +1,206 @@
+//! Reading and writing height-map files. The format is detected from the file's content (magic
+//! bytes or header) and, failing that, from its extension. Readers take the whole file as bytes
+//! and check every size a header claims against the bytes present before allocating.
+
+mod al3d;
+mod binary;
+mod common;
+mod gsf;
+mod gwyddion_ascii;
+mod plu;
+mod sdf;
+mod sur;
+mod wyko;
+mod x3p;
+mod zygo;
+
+use crate::error::{Result, SurfaceError};
+use crate::heightmap::HeightMap;
+use std::io::Write;
+use std::path::Path;
+
+/// A height-map file format that gonio reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// ISO 25178-72 XML 3D surface profile (zip container).
+    X3p,
+    /// ISO 25178-71 surface data file, ASCII or binary.
+    Sdf,
+    /// Gwyddion simple field file.
+    Gsf,
+    /// Gwyddion's ASCII matrix export (with or without its `#` header).
+    GwyddionAscii,
+    /// Zygo MetroPro `.dat`.
+    Zygo,
+    /// Wyko / Veeco Vision `.opd`.
+    Wyko,
+    /// Sensofar `.plu`.
+    Plu,
+    /// Digital Surf `.sur`.
+    Sur,
+    /// Alicona `.al3d`.
+    Al3d,
+}
+
+/// A format's reader: its name, a content test and the parser.
+struct Reader {
+    format: Format,
+    name: &'static str,
+    extensions: &'static [&'static str],
+    sniff: fn(&[u8]) -> bool,
+    parse: fn(&Path, &[u8]) -> Result<HeightMap>,
+}
+
+/// Binary formats with magic bytes come first; the text formats, whose tests are looser, last.
+const READERS: &[Reader] = &[
+    Reader {
+        format: Format::X3p,
+        name: x3p::NAME,
+        extensions: &["x3p"],
+        sniff: x3p::sniff,
+        parse: x3p::parse,
+    },
+    Reader {
+        format: Format::Zygo,
+        name: zygo::NAME,
+        extensions: &["dat"],
+        sniff: zygo::sniff,
+        parse: zygo::parse,
+    },
+    Reader {
+        format: Format::Wyko,
+        name: wyko::NAME,
+        extensions: &["opd"],
+        sniff: wyko::sniff,
+        parse: wyko::parse,
+    },
+    Reader {
+        format: Format::Plu,
+        name: plu::NAME,
+        extensions: &["plu", "apx"],
+        sniff: plu::sniff,
+        parse: plu::parse,
+    },
+    Reader {
+        format: Format::Sur,
+        name: sur::NAME,
+        extensions: &["sur"],
+        sniff: sur::sniff,
+        parse: sur::parse,
+    },
+    Reader {
+        format: Format::Al3d,
+        name: al3d::NAME,
+        extensions: &["al3d"],
+        sniff: al3d::sniff,
+        parse: al3d::parse,
+    },
+    Reader {
+        format: Format::Gsf,
+        name: gsf::NAME,
+        extensions: &["gsf"],
+        sniff: gsf::sniff,
+        parse: gsf::parse,
+    },
+    Reader {
+        format: Format::Sdf,
+        name: sdf::NAME,
+        extensions: &["sdf"],
+        sniff: sdf::sniff,
+        parse: sdf::parse,
+    },
+    Reader {
+        format: Format::GwyddionAscii,
+        name: gwyddion_ascii::NAME,
+        extensions: &["txt", "asc", "csv"],
+        sniff: gwyddion_ascii::sniff,
+        parse: gwyddion_ascii::parse,
+    },
+];
+
+/// Detect the format of a file from its content, or else from its extension.
+pub fn detect(path: &Path, bytes: &[u8]) -> Option<Format> {
+    pick(path, bytes).map(|r| r.format)
+}
+
+fn pick(path: &Path, bytes: &[u8]) -> Option<&'static Reader> {
+    READERS.iter().find(|r| (r.sniff)(bytes)).or_else(|| {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        READERS
+            .iter()
+            .find(|r| r.extensions.contains(&ext.as_str()))
+    })
+}
+
+/// Read a height map from a file of any supported format.
+pub fn read(path: &Path) -> Result<HeightMap> {
+    let bytes = std::fs::read(path).map_err(|e| SurfaceError::io(path, e))?;
+    read_bytes(path, &bytes)
+}
+
+/// Read a height map from the bytes of a file; `path` names it in messages and picks the format
+/// by extension when the content does not.
+pub fn read_bytes(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
+    let reader =
+        pick(path, bytes).ok_or_else(|| SurfaceError::UnknownFormat { path: path.into() })?;
+    let mut map = (reader.parse)(path, bytes)?;
+    map.meta.source = Some(path.to_path_buf());
+    map.meta.format = Some(reader.name.to_string());
+    Ok(map)
+}
+
+/// Write a height map; the extension picks the format (`.x3p` or `.gsf`). The file is written to
+/// a temporary file beside the target and renamed, so a failure never leaves half a file.
+pub fn write(map: &HeightMap, path: &Path) -> Result<()> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .unwrap_or_default();
+    let bytes = match ext.as_str() {
+        "x3p" => x3p::to_bytes(map).map_err(|m| SurfaceError::format(path, x3p::NAME, m))?,
+        "gsf" => gsf::to_bytes(map),
+        _ => {
+            return Err(SurfaceError::format(
+                path,
+                "output",
+                format!("cannot write '.{ext}' files: use the extension .x3p or .gsf"),
+            ));
+        }
+    };
+    write_atomic(path, &bytes)
+}
+
+/// Write `bytes` to `path` through a temporary file in the same directory and a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let mut tmp = tempfile_in(dir).map_err(|e| SurfaceError::io(path, e))?;
+    tmp.1
+        .write_all(bytes)
+        .and_then(|_| tmp.1.sync_all())
+        .map_err(|e| SurfaceError::io(path, e))?;
+    std::fs::rename(&tmp.0, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp.0);
+        SurfaceError::io(path, e)
+    })
+}
+
+fn tempfile_in(dir: &Path) -> std::io::Result<(std::path::PathBuf, std::fs::File)> {
+    let pid = std::process::id();
+    for n in 0..1000u32 {
+        let candidate = dir.join(format!(".gonio-tmp-{pid}-{n}"));
+        match std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&candidate)
+        {
+            Ok(f) => return Ok((candidate, f)),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(e),
+        }
+    }
+    Err(std::io::Error::other("could not create a temporary file"))
+}

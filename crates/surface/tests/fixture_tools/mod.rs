@@ -1,0 +1,57 @@
+//! Helpers shared by the integration tests on the fixture files: where the fixtures are, the
+//! plane-levelled Sq, and rewriting an entry of a zip container (X3P).
+// Each test crate uses a different subset of these helpers.
+#![allow(dead_code)]
+
+use gonio_surface::HeightMap;
+use std::io::{Cursor, Read, Write};
+use std::path::PathBuf;
+
+/// Path of a file in `tests/data`.
+pub fn fixture(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(name)
+}
+
+/// Sq (ISO 25178-2) after removing the least-squares mean plane, over valid points, with the
+/// crate's levelling and statistics.
+pub fn sq_plane(map: &HeightMap) -> f64 {
+    let levelled = gonio_surface::ops::level(map).expect("levelling");
+    gonio_surface::stats::height_parameters(&levelled).0
+}
+
+/// Root-mean-square deviation from the mean height over the valid points, without levelling.
+pub fn rms_about_mean(map: &HeightMap) -> f64 {
+    let valid: Vec<f64> = map
+        .heights()
+        .iter()
+        .copied()
+        .filter(|h| !h.is_nan())
+        .collect();
+    let n = valid.len() as f64;
+    let mean = valid.iter().sum::<f64>() / n;
+    (valid.iter().map(|h| (h - mean).powi(2)).sum::<f64>() / n).sqrt()
+}
+
+/// Relative difference `|a − b| / |b|`.
+pub fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+/// A copy of the zip archive `bytes` in which `edit(name, content)` replaces each entry.
+pub fn rezip(bytes: &[u8], edit: impl Fn(&str, Vec<u8>) -> Vec<u8>) -> Vec<u8> {
+    let mut archive = zip::ZipArchive::new(Cursor::new(bytes)).expect("fixture is a zip");
+    let mut out = zip::ZipWriter::new(Cursor::new(Vec::new()));
+    for i in 0..archive.len() {
+        let mut entry = archive.by_index(i).expect("entry");
+        let name = entry.name().expect("entry name").to_string();
+        let mut content = Vec::new();
+        entry.read_to_end(&mut content).expect("entry content");
+        let options = zip::write::SimpleFileOptions::default()
+            .compression_method(zip::CompressionMethod::Deflated);
+        out.start_file(name.as_str(), options).expect("start entry");
+        out.write_all(&edit(&name, content)).expect("write entry");
+    }
+    out.finish().expect("finish zip").into_inner()
+}
