@@ -144,6 +144,14 @@ fn digital_surf_with_non_measured_points() {
     assert_eq!(map.nx() * map.ny() - map.valid_count(), 117);
     assert!(!map.is_valid(301, 0));
     check_levelled_sq(&map, 1.7104139236637136e-08);
+    assert_eq!(map.meta.warnings().count(), 0);
+
+    // An inversion flag is reported, not applied.
+    let mut inverted = bytes("sur-2.sur");
+    inverted[290] = 1;
+    let flagged = io::read_bytes(Path::new("i.sur"), &inverted).unwrap();
+    assert_eq!(flagged.get(0, 0), map.get(0, 0));
+    assert!(flagged.meta.warnings().any(|w| w.contains("inversion")));
 }
 
 /// The README lists 17.7 nm for sur-2.sur; the file's own header shows why 17.52 nm is right.

@@ -109,8 +109,9 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
         b.u8(CONFIGURATION + 62, "version")?.to_string(),
     ));
     if layers > 1 {
-        meta.extra
-            .push(("layers".into(), format!("{layers} (the first is read)")));
+        meta.warn(format!(
+            "the file holds {layers} layers; only the first is read"
+        ));
     }
     Ok(map)
 }

@@ -143,7 +143,9 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
     let meta = &mut map.meta;
     let inversion = b.u16::<Le>(290, "inversion")?;
     if inversion != 0 {
-        meta.extra.push(("inversion".into(), inversion.to_string()));
+        meta.warn(format!(
+            "the header's inversion flag is {inversion}; heights are read as stored, not inverted"
+        ));
     }
     let acquisition = usize::from(b.u16::<Le>(82, "acquisition type")?);
     meta.instrument = ACQUISITION
@@ -170,8 +172,9 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
     }
     let objects = b.u16::<Le>(14, "number of objects")?;
     if objects > 1 {
-        meta.extra
-            .push(("objects".into(), format!("{objects} (the first is read)")));
+        meta.warn(format!(
+            "the file holds {objects} objects; only the first is read"
+        ));
     }
     Ok(map)
 }
