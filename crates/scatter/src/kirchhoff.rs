@@ -23,6 +23,7 @@
 
 mod aperture;
 mod facets;
+mod hemisphere;
 mod kernel;
 
 use crate::error::{Result, ScatterError};
@@ -130,6 +131,7 @@ pub struct Kirchhoff {
     ior: Ior,
     phase_tolerance: f64,
     curvature: f64,
+    slope: f64,
     grids: Vec<OnceLock<FacetGrid>>,
 }
 
@@ -168,13 +170,14 @@ impl Kirchhoff {
             )));
         }
         let spline = BicubicSpline::from_map(map)?;
-        let curvature = facets::curvature_percentile(map.heights(), map.dx(), map.dy(), &spot);
+        let (curvature, slope) = facets::spot_percentiles(map.heights(), map.dx(), map.dy(), &spot);
         Ok(Kirchhoff {
             spline,
             spot,
             ior: options.ior,
             phase_tolerance: options.phase_tolerance,
             curvature,
+            slope,
             grids: (0..MAX_REFINEMENT).map(|_| OnceLock::new()).collect(),
         })
     }
@@ -191,10 +194,14 @@ impl Kirchhoff {
             .sqrt()
             .ceil()
             .max(1.0) as usize;
-        let cells = {
-            let n = |d: f64| (self.spot.diameter / d * r as f64).ceil() as usize;
-            n(self.spline.dx()) * n(self.spline.dy())
-        };
+        self.check_size(r)?;
+        Ok(r)
+    }
+
+    /// Fails if a grid of refinement `r` would exceed [`MAX_REFINEMENT`] or [`MAX_FACETS`].
+    fn check_size(&self, r: usize) -> Result<()> {
+        let n = |d: f64| (self.spot.diameter / d * r as f64).ceil() as usize;
+        let cells = n(self.spline.dx()) * n(self.spline.dy());
         if r > MAX_REFINEMENT || cells > MAX_FACETS {
             return Err(ScatterError::Invalid(format!(
                 "the map is too coarse for this wavelength and direction: it would need \
@@ -202,7 +209,7 @@ impl Kirchhoff {
                  use a smaller spot, a longer wavelength or a finer measurement"
             )));
         }
-        Ok(r)
+        Ok(())
     }
 
     /// The facet grid of refinement `r`, built on first use.

@@ -172,19 +172,20 @@ fn cells_across(diameter: f64, a: f64) -> usize {
     ((diameter / a - 1e-9).ceil() as usize).max(1)
 }
 
-/// The 99.9th percentile over the spot of `C = |Δxx h| + 2|Δxy h| + |Δyy h|` (second differences
-/// of the grid, metres): the largest departure of the surface from its tangent plane over a cell
-/// of the map is about `C/8`, and over a cell `r` times smaller `C/(8 r²)`. A percentile rather
-/// than the maximum keeps a few spikes of a measured map from refining everything.
-pub(crate) fn curvature_percentile(
+/// 99.9th percentiles over the spot of the curvature measure
+/// `C = |Δxx h| + 2|Δxy h| + |Δyy h|` (second differences of the grid, metres) and of the slope
+/// `|∇h|` (central differences). The largest departure of the surface from its tangent plane over
+/// a cell of the map is about `C/8`, and over a cell `r` times smaller `C/(8 r²)`. Percentiles
+/// rather than maxima keep a few spikes of a measured map from refining everything.
+pub(crate) fn spot_percentiles(
     heights: &ndarray::Array2<f64>,
     dx: f64,
     dy: f64,
     spot: &Spot,
-) -> f64 {
+) -> (f64, f64) {
     let (ny, nx) = heights.dim();
     let radius2 = (0.5 * spot.diameter).powi(2);
-    let mut values: Vec<f64> = (1..ny.saturating_sub(1))
+    let (mut curvature, mut slope): (Vec<f64>, Vec<f64>) = (1..ny.saturating_sub(1))
         .into_par_iter()
         .flat_map_iter(|iy| {
             (1..nx - 1).filter_map(move |ix| {
@@ -202,10 +203,18 @@ pub(crate) fn curvature_percentile(
                     * (z(ix + 1, iy + 1) - z(ix + 1, iy - 1) - z(ix - 1, iy + 1)
                         + z(ix - 1, iy - 1));
                 let c = dxx.abs() + 2.0 * dxy.abs() + dyy.abs();
-                c.is_finite().then_some(c)
+                let sx = (z(ix + 1, iy) - z(ix - 1, iy)) / (2.0 * dx);
+                let sy = (z(ix, iy + 1) - z(ix, iy - 1)) / (2.0 * dy);
+                let s = (sx * sx + sy * sy).sqrt();
+                (c.is_finite() && s.is_finite()).then_some((c, s))
             })
         })
-        .collect();
+        .unzip();
+    (percentile(&mut curvature), percentile(&mut slope))
+}
+
+/// The 99.9th percentile of `values` (0 when empty).
+fn percentile(values: &mut [f64]) -> f64 {
     if values.is_empty() {
         return 0.0;
     }

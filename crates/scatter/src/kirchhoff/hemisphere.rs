@@ -1,0 +1,186 @@
+//! Full-hemisphere BRDF tables by FFT.
+//!
+//! `E(vx, vy, vz) = Σ_j A_j exp(i vz h_j) exp(i (vx x_j + vy y_j))` is, at fixed `vz`, the 2D
+//! discrete Fourier transform of `A_j exp(i vz h_j)`: one FFT gives `E` on the whole lattice of
+//! `(vx, vy)` that the spot resolves (spacing `2π/L`, centred on the specular direction). Each
+//! lattice point is an outgoing direction with its own `vz = -k (cos ti + cos to)`, so FFTs are
+//! taken at `vz` nodes spaced `Δ = 0.5/H` (`H` the largest centred height in the spot) and `E` is
+//! interpolated between them by 4-point Lagrange interpolation, whose error for the band-limited
+//! `exp(i vz h)` with `H Δ ≤ 0.5` is below 0.2%. Every lattice point then adds its BRDF times its
+//! solid angle to the hemisphere cell holding its direction, as a detector would.
+//!
+//! The FFT needs a plain sum over points, so here the surface is sampled at cell centres without
+//! the facets' sinc factors, on a grid refined until the phase `vz h` advances by at most 2π/10
+//! between neighbouring points (99.9th percentile of the slope, largest `|vz|`): about ten points
+//! per wavelength of the phase, and far inside the Nyquist limit, so no scattered light aliases.
+
+use super::Kirchhoff;
+use super::aperture::{brdf_factor, lattice_spacing, outgoing};
+use super::facets::FacetGrid;
+use super::kernel::{RowParams, fill_row};
+use crate::error::Result;
+use crate::ray::{HemisphereGrid, HemisphereTable};
+use glam::DVec3;
+use num_complex::Complex64;
+use rayon::prelude::*;
+use std::f64::consts::{PI, TAU};
+
+/// Points per wavelength of the phase `vz h` on the sampled grid.
+const POINTS_PER_WAVE: f64 = 10.0;
+
+/// One lattice point that lands above the surface.
+struct Bin {
+    /// Index into the transposed FFT output, `p * ny + q`.
+    index: usize,
+    /// Hemisphere cell.
+    cell: usize,
+    /// First of the four `vz` nodes to interpolate from, and the position between them in
+    /// node spacings (in [0, 3]).
+    node: usize,
+    t: f64,
+    /// `R F² cos ti Δvx Δvy / (4π² cos to ∫∫W²)`: reflectance per `|E|²`.
+    weight: f64,
+}
+
+impl Kirchhoff {
+    /// Refinement of the sampled grid for FFTs at wave vectors up to `|vz| = vz_max`.
+    pub(crate) fn sampling_refinement(&self, vz_max: f64) -> Result<usize> {
+        let dx = self.spline.dx().max(self.spline.dy());
+        let r = (vz_max * self.slope * dx * POINTS_PER_WAVE / TAU)
+            .ceil()
+            .max(1.0) as usize;
+        self.check_size(r)?;
+        Ok(r)
+    }
+
+    /// The BRDF over the whole hemisphere for light of `wavelength` metres from `wi`, binned into
+    /// the cells of `grid`: each cell's reflectance `∫ f cos t dω` and the number of lattice points
+    /// (speckle samples) it holds, in `hits`.
+    pub fn hemisphere(
+        &self,
+        wavelength: f64,
+        wi: DVec3,
+        grid: &HemisphereGrid,
+    ) -> Result<HemisphereTable> {
+        let k = TAU / wavelength;
+        let r = self.sampling_refinement(k * (wi.z + 1.0))?;
+        let facets = self.grid(r);
+        let height = facets
+            .h
+            .iter()
+            .zip(&facets.w)
+            .filter(|(_, w)| **w > 0.0)
+            .fold(0.0f64, |m, (h, _)| m.max(h.abs()));
+        let (dvx, dvy) = lattice_spacing(facets);
+        let (nx, ny) = (facets.nx, facets.ny);
+        let signed = |i: usize, n: usize| {
+            if i < n.div_ceil(2) {
+                i as f64
+            } else {
+                i as f64 - n as f64
+            }
+        };
+        // Directions of the lattice points and the vz range they span.
+        let points: Vec<(usize, DVec3)> = (0..nx * ny)
+            .filter_map(|index| {
+                let (p, q) = (index / ny, index % ny);
+                outgoing(k, wi, signed(p, nx) * dvx, signed(q, ny) * dvy).map(|wo| (index, wo))
+            })
+            .collect();
+        let vz_of = |wo: DVec3| -k * (wi.z + wo.z);
+        let (lo, hi) = points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &(_, wo)| {
+                (lo.min(vz_of(wo)), hi.max(vz_of(wo)))
+            });
+        let nodes = (((hi - lo) * height / 0.5).ceil() as usize + 1).max(4);
+        let step = (hi - lo) / (nodes - 1) as f64;
+        let norm = dvx * dvy * wi.z / (4.0 * PI * PI * facets.w2_area);
+        let mut bins: Vec<Bin> = points
+            .iter()
+            .map(|&(index, wo)| {
+                let x = if step > 0.0 {
+                    (vz_of(wo) - lo) / step
+                } else {
+                    0.0
+                };
+                let node = (x.floor() as usize).saturating_sub(1).min(nodes - 4);
+                Bin {
+                    index,
+                    cell: grid.cell(wo),
+                    node,
+                    t: x - node as f64,
+                    weight: brdf_factor(self.ior, wi, wo) * norm / wo.z,
+                }
+            })
+            .collect();
+        bins.sort_by_key(|b| b.node);
+        let mut reflectance = vec![0.0; grid.len()];
+        let mut hits = vec![0u64; grid.len()];
+        let mut window: Vec<Vec<Complex64>> = (0..4)
+            .map(|i| spectrum(facets, lo + i as f64 * step))
+            .collect();
+        let mut first = 0;
+        for b in &bins {
+            while first < b.node {
+                window.remove(0);
+                window.push(spectrum(facets, lo + (first + 4) as f64 * step));
+                first += 1;
+            }
+            let l = lagrange4(b.t);
+            let e: Complex64 = (0..4).map(|i| window[i][b.index] * l[i]).sum();
+            reflectance[b.cell] += b.weight * e.norm_sqr();
+            hits[b.cell] += 1;
+        }
+        Ok(HemisphereTable {
+            grid: *grid,
+            reflectance,
+            reflectance_sp: None,
+            hits,
+        })
+    }
+}
+
+/// The 2D transform `Σ_j A_j exp(i vz h_j) exp(i (vx x_j + vy y_j))` on the lattice, transposed:
+/// element `p * ny + q` holds `(vx, vy) = (p Δvx, q Δvy)` (indices modulo the grid size). Rows
+/// and columns run in parallel, each a fixed computation, so the result does not depend on the
+/// thread count.
+fn spectrum(facets: &FacetGrid, vz: f64) -> Vec<Complex64> {
+    let (nx, ny) = (facets.nx, facets.ny);
+    let mut rows = vec![Complex64::default(); nx * ny];
+    rows.par_chunks_mut(nx).enumerate().for_each(|(m, row)| {
+        let params = RowParams {
+            vz,
+            phase0: 0.0,
+            dphase: 0.0,
+            sx0: 0.0,
+            sx1: 0.0,
+            sy0: 0.0,
+            sy1: 0.0,
+            area: facets.ax * facets.ay,
+        };
+        fill_row(&facets.row(m), &params, row);
+        facets.row_fft.process(row);
+    });
+    let mut columns = vec![Complex64::default(); nx * ny];
+    columns
+        .par_chunks_mut(ny)
+        .enumerate()
+        .for_each(|(p, column)| {
+            for (q, c) in column.iter_mut().enumerate() {
+                *c = rows[q * nx + p];
+            }
+            facets.col_fft.process(column);
+        });
+    columns
+}
+
+/// Lagrange weights of the nodes 0, 1, 2, 3 at position `t`.
+fn lagrange4(t: f64) -> [f64; 4] {
+    [
+        -(t - 1.0) * (t - 2.0) * (t - 3.0) / 6.0,
+        t * (t - 2.0) * (t - 3.0) / 2.0,
+        -t * (t - 1.0) * (t - 3.0) / 2.0,
+        t * (t - 1.0) * (t - 2.0) / 6.0,
+    ]
+}
