@@ -197,11 +197,10 @@ fn beckmann_lambda_a(a: f64) -> f64 {
 
 /// Sample the slopes of the α = 1 Beckmann distribution visible from a direction at
 /// `cos_theta` from the normal in the x-z plane (positive x): the x slope from its marginal,
-/// whose cdf in `b = erf(x)` is `(1 + b + tanθ/√π e^(-x²)) / (1 + erf(cot θ) + tanθ/√π
-/// e^(-cot²θ))`, inverted by safeguarded Newton steps from Jakob's (2014) fitted first guess;
-/// the y slope is an independent Gaussian.
+/// whose cdf is `C(x) = (1 + erf x + tanθ/√π e^(-x²)) / (1 + erf(cot θ) + tanθ/√π
+/// e^(-cot²θ))` on `x < cot θ`, inverted by Newton steps safeguarded by bisection from
+/// Jakob's (2014) fitted first guess; the y slope is an independent Gaussian.
 fn beckmann_visible_slope_11(cos_theta: f64, u: DVec2) -> DVec2 {
-    let y = erfinv(2.0 * u.y.clamp(1e-300, 1.0 - 1e-16) - 1.0);
     if cos_theta > 1.0 - 1e-12 {
         let r = (-(1.0 - u.x).ln()).sqrt();
         let phi = 2.0 * PI * u.y;
@@ -212,39 +211,48 @@ fn beckmann_visible_slope_11(cos_theta: f64, u: DVec2) -> DVec2 {
     let cot_theta = cos_theta / sin_theta;
     let inv_sqrt_pi = 1.0 / PI.sqrt();
     let target = u.x.clamp(1e-16, 1.0 - 1e-16);
-    let (mut lo, mut hi) = (-1.0f64, libm::erf(cot_theta));
+    let erf_cot = libm::erf(cot_theta);
+    let norm = 1.0 / (1.0 + erf_cot + inv_sqrt_pi * tan_theta * (-cot_theta * cot_theta).exp());
     let theta = cos_theta.acos();
     let fit = 1.0 + theta * (-0.876 + theta * (0.4265 - 0.0594 * theta));
-    let mut b = hi - (1.0 + hi) * (1.0 - target).powf(fit);
-    let norm = 1.0 / (1.0 + hi + inv_sqrt_pi * tan_theta * (-cot_theta * cot_theta).exp());
+    let (mut lo, mut hi) = (-ERFINV_MAX, cot_theta);
+    let mut x = erfinv(erf_cot - (1.0 + erf_cot) * (1.0 - target).powf(fit)).clamp(lo, hi);
     for _ in 0..100 {
-        if !(b > lo && b < hi) {
-            b = 0.5 * (lo + hi);
-        }
-        let x = erfinv(b);
-        let value = norm * (1.0 + b + inv_sqrt_pi * tan_theta * (-x * x).exp()) - target;
-        if value.abs() < 1e-14 || hi - lo < 1e-15 {
+        let e = (-x * x).exp();
+        let value = norm * (1.0 + libm::erf(x) + inv_sqrt_pi * tan_theta * e) - target;
+        if value.abs() < 1e-14 {
             break;
         }
         if value > 0.0 {
-            hi = b;
+            hi = x;
         } else {
-            lo = b;
+            lo = x;
         }
-        b -= value / (norm * (1.0 - x * tan_theta));
+        let step = x - value / (norm * 2.0 * inv_sqrt_pi * e * (1.0 - x * tan_theta));
+        x = if step > lo && step < hi {
+            step
+        } else {
+            0.5 * (lo + hi)
+        };
+        if hi - lo < 1e-14 {
+            break;
+        }
     }
-    DVec2::new(erfinv(b), y)
+    DVec2::new(x, erfinv(2.0 * u.y.clamp(1e-300, 1.0 - 1e-16) - 1.0))
 }
+
+/// Where [`erfinv`] saturates: `erf(5.9)` rounds to 1 in double precision.
+const ERFINV_MAX: f64 = 5.9;
 
 /// Inverse error function on (-1, 1): M. Giles' single-precision approximation ("Approximating
 /// the erfinv function", GPU Computing Gems, 2011) refined by two Newton steps on `libm::erf`
 /// to double precision. Saturates at ±5.9 (where `erf` rounds to ±1).
 pub fn erfinv(y: f64) -> f64 {
     if y <= -1.0 {
-        return -5.9;
+        return -ERFINV_MAX;
     }
     if y >= 1.0 {
-        return 5.9;
+        return ERFINV_MAX;
     }
     let w = -((1.0 - y) * (1.0 + y)).ln();
     let mut x = if w < 5.0 {

@@ -322,45 +322,61 @@ fn check_samples(samples: &[FitSample], parameters: usize) -> Result<()> {
     Ok(())
 }
 
+/// The weighted least-squares amplitudes `value ≈ a g + b/π` for the lobe `g` of width
+/// `width` at the reference amplitude (`b = 0` unless `diffuse`, and clamped at 0), with the
+/// cost they leave; `None` if the lobe cannot describe the data (`a ≤ 0`).
+fn linear_amplitudes(
+    kind: FitKind,
+    width: f64,
+    samples: &[FitSample],
+    diffuse: bool,
+) -> Option<(f64, f64, f64)> {
+    let lobe = kind.specular(width, kind.reference_amplitude());
+    let one = std::f64::consts::FRAC_1_PI;
+    let (mut sgg, mut sg1, mut s11, mut sgv, mut s1v, mut svv) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    for s in samples {
+        let g = lobe.eval(s.wo, s.wi).x;
+        sgg += s.weight * g * g;
+        sg1 += s.weight * g * one;
+        s11 += s.weight * one * one;
+        sgv += s.weight * g * s.value;
+        s1v += s.weight * one * s.value;
+        svv += s.weight * s.value * s.value;
+    }
+    if sgg <= 0.0 {
+        return None;
+    }
+    let (mut a, mut b) = (sgv / sgg, 0.0);
+    if diffuse {
+        let det = sgg * s11 - sg1 * sg1;
+        if det > 0.0 {
+            (a, b) = ((sgv * s11 - s1v * sg1) / det, (s1v * sgg - sgv * sg1) / det);
+        }
+        if b < 0.0 {
+            (a, b) = (sgv / sgg, 0.0);
+        }
+    }
+    let cost = svv - 2.0 * (a * sgv + b * s1v) + a * a * sgg + 2.0 * a * b * sg1 + b * b * s11;
+    (a > 0.0).then_some((cost, a, b))
+}
+
 /// Starting internal parameters: the width of the ladder whose best linear amplitudes leave
 /// the least weighted residual.
 fn start(kind: FitKind, samples: &[FitSample], diffuse: bool) -> DVector<f64> {
-    let mut best: Option<(f64, f64, f64, f64)> = None; // (cost, width, scale, diffuse)
-    for width in kind.width_ladder() {
-        let lobe = kind.specular(width, kind.reference_amplitude());
-        // Weighted normal equations for value ≈ a g + b/π.
-        let (mut sgg, mut sg1, mut s11, mut sgv, mut s1v, mut svv) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-        for s in samples {
-            let g = lobe.eval(s.wo, s.wi).x;
-            let one = std::f64::consts::FRAC_1_PI;
-            sgg += s.weight * g * g;
-            sg1 += s.weight * g * one;
-            s11 += s.weight * one * one;
-            sgv += s.weight * g * s.value;
-            s1v += s.weight * one * s.value;
-            svv += s.weight * s.value * s.value;
-        }
-        if sgg <= 0.0 {
-            continue;
-        }
-        let (mut a, mut b) = (sgv / sgg, 0.0);
-        if diffuse {
-            let det = sgg * s11 - sg1 * sg1;
-            if det > 0.0 {
-                (a, b) = ((sgv * s11 - s1v * sg1) / det, (s1v * sgg - sgv * sg1) / det);
-            }
-            if b < 0.0 {
-                (a, b) = (sgv / sgg, 0.0);
-            }
-        }
-        if a <= 0.0 {
-            continue;
-        }
-        let cost = svv - 2.0 * (a * sgv + b * s1v) + a * a * sgg + 2.0 * a * b * sg1 + b * b * s11;
-        if best.is_none_or(|(c, ..)| cost < c) {
-            best = Some((cost, width, a, b));
-        }
-    }
+    // One work item per width, each summing serially: the same result for any thread count.
+    let trials: Vec<Option<(f64, f64, f64, f64)>> = kind
+        .width_ladder()
+        .into_par_iter()
+        .map(|width| {
+            let (cost, a, b) = linear_amplitudes(kind, width, samples, diffuse)?;
+            Some((cost, width, a, b))
+        })
+        .collect();
+    // (cost, width, scale, diffuse)
+    let best = trials
+        .into_iter()
+        .flatten()
+        .min_by(|x, y| x.0.total_cmp(&y.0));
     let (_, width, scale, b) = best.unwrap_or((0.0, 0.1, 1.0, 0.0));
     let amplitude = kind.scaled_amplitude(scale);
     let q1 = match kind {

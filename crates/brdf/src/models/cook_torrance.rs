@@ -33,26 +33,35 @@ impl CookTorrance {
     }
 }
 
+impl CookTorrance {
+    /// The value and the sampling pdf for `wo`, `wi` (both above the surface) and their half
+    /// vector `h`, sharing `D(h)` and `Λ(wo)`: `pdf = D / (4 cos θo (1 + Λ(wo)))`, which is
+    /// [`Microfacet::pdf_visible`]` / (4 wo·h)` simplified.
+    fn eval_pdf(&self, wo: DVec3, wi: DVec3, h: DVec3) -> (Rgb, f64) {
+        let mf = &self.microfacet;
+        let (d, lambda_o, lambda_i) = (mf.d(h), mf.lambda(wo), mf.lambda(wi));
+        let f =
+            self.ior.reflectance(wi.dot(h)) * d / (4.0 * wi.z * wo.z * (1.0 + lambda_o + lambda_i));
+        (self.tint * f, d / (4.0 * wo.z * (1.0 + lambda_o)))
+    }
+}
+
 impl Brdf for CookTorrance {
     fn eval(&self, wo: DVec3, wi: DVec3) -> Rgb {
-        let Some(h) = half_vector(wo, wi) else {
-            return Rgb::ZERO;
-        };
-        let mf = &self.microfacet;
-        let value = self.ior.reflectance(wi.dot(h)) * mf.d(h) * mf.g2(wi, wo) / (4.0 * wi.z * wo.z);
-        self.tint * value
+        match half_vector(wo, wi) {
+            Some(h) => self.eval_pdf(wo, wi, h).0,
+            None => Rgb::ZERO,
+        }
     }
 
     fn sample(&self, wo: DVec3, u: DVec2) -> Option<BrdfSample> {
         if wo.z <= 0.0 {
             return None;
         }
-        let wi = incident_from_half(wo, self.microfacet.sample_visible(wo, u))?;
-        Some(BrdfSample {
-            wi,
-            f: self.eval(wo, wi),
-            pdf: self.pdf(wo, wi),
-        })
+        let h = self.microfacet.sample_visible(wo, u);
+        let wi = incident_from_half(wo, h)?;
+        let (f, pdf) = self.eval_pdf(wo, wi, h);
+        Some(BrdfSample { wi, f, pdf })
     }
 
     fn pdf(&self, wo: DVec3, wi: DVec3) -> f64 {
