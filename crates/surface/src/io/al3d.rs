@@ -6,10 +6,10 @@
 //! `PixelSizeXMeter`, `PixelSizeYMeter`, `InvalidPixelValue`, `DepthImageOffset`,
 //! `TextureImageOffset`, `NumberOfPlanes`, ...), then a 256-byte comment. The depth image at
 //! `DepthImageOffset` holds little-endian f32 heights in metres, row by row, each row padded:
-//! to a multiple of 8 columns in Alicona's own MATLAB reader, to a multiple of 8 bytes in
-//! Gwyddion's. The padding is taken from the file itself: the one that makes the depth image end
-//! where the texture image (or the file) starts, else 8 columns. NaN or `InvalidPixelValue`
-//! marks points that were not measured.
+//! to a multiple of 8 columns in M. Baiker's MATLAB `AliconaReader` (2012), to a multiple of
+//! 8 bytes in Gwyddion's. The padding is taken from the file itself: the one that makes the
+//! depth image end where the texture image (or the file) starts, else 8 columns. NaN or
+//! `InvalidPixelValue` marks points that were not measured.
 
 use crate::error::Result;
 use crate::heightmap::HeightMap;
@@ -71,6 +71,9 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
     let dx = b.spacing(float("PixelSizeXMeter")?, "PixelSizeXMeter")?;
     let dy = b.spacing(float("PixelSizeYMeter")?, "PixelSizeYMeter")?;
     let depth = integer("DepthImageOffset")?;
+    if depth == 0 {
+        return Err(b.err("DepthImageOffset is 0: the file holds no depth image"));
+    }
     if depth < header.end {
         return Err(b.err(format!(
             "DepthImageOffset {depth} points into the header, which ends at {}",
