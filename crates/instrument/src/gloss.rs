@@ -73,9 +73,15 @@ impl Window {
 
 /// A specimen a virtual meter can measure.
 pub trait Specimen: Sync {
-    /// Fraction of the flux arriving from the unit direction `wi` (toward the source) that leaves
-    /// the specimen within `window`.
-    fn reflectance_into(&self, wi: DVec3, window: &Window) -> f64;
+    /// For light arriving from the unit direction `wi` (toward the source), the fraction of its
+    /// flux that leaves the specimen within each of `windows`.
+    fn reflectance_into(&self, wi: DVec3, windows: &[Window]) -> Vec<f64>;
+
+    /// Gauss-Legendre order (per axis) over the source aperture; specimens that are costly to
+    /// query (a ray trace per source direction) use fewer directions.
+    fn source_order(&self) -> usize {
+        8
+    }
 }
 
 /// A perfectly smooth surface: mirror reflection with the Fresnel reflectance of `ior`.
@@ -83,13 +89,13 @@ pub trait Specimen: Sync {
 pub struct Smooth(pub Ior);
 
 impl Specimen for Smooth {
-    fn reflectance_into(&self, wi: DVec3, window: &Window) -> f64 {
+    fn reflectance_into(&self, wi: DVec3, windows: &[Window]) -> Vec<f64> {
         let mirror = DVec3::new(-wi.x, -wi.y, wi.z);
-        if window.contains(mirror) {
-            self.0.reflectance(wi.z)
-        } else {
-            0.0
-        }
+        let r = self.0.reflectance(wi.z);
+        windows
+            .iter()
+            .map(|w| if w.contains(mirror) { r } else { 0.0 })
+            .collect()
     }
 }
 
@@ -109,13 +115,18 @@ impl<F: Fn(DVec3, DVec3) -> f64 + Sync> BrdfSpecimen<F> {
 }
 
 impl<F: Fn(DVec3, DVec3) -> f64 + Sync> Specimen for BrdfSpecimen<F> {
-    fn reflectance_into(&self, wi: DVec3, window: &Window) -> f64 {
-        window
-            .quadrature(self.order)
-            .into_iter()
-            .filter(|(wo, _)| wo.z > 0.0)
-            .map(|(wo, dw)| (self.brdf)(wi, wo) * wo.z * dw)
-            .sum()
+    fn reflectance_into(&self, wi: DVec3, windows: &[Window]) -> Vec<f64> {
+        windows
+            .iter()
+            .map(|window| {
+                window
+                    .quadrature(self.order)
+                    .into_iter()
+                    .filter(|(wo, _)| wo.z > 0.0)
+                    .map(|(wo, dw)| (self.brdf)(wi, wo) * wo.z * dw)
+                    .sum()
+            })
+            .collect()
     }
 }
 
@@ -150,42 +161,45 @@ impl Geometry {
         })
     }
 
-    /// The same source with the receptor moved `offset` radians from the specular direction and
-    /// resized to `aperture`.
-    pub fn off_specular(&self, offset: f64, aperture: Aperture) -> Self {
-        Geometry {
-            receptor: Window {
-                centre: self.theta + offset,
-                aperture,
-            },
-            ..*self
-        }
-    }
-
     /// The reading of the meter: reflectance into the receptor averaged over the source
-    /// aperture (Gauss-Legendre `order × order`, weighted by `cos theta_i dω`).
-    pub fn reading(&self, specimen: &dyn Specimen, order: usize) -> f64 {
-        let source = Window {
-            centre: -self.theta,
-            aperture: self.source,
-        };
-        let (mut sum, mut norm) = (0.0, 0.0);
-        for (wi, dw) in source.quadrature(order) {
-            let weight = wi.z * dw;
-            sum += weight * specimen.reflectance_into(wi, &self.receptor);
-            norm += weight;
-        }
-        sum / norm
+    /// aperture.
+    pub fn reading(&self, specimen: &dyn Specimen) -> f64 {
+        readings(self.theta, self.source, &[self.receptor], specimen)[0]
     }
 }
 
-/// Quadrature order over the source aperture.
-const SOURCE_ORDER: usize = 8;
+/// Readings of several receptor windows lit by one source: the reflectance into each window
+/// averaged over the source aperture centred on incidence `theta` (Gauss-Legendre of the
+/// specimen's order per axis, weighted by the irradiance `cos theta_i dω`).
+pub fn readings(
+    theta: f64,
+    source: Aperture,
+    receptors: &[Window],
+    specimen: &dyn Specimen,
+) -> Vec<f64> {
+    let source = Window {
+        centre: -theta,
+        aperture: source,
+    };
+    let mut sums = vec![0.0; receptors.len()];
+    let mut norm = 0.0;
+    for (wi, dw) in source.quadrature(specimen.source_order()) {
+        let weight = wi.z * dw;
+        for (s, r) in sums
+            .iter_mut()
+            .zip(specimen.reflectance_into(wi, receptors))
+        {
+            *s += weight * r;
+        }
+        norm += weight;
+    }
+    sums.into_iter().map(|s| s / norm).collect()
+}
 
 /// Specular gloss in gloss units at an ISO 2813 geometry.
 pub fn gloss_units(specimen: &dyn Specimen, geometry: &Geometry) -> f64 {
     let standard = Smooth(Ior::Dielectric(STANDARD_INDEX));
-    100.0 * geometry.reading(specimen, SOURCE_ORDER) / geometry.reading(&standard, SOURCE_ORDER)
+    100.0 * geometry.reading(specimen) / geometry.reading(&standard)
 }
 
 /// The E430-style geometry gonio implements (ASTM E430, abridged goniophotometry at 30°):
@@ -232,28 +246,31 @@ pub struct GlossReport {
 pub fn measure(specimen: &dyn Specimen) -> GlossReport {
     let gu = |deg| gloss_units(specimen, &Geometry::iso2813(deg).expect("ISO 2813 angle"));
     let theta = e430::THETA_DEG.to_radians();
-    let base = Geometry {
+    let at = |offset_deg: f64, aperture: Aperture| Window {
+        centre: theta + offset_deg.to_radians(),
+        aperture,
+    };
+    let (doi, haze) = (e430::DOI_OFFSET_DEG, e430::HAZE_OFFSET_DEG);
+    let windows = [
+        at(0.0, e430::receptor()),
+        at(doi, e430::doi_receptor()),
+        at(-doi, e430::doi_receptor()),
+        at(haze, e430::receptor()),
+        at(-haze, e430::receptor()),
+    ];
+    let r = readings(theta, e430::source(), &windows, specimen);
+    let standard = readings(
         theta,
-        source: e430::source(),
-        receptor: Window {
-            centre: theta,
-            aperture: e430::receptor(),
-        },
-    };
-    let read = |g: &Geometry| g.reading(specimen, SOURCE_ORDER);
-    let specular = read(&base);
-    let standard = base.reading(&Smooth(Ior::Dielectric(STANDARD_INDEX)), SOURCE_ORDER);
-    let both = |offset_deg: f64, aperture: Aperture| {
-        let o = offset_deg.to_radians();
-        0.5 * (read(&base.off_specular(o, aperture)) + read(&base.off_specular(-o, aperture)))
-    };
-    let near = both(e430::DOI_OFFSET_DEG, e430::doi_receptor());
-    let haze = both(e430::HAZE_OFFSET_DEG, e430::receptor());
+        e430::source(),
+        &windows[..1],
+        &Smooth(Ior::Dielectric(STANDARD_INDEX)),
+    )[0];
+    let (specular, near, far) = (r[0], 0.5 * (r[1] + r[2]), 0.5 * (r[3] + r[4]));
     GlossReport {
         gu20: gu(20),
         gu60: gu(60),
         gu85: gu(85),
-        haze: 100.0 * haze / standard,
+        haze: 100.0 * far / standard,
         doi: if specular > 0.0 {
             100.0 * (specular - near) / specular
         } else {
@@ -357,7 +374,7 @@ mod tests {
         let omega =
             g.receptor.aperture.in_plane * 2.0 * (0.5 * g.receptor.aperture.perpendicular).sin();
         let expect = g.theta.cos() * omega / std::f64::consts::PI;
-        let got = g.reading(&lambert, 8);
+        let got = g.reading(&lambert);
         assert!((got / expect - 1.0).abs() < 2e-3, "{got} vs {expect}");
     }
 }
