@@ -420,6 +420,69 @@ mod tests {
         assert_eq!(smith_g1(1.0, m), 1.0);
     }
 
+    /// The normal samplers as a "BRDF" whose directions are the normals themselves, with
+    /// `f cos = pdf` so that its albedo is the integral of the pdf: 1 for `D(h) cos θh`, and
+    /// 1 for the visible normals only if Smith's `G1` normalises them (Heitz 2014, eq. 2).
+    struct Normals {
+        mf: Microfacet,
+        visible: bool,
+    }
+
+    impl crate::Brdf for Normals {
+        fn eval(&self, wo: DVec3, h: DVec3) -> crate::Rgb {
+            crate::Rgb::splat(if h.z > 0.0 {
+                self.pdf(wo, h) / h.z
+            } else {
+                0.0
+            })
+        }
+        fn sample(&self, wo: DVec3, u: DVec2) -> Option<crate::BrdfSample> {
+            let h = if self.visible {
+                self.mf.sample_visible(wo, u)
+            } else {
+                self.mf.sample_d(u)
+            };
+            (h.z > 0.0).then(|| crate::BrdfSample {
+                wi: h,
+                f: self.eval(wo, h),
+                pdf: self.pdf(wo, h),
+            })
+        }
+        fn pdf(&self, wo: DVec3, h: DVec3) -> f64 {
+            if self.visible {
+                self.mf.pdf_visible(wo, h)
+            } else {
+                self.mf.pdf_d(h)
+            }
+        }
+    }
+
+    #[test]
+    fn normal_samplers_follow_their_pdfs() {
+        use crate::validate::{SamplerCheck, check_sampler};
+        let opts = SamplerCheck {
+            samples: 100_000,
+            ..SamplerCheck::default()
+        };
+        for mf in all_distributions() {
+            for visible in [false, true] {
+                for (t, p) in [(0.0f64, 0.0f64), (50.0, 30.0), (80.0, 200.0)] {
+                    let (t, p) = (t.to_radians(), p.to_radians());
+                    let wo = DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos());
+                    let report = check_sampler(&Normals { mf, visible }, wo, &opts);
+                    assert!(
+                        report.passed(),
+                        "{mf:?} visible={visible} {wo}: {report:#?}"
+                    );
+                    assert!(
+                        (report.albedo_quadrature.x - 1.0).abs() < 2e-3,
+                        "{report:?}"
+                    );
+                }
+            }
+        }
+    }
+
     /// erfinv inverts libm's erf to near double precision across the range.
     #[test]
     fn erfinv_inverts_erf() {
