@@ -202,7 +202,7 @@ fn every_model_is_reciprocal() {
 /// Willems 1994; Giesen 2009).
 #[test]
 fn normalised_lobes_have_albedo_rho_at_normal_incidence() {
-    let n = 800;
+    let n = 500;
     let lambert = Lambert { albedo: grey(0.6) };
     for t in [0.0, 40.0, 80.0] {
         assert!((albedo(&lambert, dir(t, 0.0), n).x - 0.6).abs() < 1e-5);
@@ -232,7 +232,7 @@ fn ward_albedo_is_bounded_by_rho_s() {
     for alpha in [0.05, 0.2, 0.5] {
         let ward = Ward::isotropic(Rgb::ONE, alpha);
         for t in [0.0, 30.0, 60.0, 80.0, 88.0] {
-            let a = albedo(&ward, dir(t, 0.0), 600).x;
+            let a = albedo(&ward, dir(t, 0.0), 400).x;
             assert!(a <= 1.0 + 1e-3, "alpha {alpha} theta {t}: {a}");
         }
     }
@@ -283,7 +283,7 @@ fn microfacet_albedo_with_unit_fresnel() {
                 tint: Rgb::ONE,
             };
             for t in [0.0, 45.0, 75.0] {
-                let a = albedo(&model, dir(t, 0.0), 600).x;
+                let a = albedo(&model, dir(t, 0.0), 400).x;
                 assert!(a <= 1.0 + 2e-3, "{distribution:?} {alpha} {t}: {a}");
                 if alpha < 0.05 && t < 50.0 {
                     assert!(a > 0.99, "{distribution:?} {alpha} {t}: {a}");
