@@ -13,7 +13,7 @@
 
 use crate::cie::{Illuminant, Observer};
 use crate::error::{ColorError, Result};
-use crate::mat3::{self, Mat3};
+use crate::mat3;
 use crate::spectrum::Spectrum;
 use crate::srgb::LinearSrgb;
 use crate::tristimulus::{WeightingFactors, display_matrix};
@@ -81,28 +81,40 @@ impl HeroSampler {
 #[derive(Clone, Debug)]
 pub struct SpectralFilm {
     sampler: HeroSampler,
-    weight_x: Spectrum,
-    weight_y: Spectrum,
-    weight_z: Spectrum,
-    to_rgb: Mat3,
+    /// The wavelengths of the weighting factors (1 nm), for the segment lookup.
+    grid: Spectrum,
+    /// `W(λ_k) / (C p)` on the grid: XYZ weights.
+    xyz: Vec<[f64; 3]>,
+    /// The same through the display matrix: linear sRGB weights.
+    rgb: Vec<[f64; 3]>,
 }
 
 impl SpectralFilm {
     /// The film for wavelengths drawn by `sampler`.
     pub fn new(sampler: HeroSampler, illuminant: Illuminant, observer: Observer) -> Self {
         let factors = WeightingFactors::of(illuminant, observer);
-        let column = |c: usize| {
-            let values = factors.weights().iter().map(|w| w[c]).collect();
-            Spectrum::new(factors.wavelengths_nm().to_vec(), values)
-                .expect("the weighting factors share the valid grid of the CIE tables")
-        };
+        let grid = Spectrum::constant(factors.wavelengths_nm().to_vec(), 0.0)
+            .expect("the weighting factors share the valid grid of the CIE tables");
+        let scale = 1.0 / (HERO_COUNT as f64 * sampler.pdf_per_nm());
+        let xyz: Vec<[f64; 3]> = factors
+            .weights()
+            .iter()
+            .map(|w| w.map(|v| v * scale))
+            .collect();
+        let to_rgb = display_matrix(illuminant, observer);
+        let rgb = xyz.iter().map(|&w| mat3::mul_vec(&to_rgb, w)).collect();
         Self {
             sampler,
-            weight_x: column(0),
-            weight_y: column(1),
-            weight_z: column(2),
-            to_rgb: display_matrix(illuminant, observer),
+            grid,
+            xyz,
+            rgb,
         }
+    }
+
+    /// The table entry at `wavelength_nm`, linear between the 1 nm grid points.
+    fn lookup(&self, table: &[[f64; 3]], wavelength_nm: f64) -> [f64; 3] {
+        let (i, t) = self.grid.segment(wavelength_nm);
+        std::array::from_fn(|c| table[i][c] + t * (table[i + 1][c] - table[i][c]))
     }
 
     /// The sampler this film expects the wavelengths from.
@@ -113,22 +125,13 @@ impl SpectralFilm {
     /// [w_X, w_Y, w_Z] for each wavelength: the path's XYZ (0–100 scale) is `Σ_j w_j v(λ_j)`.
     /// Each is `W(λ_j) / (C p(λ_j))`, W the 1 nm weighting factors interpolated linearly.
     pub fn xyz_weights(&self, wavelengths_nm: &[f64; HERO_COUNT]) -> [[f64; 3]; HERO_COUNT] {
-        let scale = 1.0 / (HERO_COUNT as f64 * self.sampler.pdf_per_nm());
-        wavelengths_nm.map(|w| {
-            [
-                self.weight_x.value_at(w),
-                self.weight_y.value_at(w),
-                self.weight_z.value_at(w),
-            ]
-            .map(|v| v * scale)
-        })
+        wavelengths_nm.map(|w| self.lookup(&self.xyz, w))
     }
 
     /// [w_R, w_G, w_B] for each wavelength: the path's linear sRGB is `Σ_j w_j v(λ_j)`
-    /// (Bradford-adapted to D65 when the illuminant is not D65).
+    /// (white-balanced to the illuminant, see [`display_matrix`]).
     pub fn rgb_weights(&self, wavelengths_nm: &[f64; HERO_COUNT]) -> [[f64; 3]; HERO_COUNT] {
-        self.xyz_weights(wavelengths_nm)
-            .map(|w| mat3::mul_vec(&self.to_rgb, w))
+        wavelengths_nm.map(|w| self.lookup(&self.rgb, w))
     }
 
     /// The XYZ estimate of one path.

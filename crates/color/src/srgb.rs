@@ -73,11 +73,12 @@ impl LinearSrgb {
         Xyz::from_array(mat3::mul_vec(&m, [self.r, self.g, self.b]).map(|v| v * 100.0))
     }
 
-    /// True when every component lies in [0, 1]: the colour is displayable in sRGB.
+    /// True when every component lies in [0, 1] (give or take 1e-9 of rounding): the colour is
+    /// displayable in sRGB.
     pub fn in_gamut(self) -> bool {
         [self.r, self.g, self.b]
             .iter()
-            .all(|v| (0.0..=1.0).contains(v))
+            .all(|v| (-1e-9..=1.0 + 1e-9).contains(v))
     }
 
     /// Encoded sRGB, each component clipped to [0, 1] first.
