@@ -1,5 +1,6 @@
 //! Two-dimensional real-to-complex FFTs of height-map grids, used by the synthesis of random
-//! surfaces and by the spectral statistics (autocorrelation, power spectral density).
+//! surfaces and by the spectral statistics (autocorrelation, power spectral density), and the
+//! cache-friendly parallel transpose they (and the spline's column passes) rely on.
 //!
 //! Rows are transformed with realfft, then columns with rustfft, each row or column in parallel
 //! with rayon. Every row and column is an independent, identical computation, so the result does
@@ -84,15 +85,45 @@ pub(crate) fn inverse(spectrum: HalfSpectrum) -> Array2<f64> {
     Array2::from_shape_vec((ny, nx), out).expect("shape matches the length")
 }
 
-/// Transpose a row-major `rows × cols` matrix, in parallel over the output rows.
-fn transpose(src: &[Complex64], rows: usize, cols: usize) -> Vec<Complex64> {
-    let mut dst = vec![Complex64::default(); rows * cols];
-    dst.par_chunks_mut(rows).enumerate().for_each(|(c, out)| {
-        for (r, v) in out.iter_mut().enumerate() {
-            *v = src[r * cols + c];
-        }
-    });
+/// Transpose a row-major `rows × cols` matrix, in parallel over bands of output rows and in
+/// square tiles, so that both the reads and the writes stay in cache.
+pub(crate) fn transpose<T: Copy + Default + Send + Sync>(
+    src: &[T],
+    rows: usize,
+    cols: usize,
+) -> Vec<T> {
+    const TILE: usize = 32;
+    let mut dst = vec![T::default(); rows * cols];
+    if rows == 0 || cols == 0 {
+        return dst;
+    }
+    dst.par_chunks_mut(rows * TILE)
+        .enumerate()
+        .for_each(|(band, out)| {
+            let c0 = band * TILE;
+            let c1 = (c0 + TILE).min(cols);
+            for r0 in (0..rows).step_by(TILE) {
+                for r in r0..(r0 + TILE).min(rows) {
+                    let line = &src[r * cols + c0..r * cols + c1];
+                    for (dc, &v) in line.iter().enumerate() {
+                        out[dc * rows + r] = v;
+                    }
+                }
+            }
+        });
     dst
+}
+
+/// The transpose of a 2D array, in standard (row-major) layout.
+pub(crate) fn transposed<T: Copy + Default + Send + Sync>(a: ArrayView2<T>) -> Array2<T> {
+    let (rows, cols) = a.dim();
+    let a = a.as_standard_layout();
+    let data = transpose(
+        a.as_slice().expect("standard layout is contiguous"),
+        rows,
+        cols,
+    );
+    Array2::from_shape_vec((cols, rows), data).expect("shape matches the length")
 }
 
 #[cfg(test)]

@@ -12,9 +12,9 @@
 //! edges, `k cos(kx) · 3 sin(k dx) / (k dx (2 + cos(k dx)))`, an error of only `(k dx)⁴/180`.
 
 use crate::heightmap::HeightMap;
-use crate::spline::slopes_along_rows;
+use crate::spline::{slopes_along_columns, slopes_along_rows};
 use glam::DVec3;
-use ndarray::{Array2, Axis};
+use ndarray::Array2;
 use rayon::prelude::*;
 
 /// How the slope at a grid point is estimated.
@@ -29,69 +29,59 @@ pub enum NormalMethod {
 /// Unit normals `(-∂h/∂x, -∂h/∂y, 1)/|…|` at every point, shape `(ny, nx)`; NaN vectors on the
 /// border and wherever the 3 × 3 neighbourhood holds an invalid point.
 pub fn facet_normals(map: &HeightMap, method: NormalMethod) -> Array2<DVec3> {
-    let (sx, sy) = slopes(map, method);
     let (ny, nx) = (map.ny(), map.nx());
-    let h = map.heights();
+    let (dx, dy) = (map.dx(), map.dy());
     let mut out = Array2::from_elem((ny, nx), DVec3::NAN);
     if nx < 3 || ny < 3 {
         return out;
     }
-    out.axis_iter_mut(Axis(0))
-        .into_par_iter()
+    let h = map.heights().as_standard_layout();
+    let z = h.as_slice().expect("standard layout is contiguous");
+    let spline = (method == NormalMethod::Spline).then(|| {
+        (
+            slopes_along_rows(h.view(), dx),
+            slopes_along_columns(h.view(), dy),
+        )
+    });
+    let out_rows = out.as_slice_mut().expect("built in standard layout");
+    out_rows
+        .par_chunks_mut(nx)
         .enumerate()
         .skip(1)
         .take(ny - 2)
-        .for_each(|(iy, mut row)| {
+        .for_each(|(iy, row)| {
+            let (a, b, c) = (
+                &z[(iy - 1) * nx..iy * nx],
+                &z[iy * nx..(iy + 1) * nx],
+                &z[(iy + 1) * nx..(iy + 2) * nx],
+            );
             for ix in 1..nx - 1 {
-                let block_valid =
-                    (iy - 1..=iy + 1).all(|j| (ix - 1..=ix + 1).all(|i| !h[[j, i]].is_nan()));
-                if block_valid {
-                    row[ix] = DVec3::new(-sx[[iy, ix]], -sy[[iy, ix]], 1.0).normalize();
+                let (below, mid, above) = (
+                    a[ix - 1] + a[ix] + a[ix + 1],
+                    b[ix - 1] + b[ix] + b[ix + 1],
+                    c[ix - 1] + c[ix] + c[ix + 1],
+                );
+                // Heights are finite where valid, so the block sum is NaN exactly when the 3 × 3
+                // block holds an invalid point.
+                if (below + mid + above).is_nan() {
+                    continue;
                 }
+                let (gx, gy) = match &spline {
+                    Some((sx, sy)) => (sx[[iy, ix]], sy[[iy, ix]]),
+                    // Least squares on the symmetric 3 × 3 stencil: the offsets i, j ∈ {-1, 0, 1}
+                    // are orthogonal, so slope_x = Σ i·z / (dx Σ i²) = Σ i·z / (6 dx), likewise y.
+                    None => (
+                        ((a[ix + 1] - a[ix - 1])
+                            + (b[ix + 1] - b[ix - 1])
+                            + (c[ix + 1] - c[ix - 1]))
+                            / (6.0 * dx),
+                        (above - below) / (6.0 * dy),
+                    ),
+                };
+                row[ix] = DVec3::new(-gx, -gy, 1.0).normalize();
             }
         });
     out
-}
-
-/// Slopes `(∂h/∂x, ∂h/∂y)` at every point by `method` (NaN where they cannot be formed).
-fn slopes(map: &HeightMap, method: NormalMethod) -> (Array2<f64>, Array2<f64>) {
-    let h = map.heights();
-    let (dx, dy) = (map.dx(), map.dy());
-    match method {
-        NormalMethod::Spline => {
-            let sx = slopes_along_rows(h.view(), dx);
-            let sy = slopes_along_rows(h.t(), dy).reversed_axes();
-            (sx, sy)
-        }
-        NormalMethod::Plane => {
-            // Least squares on the symmetric 3 × 3 stencil: the offsets i, j ∈ {-1, 0, 1} are
-            // orthogonal, so slope_x = Σ i·z / (dx Σ i²) = Σ i·z / (6 dx), likewise along y.
-            let (ny, nx) = h.dim();
-            let mut sx = Array2::from_elem((ny, nx), f64::NAN);
-            let mut sy = sx.clone();
-            if nx >= 3 && ny >= 3 {
-                sx.axis_iter_mut(Axis(0))
-                    .into_par_iter()
-                    .zip(sy.axis_iter_mut(Axis(0)))
-                    .enumerate()
-                    .skip(1)
-                    .take(ny - 2)
-                    .for_each(|(iy, (mut rx, mut ry))| {
-                        for ix in 1..nx - 1 {
-                            let (mut gx, mut gy) = (0.0, 0.0);
-                            for j in 0..3 {
-                                let r = h.row(iy + j - 1);
-                                gx += r[ix + 1] - r[ix - 1];
-                                gy += (j as f64 - 1.0) * (r[ix - 1] + r[ix] + r[ix + 1]);
-                            }
-                            rx[ix] = gx / (6.0 * dx);
-                            ry[ix] = gy / (6.0 * dy);
-                        }
-                    });
-            }
-            (sx, sy)
-        }
-    }
 }
 
 #[cfg(test)]

@@ -17,6 +17,7 @@
 //! (no extrapolation), except within 1e-9 of a spacing of the edge.
 
 use crate::error::{Result, SurfaceError};
+use crate::fft2;
 use crate::heightmap::HeightMap;
 use glam::DVec2;
 use ndarray::{Array2, ArrayView2};
@@ -61,15 +62,12 @@ impl BicubicSpline {
         }
         let z = heights.as_standard_layout().into_owned();
         let zx = slopes_along_rows(z.view(), dx);
-        let zt = z.t().as_standard_layout().into_owned();
-        let zxt = zx.t().as_standard_layout().into_owned();
-        let zy = slopes_along_rows(zt.view(), dy).reversed_axes();
-        let zxy = slopes_along_rows(zxt.view(), dy).reversed_axes();
+        let zy = slopes_along_columns(z.view(), dy);
+        let zxy = slopes_along_columns(zx.view(), dy);
         let mut nodes = vec![[0.0; 4]; nx * ny];
-        nodes.par_chunks_mut(nx).enumerate().for_each(|(iy, row)| {
-            for (ix, n) in row.iter_mut().enumerate() {
-                *n = [z[[iy, ix]], zx[[iy, ix]], zy[[iy, ix]], zxy[[iy, ix]]];
-            }
+        let (zs, zxs, zys, zxys) = (flat(&z), flat(&zx), flat(&zy), flat(&zxy));
+        nodes.par_iter_mut().enumerate().for_each(|(k, n)| {
+            *n = [zs[k], zxs[k], zys[k], zxys[k]];
         });
         Ok(BicubicSpline {
             nodes,
@@ -220,6 +218,16 @@ pub(crate) fn slopes_along_rows(z: ArrayView2<f64>, h: f64) -> Array2<f64> {
         .zip(src.par_chunks(nx))
         .for_each(|(d, row)| slopes_along(row, h, d));
     Array2::from_shape_vec((ny, nx), out).expect("shape matches the length")
+}
+
+/// The elements of an array in standard layout.
+fn flat(a: &Array2<f64>) -> &[f64] {
+    a.as_slice().expect("built in standard layout")
+}
+
+/// Derivatives along each column (axis 0), in standard layout.
+pub(crate) fn slopes_along_columns(z: ArrayView2<f64>, h: f64) -> Array2<f64> {
+    fft2::transposed(slopes_along_rows(fft2::transposed(z).view(), h).view())
 }
 
 /// Derivatives at the points of `y` (spacing `h`) of the cubic splines through its maximal runs

@@ -178,7 +178,7 @@ impl Autocorrelation {
             .then(|| correlate(zero_padded(&|z| if z.is_nan() { 0.0 } else { 1.0 })));
         let wrap = |lag: isize, p: usize| lag.rem_euclid(p as isize) as usize;
         let mut values = Array2::zeros((2 * ly + 1, 2 * lx + 1));
-        values.indexed_iter_mut().for_each(|((j, i), v)| {
+        Zip::indexed(&mut values).par_for_each(|(j, i), v| {
             let (tx, ty) = (i as isize - lx as isize, j as isize - ly as isize);
             let (wx, wy) = (wrap(tx, px), wrap(ty, py));
             let count = match &pairs {

@@ -77,18 +77,26 @@ impl GaussianSurface {
         spectrum.data[[0, 0]] = Default::default();
         let raw = HeightMap::new(fft2::inverse(spectrum), self.dx, self.dy)?;
         let plane = ops::fit_plane(&raw)?;
-        let rms = ops::subtract_plane(&raw, &plane)
-            .heights()
-            .iter()
-            .map(|z| z * z)
-            .sum::<f64>();
-        let rms = (rms / (nx * ny) as f64).sqrt();
+        let (dx, dy) = (self.dx, self.dy);
+        let residual: f64 = ops::per_row(raw.heights(), |iy, row| {
+            let y = iy as f64 * dy;
+            row.iter()
+                .enumerate()
+                .map(|(ix, z)| (z - plane.height(ix as f64 * dx, y)).powi(2))
+                .sum::<f64>()
+        })
+        .into_iter()
+        .sum();
+        let rms = (residual / (nx * ny) as f64).sqrt();
         if rms <= 0.0 {
             return Err(SurfaceError::Invalid(format!(
                 "a {nx} × {ny} grid is too small to hold a random surface"
             )));
         }
-        let mut map = raw.with_heights(raw.heights() * (self.sq / rms))?;
+        let scale = self.sq / rms;
+        let mut heights = raw.into_heights();
+        heights.par_mapv_inplace(|z| z * scale);
+        let mut map = HeightMap::new(heights, self.dx, self.dy)?;
         map.meta.instrument = Some("gonio synthetic".into());
         map.meta.extra = vec![
             ("acf".into(), format!("{:?}", self.acf).to_lowercase()),
@@ -135,9 +143,10 @@ impl GaussianSurface {
     fn filter(&self) -> Array2<f64> {
         let (nx, ny) = (self.nx, self.ny);
         let wrap = |i: usize, n: usize| i.min(n - i) as f64;
-        let acf = Array2::from_shape_fn((ny, nx), |(iy, ix)| {
+        let mut acf = Array2::zeros((ny, nx));
+        Zip::indexed(&mut acf).par_for_each(|(iy, ix), c| {
             let r = (wrap(ix, nx) * self.dx).hypot(wrap(iy, ny) * self.dy);
-            self.acf.normalised(r, self.corr_length)
+            *c = self.acf.normalised(r, self.corr_length);
         });
         fft2::forward(acf.view())
             .data
