@@ -3,9 +3,11 @@
 
 mod color;
 mod compare;
+mod demo;
+mod inplane;
 mod report;
+mod study;
 mod plot;
-mod surface;
 mod surface;
 
 use clap::{Parser, Subcommand};
@@ -27,22 +29,28 @@ enum Command {
     /// Height maps: statistics, synthesis, conversion, levelling, cropping, rotation, plots.
     #[command(subcommand)]
     Surface(surface::SurfaceCommand),
-    /// Height maps: statistics, synthesis, conversion, levelling, cropping, rotation, plots.
-    #[command(subcommand)]
-    Surface(surface::SurfaceCommand),
     /// Compare measured and computed in-plane curves (RMS of log reflectance, peaks, FWHM).
     Compare(compare::CompareArgs),
+    /// In-plane BRDF curves of a height map (ray method), written to CSV:
+    /// `gonio inplane SURFACE --incidence-deg 20,45,60,70 --scatter-deg=-75:75:1 -o OUT.csv`.
+    Inplane(inplane::InplaneArgs),
     /// Colorimetry of spectra: `gonio color xyz --spectrum FILE.csv` prints CIE XYZ, xyY,
     /// CIELAB and sRGB.
     Color(color::ColorArgs),
+    /// The roughness study: curves, statistics and peaks across a series of surfaces.
+    Study(study::StudyArgs),
+    /// Run the whole pipeline on the embedded default data and write out/report.html.
+    Demo(demo::DemoArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result: anyhow::Result<()> = match cli.command {
         Command::Surface(cmd) => surface::run(cmd),
-        Command::Surface(cmd) => surface::run(cmd),
         Command::Compare(args) => compare::run(args),
+        Command::Demo(args) => demo::run(args),
+        Command::Study(args) => study::run(args),
+        Command::Inplane(args) => inplane::run(args),
         Command::Color(args) => color::run(args),
     };
     match result {

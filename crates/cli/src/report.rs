@@ -11,7 +11,10 @@ pub enum Block {
     /// A paragraph of plain text.
     Text(String),
     /// A table with a header row.
-    Table { headers: Vec<String>, rows: Vec<Vec<String>> },
+    Table {
+        headers: Vec<String>,
+        rows: Vec<Vec<String>>,
+    },
     /// A PNG image from a file, embedded in the page, with a caption.
     Image { path: PathBuf, caption: String },
     /// Preformatted text (command lines, small listings).
@@ -34,7 +37,10 @@ pub struct Report {
 
 /// Escape text for HTML.
 fn esc(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }
 
 impl Report {
@@ -59,7 +65,10 @@ impl Report {
                 s.seconds
             )?;
         }
-        writeln!(h, "<tr><td><b>total</b></td><td class=\"num\"><b>{total:.1}</b></td></tr></table>")?;
+        writeln!(
+            h,
+            "<tr><td><b>total</b></td><td class=\"num\"><b>{total:.1}</b></td></tr></table>"
+        )?;
         for (i, s) in self.sections.iter().enumerate() {
             writeln!(h, "<section id=\"s{i}\"><h2>{}</h2>", esc(&s.title))?;
             for b in &s.blocks {
@@ -82,8 +91,9 @@ impl Report {
                         h.push_str("</table>\n");
                     }
                     Block::Image { path, caption } => {
-                        let bytes = std::fs::read(path)
-                            .with_context(|| format!("{}: cannot read image for the report", path.display()))?;
+                        let bytes = std::fs::read(path).with_context(|| {
+                            format!("{}: cannot read image for the report", path.display())
+                        })?;
                         let data = base64::engine::general_purpose::STANDARD.encode(bytes);
                         writeln!(
                             h,
@@ -93,7 +103,11 @@ impl Report {
                     }
                 }
             }
-            writeln!(h, "<p class=\"time\">computed in {:.1} s</p></section>", s.seconds)?;
+            writeln!(
+                h,
+                "<p class=\"time\">computed in {:.1} s</p></section>",
+                s.seconds
+            )?;
         }
         h.push_str("</body></html>\n");
         Ok(h)
@@ -102,11 +116,16 @@ impl Report {
     /// Write the page to `path` atomically.
     pub fn write(&self, path: &Path) -> Result<()> {
         let html = self.to_html()?;
-        let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-        std::fs::create_dir_all(dir).with_context(|| format!("{}: cannot create", dir.display()))?;
+        let dir = path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("{}: cannot create", dir.display()))?;
         let mut tmp = tempfile::NamedTempFile::new_in(dir)?;
         std::io::Write::write_all(&mut tmp, html.as_bytes())?;
-        tmp.persist(path).with_context(|| format!("{}: cannot write", path.display()))?;
+        tmp.persist(path)
+            .with_context(|| format!("{}: cannot write", path.display()))?;
         Ok(())
     }
 }
@@ -125,7 +144,9 @@ mod tests {
     fn html_escapes_and_embeds() {
         let dir = tempfile::tempdir().unwrap();
         let png = dir.path().join("a.png");
-        image::RgbImage::from_pixel(2, 2, image::Rgb([10, 20, 30])).save(&png).unwrap();
+        image::RgbImage::from_pixel(2, 2, image::Rgb([10, 20, 30]))
+            .save(&png)
+            .unwrap();
         let report = Report {
             title: "T <1>".into(),
             intro: "a & b".into(),
@@ -133,14 +154,22 @@ mod tests {
                 title: "S".into(),
                 blocks: vec![
                     Block::Text("x < y".into()),
-                    Block::Image { path: png, caption: "cap".into() },
-                    Block::Table { headers: vec!["h".into()], rows: vec![vec!["1".into()]] },
+                    Block::Image {
+                        path: png,
+                        caption: "cap".into(),
+                    },
+                    Block::Table {
+                        headers: vec!["h".into()],
+                        rows: vec![vec!["1".into()]],
+                    },
                 ],
                 seconds: 1.5,
             }],
         };
         let html = report.to_html().unwrap();
-        assert!(html.contains("T &lt;1&gt;") && html.contains("a &amp; b") && html.contains("x &lt; y"));
+        assert!(
+            html.contains("T &lt;1&gt;") && html.contains("a &amp; b") && html.contains("x &lt; y")
+        );
         assert!(html.contains("data:image/png;base64,iVBOR"));
         let out = dir.path().join("r/report.html");
         report.write(&out).unwrap();

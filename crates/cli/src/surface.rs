@@ -363,7 +363,16 @@ fn crop(a: &CropArgs) -> Result<()> {
 
 fn plot_map(a: &PlotArgs) -> Result<()> {
     let map = read(&a.file)?;
-    let lev = ops::level(&map).with_context(|| format!("{}: levelling", a.file.display()))?;
+    let name = a.file.file_name().map_or_else(
+        || a.file.display().to_string(),
+        |n| n.to_string_lossy().into(),
+    );
+    plot_height_map(&map, &name, &a.output)
+}
+
+/// A false-colour image of the levelled heights of `map` with a scale bar and a colour bar.
+pub fn plot_height_map(map: &HeightMap, name: &str, output: &Path) -> Result<()> {
+    let lev = ops::level(map).with_context(|| format!("{name}: levelling"))?;
     let heights = lev.heights();
     let mut valid: Vec<f64> = heights.iter().copied().filter(|z| !z.is_nan()).collect();
     valid.sort_unstable_by(f64::total_cmp);
@@ -380,10 +389,6 @@ fn plot_map(a: &PlotArgs) -> Result<()> {
     let width_um = map.dx() * map.nx() as f64 * 1e6;
     let bar_um = plot::nice_number(width_um / 5.0);
     let sq = stats::height_parameters(&lev).0;
-    let name = a.file.file_name().map_or_else(
-        || a.file.display().to_string(),
-        |n| n.to_string_lossy().into(),
-    );
     let title = format!(
         "{name}: {} × {} points, Sq = {:.1} nm (levelled)",
         map.nx(),
@@ -400,5 +405,5 @@ fn plot_map(a: &PlotArgs) -> Result<()> {
         colour_label: &format!("height ({unit})"),
         scale_bar: Some((bar_um * 1e-6 / map.dx(), format!("{bar_um} µm"))),
     };
-    plot::raster_png(&a.output, (900, 760), &raster)
+    plot::raster_png(output, (900, 760), &raster)
 }

@@ -1,0 +1,323 @@
+//! `gonio demo`: the whole pipeline on embedded default data, written up as one HTML report
+//! (`out/report.html`): the synthetic epoxy roughness series, a real instrument file, the
+//! roughness study by both scattering methods, and the gloss readings.
+
+use crate::report::{Block, Report, Section};
+use crate::study::{self, StudyOutputs};
+use crate::surface::plot_height_map;
+use anyhow::{Context, Result};
+use clap::Args;
+use gonio_instrument::study::StudyConfig;
+use gonio_scatter::ray::{RayEngine, RayOptions};
+use gonio_surface::stats::{Statistics, statistics};
+use gonio_surface::{HeightMap, io};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// A real instrument file shipped in the binary: MountainsMap X3P export of a 650 × 650 map
+/// (see crates/surface/tests/data/README.md for its provenance).
+static REAL_FILE: &[u8] = include_bytes!("../../surface/tests/data/x3p-2.x3p");
+const REAL_FILE_NAME: &str = "x3p-2.x3p";
+
+#[derive(Args)]
+pub struct DemoArgs {
+    /// Directory for the report and everything it shows (created if missing).
+    #[arg(short, long, default_value = "out")]
+    output: PathBuf,
+    /// A small, fast run (128 × 128 maps, two samples, one wavelength), as the tests use.
+    #[arg(long)]
+    quick: bool,
+}
+
+/// Sizes of the demo's computations.
+struct Plan {
+    size: usize,
+    dx: f64,
+    sq_nm: Vec<f64>,
+    wavelengths_nm: Vec<f64>,
+}
+
+impl Plan {
+    fn new(quick: bool) -> Self {
+        if quick {
+            Plan {
+                size: 128,
+                dx: 0.5e-6,
+                sq_nm: vec![50.0, 805.0],
+                wavelengths_nm: vec![550.0],
+            }
+        } else {
+            Plan {
+                size: 512,
+                dx: 0.5e-6,
+                sq_nm: gonio_surface::synth::EPOXY_SQ_M
+                    .iter()
+                    .map(|s| s * 1e9)
+                    .collect(),
+                wavelengths_nm: vec![500.0, 550.0, 600.0],
+            }
+        }
+    }
+}
+
+pub fn run(args: DemoArgs) -> Result<()> {
+    let plan = Plan::new(args.quick);
+    let dir = &args.output;
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("{}: cannot create directory", dir.display()))?;
+    let started = Instant::now();
+    let mut sections = Vec::new();
+    let steps = 3;
+    let mut step = 0;
+    let mut announce = |what: &str| {
+        step += 1;
+        eprintln!("[{step}/{steps}] {what}");
+    };
+
+    announce("synthesising the epoxy roughness series");
+    let (samples, seconds) = timed(|| {
+        study::synthetic_samples(
+            &plan.sq_nm,
+            gonio_surface::synth::EPOXY_CORR_LENGTH_M,
+            plan.size,
+            plan.dx,
+            1,
+        )
+    });
+    let samples = samples?;
+    sections.push(series_section(&samples, &plan, dir, seconds)?);
+
+    announce("a real instrument file: statistics and in-plane curves");
+    let (section, seconds) = timed(|| real_file_section(dir));
+    let mut section = section?;
+    section.seconds = seconds;
+    sections.push(section);
+
+    announce("the roughness study: ray method and Kirchhoff approximation");
+    let config = StudyConfig {
+        wavelengths_nm: plan.wavelengths_nm.clone(),
+        ..StudyConfig::starr()
+    };
+    let (out, seconds) = timed(|| study::execute(&samples, &config, &dir.join("study")));
+    sections.push(study_section(&out?, &config, seconds));
+
+    let report = Report {
+        title: "gonio demo report".into(),
+        intro: format!(
+            "What gonio computes from surface topography, end to end, on the data built into the \
+             binary: synthetic Gaussian surfaces of the NIST epoxy roughness series ({} × {} points \
+             at {} µm, correlation length {} µm) and a real instrument file. Every figure below was \
+             computed by this run (gonio {}).",
+            plan.size,
+            plan.size,
+            plan.dx * 1e6,
+            gonio_surface::synth::EPOXY_CORR_LENGTH_M * 1e6,
+            env!("CARGO_PKG_VERSION")
+        ),
+        sections,
+    };
+    let path = dir.join("report.html");
+    report.write(&path)?;
+    eprintln!(
+        "done in {:.0} s: the report is {}",
+        started.elapsed().as_secs_f64(),
+        path.display()
+    );
+    Ok(())
+}
+
+fn timed<T>(work: impl FnOnce() -> T) -> (T, f64) {
+    let t = Instant::now();
+    let out = work();
+    (out, t.elapsed().as_secs_f64())
+}
+
+fn stats_row(label: &str, map: &HeightMap, st: &Statistics) -> Vec<String> {
+    let opt_um = |v: Option<f64>| v.map_or("-".into(), |v| format!("{:.2}", v * 1e6));
+    vec![
+        label.to_string(),
+        format!("{} × {}", map.nx(), map.ny()),
+        format!("{:.3} × {:.3}", map.dx() * 1e6, map.dy() * 1e6),
+        format!("{:.2}", st.sq * 1e9),
+        format!("{:.2}", st.sa * 1e9),
+        format!("{:.3}", st.ssk),
+        format!("{:.3}", st.sku),
+        format!("{:.4}", st.sdq),
+        opt_um(st.sal),
+        st.str.map_or("-".into(), |v| format!("{v:.3}")),
+    ]
+}
+
+fn stats_headers() -> Vec<String> {
+    [
+        "sample",
+        "grid",
+        "dx × dy (µm)",
+        "Sq (nm)",
+        "Sa (nm)",
+        "Ssk",
+        "Sku",
+        "Sdq",
+        "Sal (µm)",
+        "Str",
+    ]
+    .map(String::from)
+    .to_vec()
+}
+
+fn series_section(
+    samples: &[gonio_instrument::study::Sample],
+    plan: &Plan,
+    dir: &Path,
+    seconds: f64,
+) -> Result<Section> {
+    let mut rows = Vec::new();
+    for s in samples {
+        let st = statistics(&s.map)?;
+        rows.push(stats_row(&s.label, &s.map, &st));
+    }
+    let mut blocks = vec![
+        Block::Text(format!(
+            "Gaussian random surfaces synthesised by spectral filtering with the FFT (Gaussian \
+             autocorrelation), one per requested Sq ({} nm), all from the same seed so that they \
+             differ only in scale. ISO 25178-2 parameters after levelling; for a Gaussian \
+             surface Sdq should be close to 2·Sq/T.",
+            plan.sq_nm
+                .iter()
+                .map(|v| v.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+        Block::Table {
+            headers: stats_headers(),
+            rows,
+        },
+    ];
+    if let Some(s) = samples
+        .iter()
+        .find(|s| s.label == "sq201nm")
+        .or(samples.first())
+    {
+        let png = dir.join(format!("surface_{}.png", s.label));
+        plot_height_map(&s.map, &s.label, &png)?;
+        blocks.push(Block::Image {
+            path: png,
+            caption: format!("Height map of {}", s.label),
+        });
+    }
+    Ok(Section {
+        title: "Surfaces: the epoxy roughness series".into(),
+        blocks,
+        seconds,
+    })
+}
+
+fn real_file_section(dir: &Path) -> Result<Section> {
+    let map = io::read_bytes(Path::new(REAL_FILE_NAME), REAL_FILE)?;
+    let st = statistics(&map)?;
+    let png = dir.join("real_surface.png");
+    plot_height_map(&map, REAL_FILE_NAME, &png)?;
+    let engine = RayEngine::new(&map, RayOptions::default())?;
+    let scatter: Vec<f64> = (-75..=75).map(f64::from).collect();
+    let curves = [20.0, 45.0, 60.0, 70.0]
+        .iter()
+        .map(|&ti| engine.inplane(ti, &scatter, 1.4f64.to_radians()))
+        .collect::<Result<Vec<_>, _>>()?;
+    let csv = dir.join("real_inplane.csv");
+    gonio_instrument::curves::write_csv(&csv, &curves)?;
+    let curves_png = dir.join("real_inplane.png");
+    crate::inplane::plot_curves(&curves_png, &curves)?;
+    let meta = &map.meta;
+    Ok(Section {
+        title: format!("A real instrument file: {REAL_FILE_NAME}"),
+        blocks: vec![
+            Block::Text(format!(
+                "A height map written by {} ({}), read by gonio's X3P reader. Statistics after \
+                 least-squares levelling, then the in-plane BRDF by the ray method (index 1.55, \
+                 shadowing and masking on, 1.4° detectors) at the STARR incidences.",
+                meta.instrument
+                    .as_deref()
+                    .unwrap_or("an unnamed instrument"),
+                meta.format.as_deref().unwrap_or("X3P"),
+            )),
+            Block::Table {
+                headers: stats_headers(),
+                rows: vec![stats_row(REAL_FILE_NAME, &map, &st)],
+            },
+            Block::Image {
+                path: png,
+                caption: format!("Levelled heights of {REAL_FILE_NAME}"),
+            },
+            Block::Image {
+                path: curves_png,
+                caption: format!(
+                    "In-plane BRDF of {REAL_FILE_NAME} by the ray method (also in {})",
+                    csv.display()
+                ),
+            },
+        ],
+        seconds: 0.0,
+    })
+}
+
+fn study_section(out: &StudyOutputs, config: &StudyConfig, seconds: f64) -> Section {
+    let mut blocks = vec![Block::Text(format!(
+        "For every sample, in-plane curves at the NIST STARR geometry (incidence {} degrees, \
+         scatter -75..75° in 1° steps, 1.4° detectors) by the ray method and by the Kirchhoff \
+         approximation at {} nm. The ray method cannot produce the coherent specular spike of the \
+         smooth samples; the two methods meet for the rough ones.",
+        config
+            .incidences_deg
+            .iter()
+            .map(|v| v.to_string())
+            .collect::<Vec<_>>()
+            .join(", "),
+        config
+            .wavelengths_nm
+            .iter()
+            .map(|v| v.to_string())
+            .collect::<Vec<_>>()
+            .join(", "),
+    ))];
+    let rows = out
+        .peaks
+        .iter()
+        .filter(|p| p.method == "ray" || p.wavelength_nm == Some(550.0))
+        .map(|p| {
+            vec![
+                p.label.clone(),
+                p.method.clone(),
+                p.wavelength_nm.map_or("-".into(), |w| format!("{w}")),
+                format!("{}", p.incidence_deg),
+                format!("{}", p.peak.position_deg),
+                format!("{:.4e}", p.peak.reflectance),
+                p.peak.fwhm_deg.map_or("-".into(), |w| format!("{w:.2}")),
+            ]
+        })
+        .collect();
+    blocks.push(Block::Table {
+        headers: [
+            "sample",
+            "method",
+            "λ (nm)",
+            "incidence (°)",
+            "peak at (°)",
+            "peak reflectance",
+            "FWHM (°)",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows,
+    });
+    for (path, caption) in &out.plots {
+        blocks.push(Block::Image {
+            path: path.clone(),
+            caption: caption.clone(),
+        });
+    }
+    Section {
+        title: "The roughness study".into(),
+        blocks,
+        seconds,
+    }
+}

@@ -1,0 +1,340 @@
+//! `gonio study`: the roughness study. For a series of surfaces (the synthetic epoxy series by
+//! default, or files), in-plane curves by the ray method and the Kirchhoff approximation at the
+//! STARR geometry, statistics, gloss, and plots of how the specular peak changes with roughness.
+//! Results go to a directory as CSV, JSON and PNG.
+
+use crate::plot::{self, LinePlot, Series};
+use anyhow::{Context, Result, ensure};
+use clap::Args;
+use gonio_instrument::curves::write_csv;
+use gonio_instrument::study::{self, PeakRow, Sample, SampleResult, StudyConfig};
+use gonio_scatter::InplaneCurve;
+use gonio_surface::synth::{Acf, GaussianSurface};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::{Path, PathBuf};
+
+#[derive(Args)]
+pub struct StudyArgs {
+    /// Height-map files to study instead of synthetic surfaces.
+    files: Vec<PathBuf>,
+    /// Rms heights Sq of the synthetic series, nm, comma-separated (the NIST epoxy series).
+    #[arg(long, value_delimiter = ',', default_value = "3,50,150,201,400,805")]
+    sq_nm: Vec<f64>,
+    /// Correlation length T of the synthetic surfaces (Gaussian ACF), µm.
+    #[arg(long, default_value_t = 6.0)]
+    corr_um: f64,
+    /// Points along each side of the synthetic maps.
+    #[arg(long, default_value_t = 1024)]
+    size: usize,
+    /// Grid spacing of the synthetic maps, µm.
+    #[arg(long, default_value_t = 0.5)]
+    dx_um: f64,
+    /// Random seed of the synthetic maps (the same for every Sq, so they differ only in scale).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Refractive index of the coating.
+    #[arg(long, default_value_t = 1.55)]
+    index: f64,
+    /// Wavelengths of the Kirchhoff curves, nm, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "500,550,600")]
+    wavelength_nm: Vec<f64>,
+    /// Skip the Kirchhoff curves (ray method only).
+    #[arg(long)]
+    no_kirchhoff: bool,
+    /// Output directory (created if missing).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// What a study wrote: the results and the files, with captions for a report.
+pub struct StudyOutputs {
+    pub results: Vec<SampleResult>,
+    pub peaks: Vec<PeakRow>,
+    /// (PNG path, caption)
+    pub plots: Vec<(PathBuf, String)>,
+    pub files: Vec<PathBuf>,
+}
+
+pub fn run(args: StudyArgs) -> Result<()> {
+    let samples = if args.files.is_empty() {
+        synthetic_samples(
+            &args.sq_nm,
+            args.corr_um * 1e-6,
+            args.size,
+            args.dx_um * 1e-6,
+            args.seed,
+        )?
+    } else {
+        args.files
+            .iter()
+            .map(|p| {
+                Ok(Sample {
+                    label: p
+                        .file_stem()
+                        .map_or("sample".into(), |s| s.to_string_lossy().into_owned()),
+                    map: crate::surface::read(p)?,
+                })
+            })
+            .collect::<Result<_>>()?
+    };
+    let config = StudyConfig {
+        ior: args.index,
+        wavelengths_nm: args.wavelength_nm.clone(),
+        kirchhoff: !args.no_kirchhoff,
+        ..StudyConfig::starr()
+    };
+    let out = execute(&samples, &config, &args.output)?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&summary_json(&out))?);
+    } else {
+        for f in out.files.iter().chain(out.plots.iter().map(|p| &p.0)) {
+            eprintln!("wrote {}", f.display());
+        }
+    }
+    Ok(())
+}
+
+/// The synthetic series: one Gaussian surface per Sq (nm), all from the same seed.
+pub fn synthetic_samples(
+    sq_nm: &[f64],
+    corr_length: f64,
+    size: usize,
+    dx: f64,
+    seed: u64,
+) -> Result<Vec<Sample>> {
+    ensure!(!sq_nm.is_empty(), "--sq-nm needs at least one value");
+    sq_nm
+        .iter()
+        .map(|&sq| {
+            let map = GaussianSurface {
+                sq: sq * 1e-9,
+                corr_length,
+                acf: Acf::Gaussian,
+                nx: size,
+                ny: size,
+                dx,
+                dy: dx,
+                seed,
+            }
+            .generate()
+            .with_context(|| format!("synthesising the Sq = {sq} nm surface"))?;
+            Ok(Sample {
+                label: format!("sq{sq}nm"),
+                map,
+            })
+        })
+        .collect()
+}
+
+/// Run the study and write its CSV, JSON and plots into `dir`.
+pub fn execute(samples: &[Sample], config: &StudyConfig, dir: &Path) -> Result<StudyOutputs> {
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("{}: cannot create directory", dir.display()))?;
+    let bar = ProgressBar::new(samples.len() as u64 * if config.kirchhoff { 3 } else { 2 });
+    if let Ok(style) = ProgressStyle::with_template("{bar:30} {pos}/{len} {msg} {elapsed}") {
+        bar.set_style(style);
+    }
+    let results = study::run(samples, config, &|msg: &str| {
+        bar.set_message(msg.to_string());
+        bar.inc(1);
+    })?;
+    bar.finish_and_clear();
+    let mut files = Vec::new();
+    let mut plots = Vec::new();
+    for r in &results {
+        let path = dir.join(format!("curves_{}.csv", r.label));
+        write_csv(&path, &r.curves)?;
+        files.push(path);
+        let png = dir.join(format!("curves_{}.png", r.label));
+        plot_sample(&png, r, config)?;
+        plots.push((
+            png,
+            format!(
+                "{}: in-plane BRDF by the ray method (lines) and Kirchhoff at {} nm (dots), Sq = {:.1} nm",
+                r.label,
+                kirchhoff_wavelength(config).unwrap_or(f64::NAN),
+                r.statistics.sq * 1e9
+            ),
+        ));
+    }
+    let peaks: Vec<PeakRow> = results.iter().flat_map(|r| r.peaks()).collect();
+    let csv = dir.join("peaks.csv");
+    write_peaks_csv(&csv, &peaks)?;
+    files.push(csv);
+    for (name, caption, value) in [
+        (
+            "peak_vs_roughness.png",
+            "Specular peak reflectance against roughness",
+            0usize,
+        ),
+        (
+            "width_vs_roughness.png",
+            "Full width at half maximum of the specular peak against roughness",
+            1,
+        ),
+    ] {
+        let png = dir.join(name);
+        plot_peaks(&png, caption, &peaks, value, config)?;
+        plots.push((png, caption.to_string()));
+    }
+    let outputs = StudyOutputs {
+        results,
+        peaks,
+        plots,
+        files,
+    };
+    let json = dir.join("study.json");
+    write_atomic(
+        &json,
+        serde_json::to_string_pretty(&summary_json(&outputs))?.as_bytes(),
+    )?;
+    let mut outputs = outputs;
+    outputs.files.push(json);
+    Ok(outputs)
+}
+
+/// The wavelength whose Kirchhoff curves the plots show: 550 nm when computed, else the first.
+fn kirchhoff_wavelength(config: &StudyConfig) -> Option<f64> {
+    if !config.kirchhoff {
+        return None;
+    }
+    config
+        .wavelengths_nm
+        .iter()
+        .copied()
+        .find(|&w| (w - 550.0).abs() < 1e-9)
+        .or(config.wavelengths_nm.first().copied())
+}
+
+fn shown(c: &InplaneCurve, config: &StudyConfig) -> bool {
+    c.method == "ray" || c.wavelength_nm == kirchhoff_wavelength(config)
+}
+
+fn plot_sample(path: &Path, r: &SampleResult, config: &StudyConfig) -> Result<()> {
+    let incidences = &config.incidences_deg;
+    let series: Vec<Series> = r
+        .curves
+        .iter()
+        .filter(|c| shown(c, config))
+        .map(|c| {
+            let i = incidences
+                .iter()
+                .position(|&t| t == c.incidence_deg)
+                .unwrap_or(0);
+            Series {
+                label: if c.method == "ray" {
+                    format!("{}°", c.incidence_deg)
+                } else {
+                    String::new()
+                },
+                points: c
+                    .points
+                    .iter()
+                    .map(|p| (p.scatter_deg, p.brdf_per_sr))
+                    .collect(),
+                colour: plot::palette(i),
+                markers: c.method != "ray",
+            }
+        })
+        .collect();
+    let title = format!("{}: ray (lines) and Kirchhoff (dots)", r.label);
+    let spec = LinePlot {
+        title: &title,
+        x_label: "scattering angle (deg)",
+        y_label: "BRDF (1/sr)",
+        log_y: true,
+    };
+    plot::line_plot_png(path, (900, 600), &spec, &series)
+}
+
+fn plot_peaks(
+    path: &Path,
+    title: &str,
+    peaks: &[PeakRow],
+    value: usize,
+    config: &StudyConfig,
+) -> Result<()> {
+    let mut series = Vec::new();
+    for (i, &ti) in config.incidences_deg.iter().enumerate() {
+        for method in ["ray", "kirchhoff"] {
+            let points: Vec<(f64, f64)> = peaks
+                .iter()
+                .filter(|p| p.method == method && p.incidence_deg == ti)
+                .filter(|p| method == "ray" || p.wavelength_nm == kirchhoff_wavelength(config))
+                .filter_map(|p| {
+                    let y = if value == 0 {
+                        Some(p.peak.reflectance)
+                    } else {
+                        p.peak.fwhm_deg
+                    };
+                    Some(((p.sq_m * 1e9).log10(), y?))
+                })
+                .collect();
+            if !points.is_empty() {
+                series.push(Series {
+                    label: format!("{method} {ti}°"),
+                    points,
+                    colour: plot::palette(i),
+                    markers: method != "ray",
+                });
+            }
+        }
+    }
+    let spec = LinePlot {
+        title,
+        x_label: "log10(Sq / nm)",
+        y_label: if value == 0 {
+            "peak reflectance per detector"
+        } else {
+            "FWHM (deg)"
+        },
+        log_y: true,
+    };
+    plot::line_plot_png(path, (900, 600), &spec, &series)
+}
+
+fn write_peaks_csv(path: &Path, peaks: &[PeakRow]) -> Result<()> {
+    let mut s = String::from(
+        "sample,sq_m,method,wavelength_nm,incidence_deg,peak_deg,peak_reflectance,fwhm_deg\n",
+    );
+    for p in peaks {
+        s.push_str(&format!(
+            "{},{:.6e},{},{},{},{},{:.6e},{}\n",
+            p.label,
+            p.sq_m,
+            p.method,
+            p.wavelength_nm.map_or(String::new(), |w| w.to_string()),
+            p.incidence_deg,
+            p.peak.position_deg,
+            p.peak.reflectance,
+            p.peak.fwhm_deg.map_or(String::new(), |w| format!("{w:.4}")),
+        ));
+    }
+    write_atomic(path, s.as_bytes())
+}
+
+fn summary_json(out: &StudyOutputs) -> serde_json::Value {
+    let samples: Vec<serde_json::Value> = out
+        .results
+        .iter()
+        .map(|r| {
+            serde_json::json!({
+                "label": r.label,
+                "sq_m": r.statistics.sq,
+                "sa_m": r.statistics.sa,
+                "sdq": r.statistics.sdq,
+                "sal_m": r.statistics.sal,
+            })
+        })
+        .collect();
+    serde_json::json!({ "samples": samples, "peaks": out.peaks })
+}
+
+/// Write bytes through a temporary file and a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    gonio_surface::io::write_atomic(path, bytes)?;
+    Ok(())
+}
