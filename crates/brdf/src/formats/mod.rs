@@ -4,4 +4,7 @@
 
 pub mod astm;
 pub mod merl;
+pub mod mitsuba;
 pub mod scattered;
+pub mod tensor;
+pub mod warp;

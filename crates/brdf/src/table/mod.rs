@@ -368,7 +368,7 @@ impl BrdfTable {
 /// for monochrome, and for spectra gonio-color's band weights (CIE 1931 2° observer under D65,
 /// linear between bands, ASTM E308 construction), so that a flat spectrum of value v gives about
 /// (v, v, v).
-fn rgb_weights(channels: &Channels) -> Result<Vec<[f64; 3]>> {
+pub(crate) fn rgb_weights(channels: &Channels) -> Result<Vec<[f64; 3]>> {
     Ok(match channels {
         Channels::Mono => vec![[1.0; 3]],
         Channels::Rgb => vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
