@@ -17,7 +17,7 @@ pub struct ColorArgs {
 enum ColorCommand {
     /// Colour of a surface from its spectral reflectance: CIE XYZ (Y = 100 for the perfect
     /// reflecting diffuser), chromaticity xyY, CIELAB (white = the illuminant), linear and encoded
-    /// sRGB in [0, 1] (Bradford-adapted to D65 when the illuminant is A).
+    /// sRGB in [0, 1], white-balanced by a Bradford adaptation from the illuminant's white to D65.
     Xyz(XyzArgs),
 }
 
@@ -75,7 +75,7 @@ fn xyz(args: XyzArgs) -> Result<()> {
             "cielab": { "l_star": c.lab.l, "a_star": c.lab.a, "b_star": c.lab.b },
             "chroma_ab": c.lab.chroma(),
             "hue_ab_deg": c.lab.hue_deg(),
-            "adapted_to_d65_bradford": c.adapted_to_d65,
+            "srgb_white_balance": "Bradford, illuminant white to sRGB white (D65)",
             "linear_srgb": { "r": rgb.r, "g": rgb.g, "b": rgb.b },
             "srgb_in_gamut": rgb.in_gamut(),
             "srgb_encoded_clipped": { "r": c.srgb.r, "g": c.srgb.g, "b": c.srgb.b },
@@ -113,13 +113,8 @@ fn xyz(args: XyzArgs) -> Result<()> {
         c.white.y,
         c.white.z
     );
-    let adapted = if c.adapted_to_d65 {
-        " (Bradford-adapted to D65)"
-    } else {
-        ""
-    };
     println!(
-        "linear sRGB  {:.4}  {:.4}  {:.4}{adapted}",
+        "linear sRGB  {:.4}  {:.4}  {:.4}  (white-balanced: illuminant white -> D65, Bradford)",
         rgb.r, rgb.g, rgb.b
     );
     let gamut = if rgb.in_gamut() {
