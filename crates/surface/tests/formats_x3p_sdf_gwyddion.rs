@@ -201,6 +201,8 @@ fn x3p_round_trip_is_bit_exact() {
             "{name}: {:?}",
             back.meta.extra
         );
+        assert_eq!(back.meta.instrument, map.meta.instrument, "{name}");
+        assert_eq!(back.meta.date, map.meta.date, "{name}");
     }
 }
 

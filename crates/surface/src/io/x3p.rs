@@ -23,6 +23,8 @@ const ZIP_MAGIC: &[u8] = b"PK\x03\x04";
 /// Largest expansion that DEFLATE achieves (1032:1, zlib's technical notes): an entry that
 /// declares more bytes than its compressed size allows is lying.
 const MAX_DEFLATE_RATIO: u64 = 1032;
+/// What X3P writers put in a required field they know nothing about.
+const NOT_AVAILABLE: &str = "not available";
 /// Namespace of the ISO 5436-2 schema that X3P files use.
 const NAMESPACE: &str = "http://www.opengps.eu/2008/ISO5436_2";
 
@@ -378,12 +380,14 @@ fn spacing(
     Ok(step)
 }
 
+/// Record2's metadata; empty fields and the placeholder "not available" (which MountainsMap
+/// and gonio write) are skipped.
 fn read_record2(record2: Node, meta: &mut Metadata) {
     fn text<'a>(node: Node<'a, '_>, name: &str) -> Option<&'a str> {
         element(node, name)
             .and_then(|e| e.text())
             .map(str::trim)
-            .filter(|t| !t.is_empty())
+            .filter(|t| !t.is_empty() && *t != NOT_AVAILABLE)
     }
     meta.date = text(record2, "Date").map(str::to_string);
     if let Some(instrument) = element(record2, "Instrument") {
@@ -661,8 +665,8 @@ fn main_xml(map: &HeightMap, data_md5: &str, valid_md5: Option<&str>) -> String 
     <Date>{date}</Date>
     <Instrument>
       <Manufacturer>{instrument}</Manufacturer>
-      <Model>gonio</Model>
-      <Serial>not available</Serial>
+      <Model>{NOT_AVAILABLE}</Model>
+      <Serial>{NOT_AVAILABLE}</Serial>
       <Version>{version}</Version>
     </Instrument>
     <CalibrationDate>{date}</CalibrationDate>
