@@ -200,7 +200,7 @@ impl Kirchhoff {
 
     /// Fails if a grid of refinement `r` would exceed [`MAX_REFINEMENT`] or [`MAX_FACETS`].
     fn check_size(&self, r: usize) -> Result<()> {
-        let n = |d: f64| (self.spot.diameter / d * r as f64).ceil() as usize;
+        let n = |d: f64| facets::cells_across(self.spot.diameter, d / r as f64);
         let cells = n(self.spline.dx()) * n(self.spline.dy());
         if r > MAX_REFINEMENT || cells > MAX_FACETS {
             return Err(ScatterError::Invalid(format!(
