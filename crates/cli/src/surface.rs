@@ -405,5 +405,9 @@ pub fn plot_height_map(map: &HeightMap, name: &str, output: &Path) -> Result<()>
         colour_label: &format!("height ({unit})"),
         scale_bar: Some((bar_um * 1e-6 / map.dx(), format!("{bar_um} µm"))),
     };
-    plot::raster_png(output, (900, 760), &raster)
+    // Image box 690 pixels high, as wide as the map's true aspect ratio asks (within limits),
+    // plus room for the colour bar.
+    let aspect = (map.nx() as f64 * map.dx()) / (map.ny() as f64 * map.dy());
+    let width = (690.0 * aspect).clamp(360.0, 1400.0) as u32 + 190;
+    plot::raster_png(output, (width, 760), &raster)
 }
