@@ -282,7 +282,7 @@ fn study_section(out: &StudyOutputs, config: &StudyConfig, seconds: f64) -> Sect
     let rows = out
         .peaks
         .iter()
-        .filter(|p| p.method == "ray" || p.wavelength_nm == Some(550.0))
+        .filter(|p| p.method == "ray" || study::same_wavelength(p.wavelength_nm, Some(550.0)))
         .map(|p| {
             vec![
                 p.label.clone(),

@@ -209,8 +209,16 @@ fn kirchhoff_wavelength(config: &StudyConfig) -> Option<f64> {
         .or(config.wavelengths_nm.first().copied())
 }
 
+/// Whether two wavelengths (nm) are the same, allowing for the rounding of a nm → m → nm trip.
+pub fn same_wavelength(a: Option<f64>, b: Option<f64>) -> bool {
+    match (a, b) {
+        (Some(a), Some(b)) => (a - b).abs() < 1e-6,
+        _ => false,
+    }
+}
+
 fn shown(c: &InplaneCurve, config: &StudyConfig) -> bool {
-    c.method == "ray" || c.wavelength_nm == kirchhoff_wavelength(config)
+    c.method == "ray" || same_wavelength(c.wavelength_nm, kirchhoff_wavelength(config))
 }
 
 fn plot_sample(path: &Path, r: &SampleResult, config: &StudyConfig) -> Result<()> {
@@ -263,7 +271,10 @@ fn plot_peaks(
             let points: Vec<(f64, f64)> = peaks
                 .iter()
                 .filter(|p| p.method == method && p.incidence_deg == ti)
-                .filter(|p| method == "ray" || p.wavelength_nm == kirchhoff_wavelength(config))
+                .filter(|p| {
+                    method == "ray"
+                        || same_wavelength(p.wavelength_nm, kirchhoff_wavelength(config))
+                })
                 .filter_map(|p| {
                     let y = if value == 0 {
                         Some(p.peak.reflectance)
