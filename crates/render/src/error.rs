@@ -1,0 +1,53 @@
+//! The one error type of the render crate: every failure names the file (scene, mesh, map,
+//! table, output image) and says what was wrong and how to fix it.
+
+use std::path::PathBuf;
+
+/// Errors of the render crate.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// Reading or writing a file failed at the operating-system level.
+    #[error("{path}: {source}")]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// A scene file (or a file it refers to) is malformed or asks for something impossible.
+    #[error("{path}: {problem}")]
+    Scene { path: PathBuf, problem: String },
+    /// A BRDF could not be built or loaded.
+    #[error("{path}: {source}")]
+    Brdf {
+        path: PathBuf,
+        #[source]
+        source: gonio_brdf::BrdfError,
+    },
+    /// An image could not be read or written.
+    #[error("{path}: {problem}")]
+    Image { path: PathBuf, problem: String },
+    /// A render option is out of range.
+    #[error("{0}")]
+    Invalid(String),
+}
+
+impl RenderError {
+    /// A problem in the scene file `path`.
+    pub fn scene(path: impl Into<PathBuf>, problem: impl Into<String>) -> Self {
+        RenderError::Scene {
+            path: path.into(),
+            problem: problem.into(),
+        }
+    }
+
+    /// A problem with the image file `path`.
+    pub fn image(path: impl Into<PathBuf>, problem: impl std::fmt::Display) -> Self {
+        RenderError::Image {
+            path: path.into(),
+            problem: problem.to_string(),
+        }
+    }
+}
+
+/// Result with [`RenderError`].
+pub type Result<T> = std::result::Result<T, RenderError>;

@@ -1,0 +1,247 @@
+//! The rendered picture: linear RGB radiance per pixel, written as OpenEXR (linear, 32-bit
+//! float), Radiance `.hdr` (linear RGBE) or PNG (exposure, a tone curve and the sRGB transfer
+//! function), chosen by the file's extension. Files are written to a temporary file in the
+//! target directory and renamed, so a failed write never leaves half an image.
+
+use crate::error::{RenderError, Result};
+use serde::Deserialize;
+use std::path::Path;
+
+/// A linear RGB image, row 0 at the top.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Image {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// Radiance in W m⁻² sr⁻¹ per channel (linear sRGB primaries), row-major.
+    pub pixels: Vec<[f32; 3]>,
+}
+
+/// The curve that maps exposed linear values to display values in [0, 1] for PNG output.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ToneCurve {
+    /// Clip at 1.
+    Clamp,
+    /// `x / (1 + x)` (Reinhard et al., "Photographic tone reproduction", SIGGRAPH 2002, eq. 3).
+    Reinhard,
+    /// The ACES filmic fit of K. Narkowicz ("ACES Filmic Tone Mapping Curve", 2015):
+    /// `x(2.51x + 0.03) / (x(2.43x + 0.59) + 0.14)`.
+    #[default]
+    Filmic,
+}
+
+impl ToneCurve {
+    /// The display value of the exposed linear value `x >= 0`.
+    pub fn apply(self, x: f64) -> f64 {
+        let x = x.max(0.0);
+        let y = match self {
+            ToneCurve::Clamp => x,
+            ToneCurve::Reinhard => x / (1.0 + x),
+            ToneCurve::Filmic => x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14),
+        };
+        y.clamp(0.0, 1.0)
+    }
+}
+
+/// How linear values become PNG pixels.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Display {
+    /// Exposure in stops: values are multiplied by `2^exposure` before the tone curve.
+    pub exposure: f64,
+    /// The tone curve.
+    pub tone: ToneCurve,
+}
+
+impl Default for Display {
+    fn default() -> Self {
+        Display {
+            exposure: 0.0,
+            tone: ToneCurve::Filmic,
+        }
+    }
+}
+
+impl Image {
+    /// A black image.
+    pub fn new(width: usize, height: usize) -> Image {
+        Image {
+            width,
+            height,
+            pixels: vec![[0.0; 3]; width * height],
+        }
+    }
+
+    /// The pixel at column `x`, row `y` (row 0 at the top).
+    pub fn get(&self, x: usize, y: usize) -> [f32; 3] {
+        self.pixels[y * self.width + x]
+    }
+
+    /// Mean of the three channels of every pixel.
+    pub fn luminance_mean(&self) -> f64 {
+        let sum: f64 = self
+            .pixels
+            .iter()
+            .map(|p| p.iter().map(|&c| f64::from(c)).sum::<f64>() / 3.0)
+            .sum();
+        sum / self.pixels.len().max(1) as f64
+    }
+
+    /// 8-bit sRGB of every pixel after exposure and the tone curve.
+    pub fn to_srgb8(&self, display: Display) -> Vec<u8> {
+        let scale = display.exposure.exp2();
+        self.pixels
+            .iter()
+            .flat_map(|p| {
+                p.map(|c| {
+                    let v = display.tone.apply(f64::from(c) * scale);
+                    (gonio_color::srgb::encode(v) * 255.0).round() as u8
+                })
+            })
+            .collect()
+    }
+
+    /// Write the image; the format follows the extension: `.exr` (linear float), `.hdr`
+    /// (linear RGBE) or `.png` (with `display`). The write is atomic.
+    pub fn write(&self, path: &Path, display: Display) -> Result<()> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .unwrap_or_default();
+        let (w, h) = (self.width as u32, self.height as u32);
+        let floats: Vec<f32> = self.pixels.iter().flatten().copied().collect();
+        let (img, format) = match ext.as_str() {
+            "exr" => (
+                image::DynamicImage::ImageRgb32F(
+                    image::Rgb32FImage::from_raw(w, h, floats).expect("size matches"),
+                ),
+                image::ImageFormat::OpenExr,
+            ),
+            "hdr" => (
+                image::DynamicImage::ImageRgb32F(
+                    image::Rgb32FImage::from_raw(w, h, floats).expect("size matches"),
+                ),
+                image::ImageFormat::Hdr,
+            ),
+            "png" => (
+                image::DynamicImage::ImageRgb8(
+                    image::RgbImage::from_raw(w, h, self.to_srgb8(display)).expect("size matches"),
+                ),
+                image::ImageFormat::Png,
+            ),
+            _ => {
+                return Err(RenderError::image(
+                    path,
+                    "unknown image extension: use .exr (linear float), .hdr (Radiance) or .png",
+                ));
+            }
+        };
+        let dir = path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        let io = |e: std::io::Error| RenderError::Io {
+            path: path.to_path_buf(),
+            source: e,
+        };
+        let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(io)?;
+        {
+            let mut out = std::io::BufWriter::new(tmp.as_file_mut());
+            img.write_to(&mut out, format)
+                .map_err(|e| RenderError::image(path, format!("cannot encode: {e}")))?;
+            std::io::Write::flush(&mut out).map_err(io)?;
+        }
+        tmp.persist(path).map_err(|e| io(e.error))?;
+        Ok(())
+    }
+
+    /// Read a linear image (`.exr`, `.hdr`; PNG and other 8-bit formats are decoded from sRGB).
+    pub fn read(path: &Path) -> Result<Image> {
+        let img = image::ImageReader::open(path)
+            .map_err(|e| RenderError::Io {
+                path: path.to_path_buf(),
+                source: e,
+            })?
+            .with_guessed_format()
+            .map_err(|e| RenderError::Io {
+                path: path.to_path_buf(),
+                source: e,
+            })?
+            .decode()
+            .map_err(|e| RenderError::image(path, format!("cannot decode: {e}")))?;
+        let linear = matches!(
+            img,
+            image::DynamicImage::ImageRgb32F(_) | image::DynamicImage::ImageRgba32F(_)
+        );
+        let rgb = img.to_rgb32f();
+        let (w, h) = rgb.dimensions();
+        let pixels = rgb
+            .pixels()
+            .map(|p| {
+                if linear {
+                    p.0
+                } else {
+                    p.0.map(|c| gonio_color::srgb::decode(f64::from(c)) as f32)
+                }
+            })
+            .collect();
+        Ok(Image {
+            width: w as usize,
+            height: h as usize,
+            pixels,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exr_and_hdr_round_trip_linear_values() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut img = Image::new(3, 2);
+        img.pixels[1] = [0.25, 2.0, 100.0];
+        img.pixels[5] = [1e-3, 0.5, 7.0];
+        let exr = dir.path().join("a.exr");
+        img.write(&exr, Display::default()).unwrap();
+        assert_eq!(Image::read(&exr).unwrap(), img);
+        let hdr = dir.path().join("a.hdr");
+        img.write(&hdr, Display::default()).unwrap();
+        let back = Image::read(&hdr).unwrap();
+        // RGBE keeps 8 mantissa bits per channel relative to the largest: 1% of the maximum.
+        for (a, b) in back.pixels.iter().zip(&img.pixels) {
+            let m = b.iter().fold(0.0f32, |m, &v| m.max(v));
+            for k in 0..3 {
+                assert!((a[k] - b[k]).abs() <= 0.01 * m + 1e-6, "{a:?} {b:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn png_applies_exposure_and_tone_and_bad_extension_is_refused() {
+        let mut img = Image::new(2, 1);
+        img.pixels[0] = [0.5, 0.5, 0.5];
+        img.pixels[1] = [8.0, 8.0, 8.0];
+        let d = Display {
+            exposure: 1.0,
+            tone: ToneCurve::Clamp,
+        };
+        let bytes = img.to_srgb8(d);
+        assert_eq!(&bytes, &[255, 255, 255, 255, 255, 255]);
+        let d = Display {
+            exposure: -1.0,
+            tone: ToneCurve::Clamp,
+        };
+        // 0.25 encodes to 0.5371 in sRGB.
+        assert_eq!(img.to_srgb8(d)[0], 137);
+        assert!((ToneCurve::Filmic.apply(1e6) - 1.0).abs() < 0.04);
+        assert!((ToneCurve::Reinhard.apply(1.0) - 0.5).abs() < 1e-12);
+        let dir = tempfile::tempdir().unwrap();
+        let err = img.write(&dir.path().join("a.jpg"), d).unwrap_err();
+        assert!(err.to_string().contains("a.jpg"), "{err}");
+        assert!(std::fs::read_dir(dir.path()).unwrap().next().is_none());
+    }
+}

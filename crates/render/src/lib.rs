@@ -1,0 +1,44 @@
+//! gonio-render: a Monte Carlo path tracer that turns BRDFs (analytic models, measured and
+//! computed tables) into pictures, so that a person can judge the appearance a surface
+//! topography predicts.
+//!
+//! A scene file (TOML, `docs/render.md`) names a camera, shapes with materials, and lights;
+//! [`render_scene_file`] reads it, renders it and returns a linear RGB [`Image`], which
+//! [`Image::write`] saves as OpenEXR, Radiance HDR or PNG.
+//!
+//! ```no_run
+//! use gonio_render::{RenderOptions, render_scene_file};
+//! let opts = RenderOptions { spp: Some(64), ..RenderOptions::default() };
+//! let (image, display, stats) = render_scene_file("examples/plastic.toml".as_ref(), &opts)?;
+//! image.write("plastic.png".as_ref(), display)?;
+//! println!("{:.3e} rays/s", stats.rays_per_second());
+//! # Ok::<(), gonio_render::RenderError>(())
+//! ```
+
+pub mod camera;
+pub mod error;
+pub mod geometry;
+pub mod image;
+pub mod integrator;
+pub mod light;
+pub mod material;
+pub mod scene;
+
+pub use error::{RenderError, Result};
+pub use image::{Display, Image, ToneCurve};
+pub use integrator::{BrdfSampling, RenderOptions, RenderStats, render};
+pub use scene::Scene;
+
+use std::path::Path;
+
+/// Read the scene file `path` and render it with `opts` (unset options come from the scene's
+/// `[render]` table). Returns the image, the scene's display settings for PNG output, and
+/// what the render cost.
+pub fn render_scene_file(
+    path: &Path,
+    opts: &RenderOptions,
+) -> Result<(Image, Display, RenderStats)> {
+    let scene = Scene::from_file(path)?;
+    let (image, stats) = render(&scene, opts)?;
+    Ok((image, scene.display, stats))
+}

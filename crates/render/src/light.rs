@@ -1,0 +1,450 @@
+//! Light sources and their sampling for next-event estimation: point lights, spherical and
+//! planar (rectangle, disk) area lights, an equirectangular environment map importance-sampled
+//! by luminance, and a uniform sky. Every sampler returns the direction, the radiance and the
+//! solid-angle pdf together, and [`Light::pdf`] gives the same pdf for any direction, so that
+//! multiple importance sampling can weigh light and BRDF samples (Veach 1997, ch. 9).
+//!
+//! The environment is mapped with +y up: a direction `(sin θ cos φ, cos θ, sin θ sin φ)` reads
+//! the map at `u = (φ - rotation)/2π` (column), `v = θ/π` (row, 0 at the top).
+
+use crate::geometry::{Shape, planar_coords};
+use crate::image::Image;
+use glam::{DVec2, DVec3};
+use gonio_brdf::Rgb;
+use gonio_brdf::sampling::{Frame, concentric_disk};
+use std::f64::consts::{PI, TAU};
+
+/// A light sample seen from a point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LightSample {
+    /// Unit direction from the point toward the light.
+    pub wi: DVec3,
+    /// Distance to the light (infinite for environment lights).
+    pub dist: f64,
+    /// Incident radiance (for a point light: intensity / distance²).
+    pub li: Rgb,
+    /// Pdf per steradian; for a point light 1 with `delta` set.
+    pub pdf: f64,
+    /// A delta light (no MIS: BRDF sampling cannot find it).
+    pub delta: bool,
+}
+
+/// A light.
+#[derive(Debug)]
+pub enum Light {
+    /// Isotropic point light of intensity W/sr per channel.
+    Point { position: DVec3, intensity: Rgb },
+    /// An emitting primitive of the scene (sphere or planar), uniform radiance on its front.
+    Area { prim: usize, radiance: Rgb },
+    /// Equirectangular environment map.
+    Environment(EnvMap),
+    /// Uniform radiance from every direction.
+    Sky { radiance: Rgb },
+}
+
+impl Light {
+    /// Whether the light is at infinity (seen by rays that leave the scene).
+    pub fn is_infinite(&self) -> bool {
+        matches!(self, Light::Environment(_) | Light::Sky { .. })
+    }
+
+    /// Sample a direction toward the light from `p`.
+    pub fn sample(&self, p: DVec3, u: DVec2, shapes: &[Shape]) -> Option<LightSample> {
+        match self {
+            Light::Point {
+                position,
+                intensity,
+            } => {
+                let d = *position - p;
+                let d2 = d.length_squared();
+                (d2 > 0.0).then(|| LightSample {
+                    wi: d / d2.sqrt(),
+                    dist: d2.sqrt(),
+                    li: *intensity / d2,
+                    pdf: 1.0,
+                    delta: true,
+                })
+            }
+            Light::Area { prim, radiance } => {
+                let (wi, dist, pdf) = sample_shape(&shapes[*prim], p, u)?;
+                Some(LightSample {
+                    wi,
+                    dist,
+                    li: *radiance,
+                    pdf,
+                    delta: false,
+                })
+            }
+            Light::Environment(env) => env.sample(u),
+            Light::Sky { radiance } => {
+                // Uniform sphere (pbrt-v4 §A.5.2).
+                let z = 1.0 - 2.0 * u.x;
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                let phi = TAU * u.y;
+                Some(LightSample {
+                    wi: DVec3::new(r * phi.cos(), r * phi.sin(), z),
+                    dist: f64::INFINITY,
+                    li: *radiance,
+                    pdf: 1.0 / (4.0 * PI),
+                    delta: false,
+                })
+            }
+        }
+    }
+
+    /// The solid-angle pdf with which [`Light::sample`] returns `wi` from `p`; for an area
+    /// light `hit` is the point of the light the direction reaches.
+    pub fn pdf(&self, p: DVec3, wi: DVec3, hit: DVec3, shapes: &[Shape]) -> f64 {
+        match self {
+            Light::Point { .. } => 0.0,
+            Light::Area { prim, .. } => shape_pdf(&shapes[*prim], p, wi, hit),
+            Light::Environment(env) => env.pdf(wi),
+            Light::Sky { .. } => 1.0 / (4.0 * PI),
+        }
+    }
+
+    /// Radiance arriving along a ray that leaves the scene in direction `dir` (infinite lights).
+    pub fn le(&self, dir: DVec3) -> Rgb {
+        match self {
+            Light::Environment(env) => env.radiance(dir),
+            Light::Sky { radiance } => *radiance,
+            _ => Rgb::ZERO,
+        }
+    }
+
+    /// Radiance leaving the area light's point with geometric normal `ng` toward `-dir`.
+    pub fn emitted(&self, ng: DVec3, dir: DVec3) -> Rgb {
+        match self {
+            Light::Area { radiance, .. } if ng.dot(dir) < 0.0 => *radiance,
+            _ => Rgb::ZERO,
+        }
+    }
+}
+
+/// Sample a point of an emitting shape seen from `p`: the direction, distance and solid-angle
+/// pdf. A sphere is sampled uniformly within the cone it subtends (pbrt-v4 §6.2.4), a planar
+/// shape uniformly by area, `pdf = d² / (A cos θ_light)` (pbrt-v4 §6.1).
+fn sample_shape(shape: &Shape, p: DVec3, u: DVec2) -> Option<(DVec3, f64, f64)> {
+    match shape {
+        Shape::Sphere { centre, radius } => {
+            let d = *centre - p;
+            let d2 = d.length_squared();
+            if d2 <= radius * radius {
+                return None;
+            }
+            let (sin2_max, dist_c) = (radius * radius / d2, d2.sqrt());
+            let cos_max = (1.0 - sin2_max).max(0.0).sqrt();
+            // 1 - cos θmax computed without cancellation for small cones.
+            let one_minus = sin2_max / (1.0 + cos_max);
+            let cos_t = 1.0 - u.x * one_minus;
+            let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
+            let phi = TAU * u.y;
+            let frame = Frame::from_z(d / dist_c);
+            let wi = frame
+                .to_world(DVec3::new(sin_t * phi.cos(), sin_t * phi.sin(), cos_t))
+                .normalize();
+            let ray = crate::geometry::Ray { origin: p, dir: wi };
+            // The grazing edge of the cone may miss by rounding: take the tangent distance.
+            let dist = shape
+                .intersect(&ray, 0.0, f64::INFINITY)
+                .unwrap_or(dist_c * cos_t);
+            Some((wi, dist, 1.0 / (TAU * one_minus)))
+        }
+        Shape::Planar {
+            origin,
+            u: a,
+            v: b,
+            disk,
+        } => {
+            let (s, t) = if *disk {
+                let q = concentric_disk(u);
+                (q.x, q.y)
+            } else {
+                (2.0 * u.x - 1.0, 2.0 * u.y - 1.0)
+            };
+            let q = *origin + s * *a + t * *b;
+            let n = a.cross(*b).normalize();
+            let d = q - p;
+            let d2 = d.length_squared();
+            let wi = d / d2.sqrt();
+            let cos_l = -n.dot(wi);
+            // Only the front (normal side) emits.
+            (cos_l > 0.0 && d2 > 0.0).then(|| (wi, d2.sqrt(), d2 / (shape.area() * cos_l)))
+        }
+        Shape::Triangle { .. } => None,
+    }
+}
+
+/// The solid-angle density of [`sample_shape`] for the direction `wi` that meets the shape at
+/// `hit`.
+fn shape_pdf(shape: &Shape, p: DVec3, wi: DVec3, hit: DVec3) -> f64 {
+    match shape {
+        Shape::Sphere { centre, radius } => {
+            let d2 = (*centre - p).length_squared();
+            if d2 <= radius * radius {
+                return 0.0;
+            }
+            let sin2_max = radius * radius / d2;
+            let cos_max = (1.0 - sin2_max).max(0.0).sqrt();
+            1.0 / (TAU * sin2_max / (1.0 + cos_max))
+        }
+        Shape::Planar { origin, u, v, disk } => {
+            let (a, b) = planar_coords(*origin, *u, *v, hit);
+            let inside = if *disk {
+                a * a + b * b <= 1.0 + 1e-9
+            } else {
+                a.abs() <= 1.0 + 1e-9 && b.abs() <= 1.0 + 1e-9
+            };
+            let n = u.cross(*v).normalize();
+            let cos_l = -n.dot(wi);
+            if !inside || cos_l <= 0.0 {
+                return 0.0;
+            }
+            (hit - p).length_squared() / (shape.area() * cos_l)
+        }
+        Shape::Triangle { .. } => 0.0,
+    }
+}
+
+/// A piecewise-constant 1D distribution on [0, 1) over `n` equal bins.
+#[derive(Debug, Clone)]
+struct Distribution1D {
+    /// Cumulative sums normalised to end at 1; `cdf[0] = 0`, length `n + 1`.
+    cdf: Vec<f64>,
+    /// Sum of the weights.
+    total: f64,
+}
+
+impl Distribution1D {
+    fn new(weights: &[f64]) -> Distribution1D {
+        let mut cdf = Vec::with_capacity(weights.len() + 1);
+        let mut acc = 0.0;
+        cdf.push(0.0);
+        for w in weights {
+            acc += w.max(0.0);
+            cdf.push(acc);
+        }
+        if acc > 0.0 {
+            cdf.iter_mut().for_each(|c| *c /= acc);
+        }
+        Distribution1D { cdf, total: acc }
+    }
+
+    fn len(&self) -> usize {
+        self.cdf.len() - 1
+    }
+
+    /// A bin and the continuous position `x` in [0, 1) within the whole range (pbrt-v4 §A.4.2).
+    fn sample(&self, u: f64) -> (usize, f64) {
+        let n = self.len();
+        let i = self.cdf.partition_point(|&c| c <= u).clamp(1, n) - 1;
+        let width = self.cdf[i + 1] - self.cdf[i];
+        let frac = if width > 0.0 {
+            ((u - self.cdf[i]) / width).clamp(0.0, 1.0 - 1e-12)
+        } else {
+            0.5
+        };
+        (i, (i as f64 + frac) / n as f64)
+    }
+
+    /// Density on [0, 1) in bin `i`.
+    fn density(&self, i: usize) -> f64 {
+        (self.cdf[i + 1] - self.cdf[i]) * self.len() as f64
+    }
+}
+
+/// An equirectangular environment map, importance-sampled in proportion to luminance times
+/// `sin θ` with a marginal distribution over rows and a conditional one per row (pbrt-v4 §A.4.2).
+#[derive(Debug)]
+pub struct EnvMap {
+    image: Image,
+    scale: f64,
+    rotation: f64,
+    rows: Distribution1D,
+    cols: Vec<Distribution1D>,
+}
+
+impl EnvMap {
+    /// The map `image` scaled by `scale`, turned by `rotation_rad` about +y.
+    pub fn new(image: Image, scale: f64, rotation_rad: f64) -> EnvMap {
+        let (w, h) = (image.width, image.height);
+        let cols: Vec<Distribution1D> = (0..h)
+            .map(|j| {
+                let sin_t = (PI * (j as f64 + 0.5) / h as f64).sin();
+                let weights: Vec<f64> =
+                    (0..w).map(|i| luminance(image.get(i, j)) * sin_t).collect();
+                Distribution1D::new(&weights)
+            })
+            .collect();
+        let rows = Distribution1D::new(&cols.iter().map(|c| c.total).collect::<Vec<_>>());
+        EnvMap {
+            image,
+            scale,
+            rotation: rotation_rad,
+            rows,
+            cols,
+        }
+    }
+
+    fn dir_to_uv(&self, d: DVec3) -> (f64, f64) {
+        let theta = d.y.clamp(-1.0, 1.0).acos();
+        let phi = (d.z.atan2(d.x) - self.rotation).rem_euclid(TAU);
+        (phi / TAU, theta / PI)
+    }
+
+    fn pixel(&self, u: f64, v: f64) -> (usize, usize) {
+        let (w, h) = (self.image.width, self.image.height);
+        (
+            ((u * w as f64) as usize).min(w - 1),
+            ((v * h as f64) as usize).min(h - 1),
+        )
+    }
+
+    /// Radiance from direction `d`.
+    pub fn radiance(&self, d: DVec3) -> Rgb {
+        let (u, v) = self.dir_to_uv(d);
+        let (i, j) = self.pixel(u, v);
+        Rgb::from_array(self.image.get(i, j).map(f64::from)) * self.scale
+    }
+
+    fn sample(&self, u: DVec2) -> Option<LightSample> {
+        if self.rows.total <= 0.0 {
+            return None;
+        }
+        let (j, v) = self.rows.sample(u.x);
+        let (i, uu) = self.cols[j].sample(u.y);
+        // Keep off the poles, where the density per steradian is singular.
+        let theta = PI * v.clamp(1e-9, 1.0 - 1e-9);
+        let phi = TAU * uu + self.rotation;
+        let sin_t = theta.sin();
+        if sin_t <= 0.0 {
+            return None;
+        }
+        let pdf_uv = self.rows.density(j) * self.cols[j].density(i);
+        let wi = DVec3::new(sin_t * phi.cos(), theta.cos(), sin_t * phi.sin());
+        // The radiance of the sampled pixel itself (recomputing it from `wi` could round into a
+        // neighbour at a pixel edge).
+        Some(LightSample {
+            wi,
+            dist: f64::INFINITY,
+            li: Rgb::from_array(self.image.get(i, j).map(f64::from)) * self.scale,
+            pdf: pdf_uv / (2.0 * PI * PI * sin_t),
+            delta: false,
+        })
+    }
+
+    fn pdf(&self, d: DVec3) -> f64 {
+        if self.rows.total <= 0.0 {
+            return 0.0;
+        }
+        let (u, v) = self.dir_to_uv(d);
+        let (i, j) = self.pixel(u, v);
+        let sin_t = (PI * v).sin();
+        if sin_t <= 0.0 {
+            return 0.0;
+        }
+        self.rows.density(j) * self.cols[j].density(i) / (2.0 * PI * PI * sin_t)
+    }
+}
+
+/// Luminance of linear sRGB (ITU-R BT.709 weights, the Y row of the sRGB matrix).
+pub fn luminance(c: [f32; 3]) -> f64 {
+    0.2126 * f64::from(c[0]) + 0.7152 * f64::from(c[1]) + 0.0722 * f64::from(c[2])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Integrate a light's pdf over the sphere by the midpoint rule.
+    fn pdf_integral(pdf: impl Fn(DVec3) -> f64, n: usize) -> f64 {
+        let mut sum = 0.0;
+        for i in 0..n {
+            let theta = PI * (i as f64 + 0.5) / n as f64;
+            for k in 0..2 * n {
+                let phi = PI * (k as f64 + 0.5) / n as f64;
+                let d = DVec3::new(
+                    theta.sin() * phi.cos(),
+                    theta.cos(),
+                    theta.sin() * phi.sin(),
+                );
+                sum += pdf(d) * theta.sin();
+            }
+        }
+        sum * (PI / n as f64) * (PI / n as f64)
+    }
+
+    fn test_map() -> EnvMap {
+        let mut img = Image::new(16, 8);
+        for (k, p) in img.pixels.iter_mut().enumerate() {
+            let v = 0.1 + ((k * 7919) % 13) as f32;
+            *p = [v, 0.5 * v, 0.2];
+        }
+        EnvMap::new(img, 2.0, 0.3)
+    }
+
+    #[test]
+    fn environment_pdf_integrates_to_one_and_matches_samples() {
+        let env = test_map();
+        let total = pdf_integral(|d| env.pdf(d), 400);
+        assert!((total - 1.0).abs() < 2e-3, "{total}");
+        for k in 1..500 {
+            let u = DVec2::new((k as f64 * 0.618034).fract(), (k as f64 * 0.7548).fract());
+            let s = env.sample(u).unwrap();
+            assert!((env.pdf(s.wi) / s.pdf - 1.0).abs() < 1e-6);
+            assert_eq!(s.li, env.radiance(s.wi));
+        }
+    }
+
+    #[test]
+    fn area_light_pdfs_integrate_to_one_and_match_samples() {
+        let p = DVec3::new(0.2, -0.1, 0.0);
+        let shapes = [
+            Shape::Sphere {
+                centre: DVec3::new(0.5, 3.0, 0.2),
+                radius: 0.8,
+            },
+            Shape::Planar {
+                origin: DVec3::new(0.0, 2.0, 0.5),
+                u: DVec3::new(0.7, 0.0, 0.2),
+                v: DVec3::new(0.0, 0.3, 0.5),
+                disk: false,
+            },
+            Shape::Planar {
+                origin: DVec3::new(0.0, 2.0, 0.5),
+                u: DVec3::new(0.7, 0.0, 0.2),
+                v: DVec3::new(0.0, 0.3, 0.5),
+                disk: true,
+            },
+        ];
+        for shape in &shapes {
+            // Point the planar lights' fronts toward p.
+            let shape = match shape {
+                Shape::Planar { origin, u, v, disk } if u.cross(*v).dot(p - *origin) < 0.0 => {
+                    Shape::Planar {
+                        origin: *origin,
+                        u: *v,
+                        v: *u,
+                        disk: *disk,
+                    }
+                }
+                s => s.clone(),
+            };
+            let pdf = |d: DVec3| {
+                let r = crate::geometry::Ray { origin: p, dir: d };
+                match shape.intersect(&r, 0.0, f64::INFINITY) {
+                    Some(t) => shape_pdf(&shape, p, d, p + t * d),
+                    None => 0.0,
+                }
+            };
+            let total = pdf_integral(pdf, 800);
+            assert!((total - 1.0).abs() < 0.01, "{shape:?}: {total}");
+            for k in 0..200 {
+                let u = DVec2::new((k as f64 * 0.618034).fract(), (k as f64 * 0.7548).fract());
+                let (wi, dist, pdf_s) = sample_shape(&shape, p, u).unwrap();
+                let q = p + dist * wi;
+                assert!((shape_pdf(&shape, p, wi, q) / pdf_s - 1.0).abs() < 1e-6);
+            }
+        }
+    }
+}

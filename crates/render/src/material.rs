@@ -1,0 +1,68 @@
+//! Materials: what a surface's BRDF is made of. Three kinds: an analytic model of the `brdf`
+//! crate (its [`ModelSpec`]), a tabulated BRDF read from a file (`.gbrdf`, Cornell `.astm`, MERL
+//! `.binary`), importance-sampled with the alias-method sampler of
+//! [`gonio_brdf::table::SampledTable`], or a height map turned into a table by a scattering
+//! method (see [`crate::scene`]).
+
+use crate::error::{RenderError, Result};
+use gonio_brdf::formats::{astm, merl};
+use gonio_brdf::models::ModelSpec;
+use gonio_brdf::table::{BrdfTable, SampledTable};
+use gonio_brdf::{Brdf, gbrdf};
+use std::path::Path;
+use std::sync::Arc;
+
+/// A material: a BRDF shared by every primitive that uses it.
+#[derive(Clone)]
+pub struct Material {
+    /// Its name in the scene file.
+    pub name: String,
+    /// The BRDF in the shading frame (z = shading normal, x = surface tangent).
+    pub brdf: Arc<dyn Brdf>,
+}
+
+impl std::fmt::Debug for Material {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Material")
+            .field("name", &self.name)
+            .finish_non_exhaustive()
+    }
+}
+
+/// The BRDF of an analytic model description; `scene` names the file in errors.
+pub fn from_model(spec: &ModelSpec, scene: &Path, name: &str) -> Result<Arc<dyn Brdf>> {
+    let model = spec
+        .build()
+        .map_err(|e| RenderError::scene(scene, format!("material `{name}`: {e}")))?;
+    Ok(Arc::new(model))
+}
+
+/// Read a tabulated BRDF by extension: `.gbrdf` (gonio's format), `.astm` (Cornell, imported
+/// through the smoothing fit onto the default resolution) or `.binary` (MERL).
+pub fn read_table(path: &Path) -> Result<BrdfTable> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .unwrap_or_default();
+    let wrap = |source| RenderError::Brdf {
+        path: path.to_path_buf(),
+        source,
+    };
+    match ext.as_str() {
+        "gbrdf" => gbrdf::read(path).map_err(wrap),
+        "astm" => astm::import(path, astm::default_resolution())
+            .map(|(t, _)| t)
+            .map_err(wrap),
+        "binary" => merl::read(path).map_err(wrap),
+        _ => Err(RenderError::scene(
+            path,
+            "unknown BRDF table extension: use .gbrdf, .astm (Cornell) or .binary (MERL)",
+        )),
+    }
+}
+
+/// A table wrapped with its importance sampler.
+pub fn sampled(table: BrdfTable) -> Arc<dyn Brdf> {
+    Arc::new(SampledTable::new(table))
+}

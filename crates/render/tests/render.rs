@@ -1,0 +1,260 @@
+//! Whole-renderer checks against conservation laws and against independent renders: the white
+//! furnace, a tabulated copy of an analytic BRDF, the pay-off of importance sampling, and
+//! determinism whatever the number of threads.
+
+use glam::{DVec2, DVec3};
+use gonio_brdf::models::{Lambert, Model, ModelSpec};
+use gonio_brdf::table::{BrdfTable, Provenance, Resolution, SampledTable};
+use gonio_brdf::{Brdf, Rgb};
+use gonio_render::{Image, RenderOptions, Scene, render};
+use std::path::Path;
+use std::sync::Arc;
+
+/// A unit sphere seen from 4 m in a uniform sky of radiance 1.
+const FURNACE: &str = r#"
+[camera]
+position = [0.0, 0.0, 4.0]
+look_at = [0.0, 0.0, 0.0]
+fov_deg = 32
+width = 40
+height = 40
+
+[materials.m]
+brdf = { model = "lambert", albedo = 1.0 }
+
+[[shapes]]
+type = "sphere"
+material = "m"
+
+[[lights]]
+type = "sky"
+radiance = 1.0
+"#;
+
+fn scene(text: &str) -> Scene {
+    Scene::from_toml(text, Path::new("test.toml")).unwrap()
+}
+
+fn opts(spp: u32, seed: u32) -> RenderOptions {
+    RenderOptions {
+        spp: Some(spp),
+        seed: Some(seed),
+        ..RenderOptions::default()
+    }
+}
+
+/// Pixels whose centre ray meets the sphere with `cos θo` above 0.2, and that cosine.
+fn sphere_pixels(scene: &Scene) -> Vec<(usize, f64)> {
+    let cam = &scene.camera;
+    let mut out = vec![];
+    for y in 0..cam.height {
+        for x in 0..cam.width {
+            let ray = cam.ray(DVec2::new(x as f64 + 0.5, y as f64 + 0.5));
+            if let Some(hit) = scene.accel.intersect(&ray, 0.0, f64::INFINITY) {
+                let mu = -hit.ns.dot(ray.dir);
+                if mu > 0.2 {
+                    out.push((y * cam.width + x, mu));
+                }
+            }
+        }
+    }
+    out
+}
+
+fn mean_grey(img: &Image, pixels: &[(usize, f64)]) -> f64 {
+    pixels
+        .iter()
+        .map(|&(i, _)| img.pixels[i].iter().map(|&c| f64::from(c)).sum::<f64>() / 3.0)
+        .sum::<f64>()
+        / pixels.len() as f64
+}
+
+/// The albedo of an isotropic BRDF at `cos θo = mu`, by the midpoint quadrature of
+/// `gonio_brdf::validate::albedo` (independent of any sampler), linearly interpolated from 41
+/// nodes.
+fn albedo_curve(brdf: &dyn Brdf) -> impl Fn(f64) -> f64 + use<> {
+    let nodes: Vec<f64> = (0..=40)
+        .map(|k| {
+            let mu = 0.15 + 0.85 * k as f64 / 40.0;
+            let wo = DVec3::new((1.0 - mu * mu).sqrt(), 0.0, mu);
+            let a = gonio_brdf::validate::albedo(brdf, wo, 160);
+            (a.x + a.y + a.z) / 3.0
+        })
+        .collect();
+    move |mu: f64| {
+        let x = ((mu - 0.15) / 0.85 * 40.0).clamp(0.0, 40.0);
+        let i = (x as usize).min(39);
+        let f = x - i as f64;
+        nodes[i] * (1.0 - f) + nodes[i + 1] * f
+    }
+}
+
+/// Render the furnace with `brdf` on the sphere and compare the mean over the sphere with the
+/// mean of the BRDF's albedo at the same pixels; returns the relative difference.
+fn furnace_error(brdf: Arc<dyn Brdf>, spp: u32) -> f64 {
+    let mut s = scene(FURNACE);
+    let albedo = albedo_curve(brdf.as_ref());
+    s.materials[0].brdf = brdf;
+    let (img, _) = render(&s, &opts(spp, 1)).unwrap();
+    let pixels = sphere_pixels(&s);
+    assert!(pixels.len() > 500, "{}", pixels.len());
+    let expect = pixels.iter().map(|&(_, mu)| albedo(mu)).sum::<f64>() / pixels.len() as f64;
+    (mean_grey(&img, &pixels) / expect - 1.0).abs()
+}
+
+#[test]
+fn white_furnace_lambert_renders_as_the_environment() {
+    let s = scene(FURNACE);
+    let (img, _) = render(&s, &opts(64, 7)).unwrap();
+    let pixels = sphere_pixels(&s);
+    let mean = mean_grey(&img, &pixels);
+    assert!((mean - 1.0).abs() < 0.01, "mean over the sphere {mean}");
+    // The background is the sky itself.
+    assert!((f64::from(img.get(0, 0)[1]) - 1.0).abs() < 1e-6);
+}
+
+#[test]
+fn white_furnace_analytic_models_render_their_albedo() {
+    let specs = [
+        r#"{"model": "ggx", "alpha": 0.3, "index": 1.5, "diffuse": 0.6}"#,
+        r#"{"model": "beckmann", "m": 0.2, "index": [0.2, 3.0]}"#,
+        r#"{"model": "ward", "specular": 0.3, "alpha": 0.15, "diffuse": 0.6}"#,
+        r#"{"model": "phong", "specular": 0.5, "exponent": 30, "diffuse": 0.4}"#,
+    ];
+    for json in specs {
+        let spec: ModelSpec = serde_json::from_str(json).unwrap();
+        let err = furnace_error(Arc::new(spec.build().unwrap()), 64);
+        assert!(err < 0.01, "{json}: furnace off by {:.2}%", 100.0 * err);
+    }
+}
+
+#[test]
+fn white_furnace_tabulated_brdfs_render_their_albedo() {
+    let lambert = Model::Lambert(Lambert { albedo: Rgb::ONE });
+    let res = Resolution::isotropic(32, 32, 32);
+    let table = BrdfTable::from_brdf(&lambert, res, true, Provenance::default()).unwrap();
+    let err = furnace_error(Arc::new(SampledTable::new(table)), 64);
+    assert!(
+        err < 0.01,
+        "Lambert table: furnace off by {:.2}%",
+        100.0 * err
+    );
+    let ward: ModelSpec =
+        serde_json::from_str(r#"{"model": "ward", "specular": 0.4, "alpha": 0.2, "diffuse": 0.5}"#)
+            .unwrap();
+    let res = Resolution::isotropic(64, 32, 48);
+    let table =
+        BrdfTable::from_brdf(&ward.build().unwrap(), res, true, Provenance::default()).unwrap();
+    let err = furnace_error(Arc::new(SampledTable::new(table)), 64);
+    assert!(err < 0.01, "Ward table: furnace off by {:.2}%", 100.0 * err);
+}
+
+#[test]
+fn image_does_not_depend_on_the_thread_count() {
+    let s = scene(&FURNACE.replace("lambert\", albedo = 1.0", "ggx\", alpha = 0.2, index = 1.5"));
+    let one = RenderOptions {
+        threads: Some(1),
+        ..opts(8, 3)
+    };
+    let two = RenderOptions {
+        threads: Some(2),
+        ..opts(8, 3)
+    };
+    let (a, _) = render(&s, &one).unwrap();
+    let (b, _) = render(&s, &two).unwrap();
+    assert_eq!(a, b);
+    let (c, _) = render(&s, &opts(8, 4)).unwrap();
+    assert_ne!(a, c, "another seed gives other noise");
+}
+
+/// An equirectangular sky: a gradient, a dim ground and a bright window 30° high in front.
+fn write_environment(dir: &Path) -> std::path::PathBuf {
+    let (w, h) = (128, 64);
+    let mut img = Image::new(w, h);
+    for j in 0..h {
+        let theta = std::f64::consts::PI * (j as f64 + 0.5) / h as f64;
+        for i in 0..w {
+            let phi = std::f64::consts::TAU * (i as f64 + 0.5) / w as f64;
+            let mut v = if theta < std::f64::consts::FRAC_PI_2 {
+                [0.4 + 0.4 * theta.cos(), 0.5 + 0.4 * theta.cos(), 0.9]
+            } else {
+                [0.15, 0.12, 0.1]
+            };
+            // The window: around +z (phi = 90°), 60° from the zenith.
+            if (phi - std::f64::consts::FRAC_PI_2).abs() < 0.25 && (theta - 1.05).abs() < 0.2 {
+                v = [40.0, 38.0, 35.0];
+            }
+            img.pixels[j * w + i] = v.map(|c| c as f32);
+        }
+    }
+    let path = dir.join("sky.exr");
+    img.write(&path, gonio_render::Display::default()).unwrap();
+    path
+}
+
+fn env_scene(env: &Path) -> Scene {
+    let text = format!(
+        r#"
+[camera]
+position = [0.0, 0.0, 4.0]
+look_at = [0.0, 0.0, 0.0]
+fov_deg = 30
+width = 32
+height = 32
+
+[materials.m]
+brdf = {{ model = "lambert", albedo = 0.5 }}
+
+[[shapes]]
+type = "sphere"
+material = "m"
+
+[[lights]]
+type = "environment"
+file = "{}"
+"#,
+        env.display()
+    );
+    scene(&text)
+}
+
+/// Relative RMS difference over the sphere's pixels.
+fn rel_rmse(a: &Image, b: &Image, pixels: &[(usize, f64)]) -> f64 {
+    let mut sq = 0.0;
+    let mut norm = 0.0;
+    for &(i, _) in pixels {
+        for k in 0..3 {
+            let (x, y) = (f64::from(a.pixels[i][k]), f64::from(b.pixels[i][k]));
+            sq += (x - y) * (x - y);
+            norm += y;
+        }
+    }
+    let n = 3.0 * pixels.len() as f64;
+    (sq / n).sqrt() / (norm / n)
+}
+
+#[test]
+fn tabulated_ward_renders_like_the_analytic_ward() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut s = env_scene(&write_environment(dir.path()));
+    let ward: ModelSpec = serde_json::from_str(
+        r#"{"model": "ward", "specular": 0.3, "alpha": 0.15, "diffuse": 0.4}"#,
+    )
+    .unwrap();
+    let model = ward.build().unwrap();
+    let table = BrdfTable::from_brdf(
+        &model,
+        Resolution::isotropic(90, 45, 90),
+        true,
+        Provenance::default(),
+    )
+    .unwrap();
+    s.materials[0].brdf = Arc::new(model);
+    let (analytic, _) = render(&s, &opts(1024, 1)).unwrap();
+    s.materials[0].brdf = Arc::new(SampledTable::new(table));
+    let (tabulated, _) = render(&s, &opts(1024, 2)).unwrap();
+    let pixels = sphere_pixels(&s);
+    let err = rel_rmse(&tabulated, &analytic, &pixels);
+    eprintln!("relative RMSE table vs analytic Ward: {:.3}%", 100.0 * err);
+    assert!(err < 0.02, "relative RMSE {:.2}%", 100.0 * err);
+}
