@@ -1,0 +1,253 @@
+//! Ray marching over a height field: does a ray leaving a point of the surface escape, or does it
+//! strike the surface again (and where)? Used for shadowing (the ray toward the source), masking
+//! (the reflected ray) and the second bounce of the ray method.
+//!
+//! The surface between grid points is the bilinear interpolant of the heights. A ray is followed
+//! in horizontal steps of half the smaller grid spacing, starting one grid spacing away from its
+//! origin: the facet's own normal comes from its 3 × 3 neighbourhood, so the neighbours are part
+//! of the facet and cannot shadow it. A rising ray above the highest point of its block of
+//! 8 × 8 cells jumps to the edge of the block (a two-level maximum map). A ray that rises above the highest point of the map, or
+//! leaves the map's footprint while rising, escapes; a ray that leaves the footprint while
+//! descending is lost (it would meet the continuation of the surface). Points the instrument did
+//! not measure (NaN heights) never block a ray.
+
+use glam::DVec3;
+
+/// What happens to a ray followed over the height field.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Fate {
+    /// The ray leaves the surface unobstructed.
+    Escapes,
+    /// The ray strikes the surface at this point (metres).
+    Hits(DVec3),
+    /// The ray goes down and out of the map, or straight down: it cannot reach a detector.
+    Lost,
+}
+
+/// Heights on a regular grid, with what marching needs precomputed.
+#[derive(Debug, Clone)]
+pub(crate) struct HeightField {
+    /// Row-major heights, `h[iy * nx + ix]`, metres; NaN where not measured.
+    heights: Vec<f64>,
+    nx: usize,
+    ny: usize,
+    dx: f64,
+    dy: f64,
+    /// Highest valid height, metres.
+    h_max: f64,
+    /// Highest valid height of each block of `BLOCK × BLOCK` cells (grid points
+    /// `[b·BLOCK, (b+1)·BLOCK]` along each axis, both ends included), row-major.
+    block_max: Vec<f64>,
+    /// Blocks along x and y.
+    bx: usize,
+    by: usize,
+    /// Horizontal step of the march, metres.
+    step: f64,
+}
+
+/// Bisection steps used to locate a hit between two march samples.
+const REFINE_STEPS: usize = 12;
+
+/// Cells per side of a block of the coarse maximum map. A rising ray above the highest point
+/// of its block cannot meet the surface before it leaves the block, so it jumps to the block's
+/// edge.
+const BLOCK: usize = 8;
+
+impl HeightField {
+    /// A field of `nx × ny` row-major `heights` (at least 2 × 2) on spacings `dx`, `dy`.
+    pub(crate) fn new(heights: Vec<f64>, nx: usize, ny: usize, dx: f64, dy: f64) -> Self {
+        debug_assert_eq!(heights.len(), nx * ny);
+        debug_assert!(nx >= 2 && ny >= 2);
+        let valid_max = |a: f64, b: f64| if b.is_nan() { a } else { a.max(b) };
+        let h_max = heights.iter().copied().fold(f64::NEG_INFINITY, valid_max);
+        let (bx, by) = ((nx - 1).div_ceil(BLOCK), (ny - 1).div_ceil(BLOCK));
+        let mut block_max = vec![f64::NEG_INFINITY; bx * by];
+        for j in 0..by {
+            for i in 0..bx {
+                let mut m = f64::NEG_INFINITY;
+                for iy in j * BLOCK..=((j + 1) * BLOCK).min(ny - 1) {
+                    let row = &heights[iy * nx..(iy + 1) * nx];
+                    for &h in &row[i * BLOCK..=((i + 1) * BLOCK).min(nx - 1)] {
+                        m = valid_max(m, h);
+                    }
+                }
+                block_max[j * bx + i] = m;
+            }
+        }
+        HeightField {
+            heights,
+            nx,
+            ny,
+            dx,
+            dy,
+            h_max,
+            block_max,
+            bx,
+            by,
+            step: 0.5 * dx.min(dy),
+        }
+    }
+
+    /// Position in metres of grid point `(ix, iy)`, with its height.
+    pub(crate) fn point(&self, ix: usize, iy: usize) -> DVec3 {
+        DVec3::new(
+            ix as f64 * self.dx,
+            iy as f64 * self.dy,
+            self.heights[iy * self.nx + ix],
+        )
+    }
+
+    /// The grid point nearest to horizontal position `(x, y)` metres (clamped to the map).
+    pub(crate) fn nearest(&self, x: f64, y: f64) -> (usize, usize) {
+        let ix = (x / self.dx).round().clamp(0.0, (self.nx - 1) as f64) as usize;
+        let iy = (y / self.dy).round().clamp(0.0, (self.ny - 1) as f64) as usize;
+        (ix, iy)
+    }
+
+    /// Grid coordinates `(x/dx, y/dy)` of a position, or `None` outside the footprint.
+    fn grid_coords(&self, x: f64, y: f64) -> Option<(f64, f64)> {
+        let (fx, fy) = (x / self.dx, y / self.dy);
+        let inside =
+            fx >= 0.0 && fy >= 0.0 && fx <= (self.nx - 1) as f64 && fy <= (self.ny - 1) as f64;
+        inside.then_some((fx, fy))
+    }
+
+    /// Bilinear height at grid coordinates inside the footprint: NaN next to a non-measured
+    /// point.
+    fn height_at(&self, fx: f64, fy: f64) -> f64 {
+        let ix = (fx as usize).min(self.nx - 2);
+        let iy = (fy as usize).min(self.ny - 2);
+        let tx = fx - ix as f64;
+        let ty = fy - iy as f64;
+        let row = iy * self.nx + ix;
+        let (h00, h10) = (self.heights[row], self.heights[row + 1]);
+        let (h01, h11) = (self.heights[row + self.nx], self.heights[row + self.nx + 1]);
+        let lower = h00 + tx * (h10 - h00);
+        let upper = h01 + tx * (h11 - h01);
+        lower + ty * (upper - lower)
+    }
+
+    /// Distance along unit `d` from `q` (grid coordinates `fx`, `fy`) to the edge of the block
+    /// holding `q`, if `q` lies above that block's highest point.
+    fn clear_of_block(&self, q: DVec3, fx: f64, fy: f64, d: DVec3) -> Option<f64> {
+        let (i, j) = ((fx as usize) / BLOCK, (fy as usize) / BLOCK);
+        let (i, j) = (i.min(self.bx - 1), j.min(self.by - 1));
+        if q.z <= self.block_max[j * self.bx + i] {
+            return None;
+        }
+        let exit = |pos: f64, dir: f64, b: usize, spacing: f64| {
+            let lo = (b * BLOCK) as f64 * spacing;
+            let hi = ((b + 1) * BLOCK) as f64 * spacing;
+            if dir > 0.0 {
+                (hi - pos) / dir
+            } else if dir < 0.0 {
+                (lo - pos) / dir
+            } else {
+                f64::INFINITY
+            }
+        };
+        Some(exit(q.x, d.x, i, self.dx).min(exit(q.y, d.y, j, self.dy)))
+    }
+
+    /// Follow the unit direction `d` from the surface point `origin`.
+    pub(crate) fn march(&self, origin: DVec3, d: DVec3) -> Fate {
+        let horizontal = (d.x * d.x + d.y * d.y).sqrt();
+        if horizontal < 1e-12 {
+            return if d.z > 0.0 { Fate::Escapes } else { Fate::Lost };
+        }
+        // Distance along the ray per horizontal step.
+        let dt = self.step / horizontal;
+        // Rising rays escape once above the highest point: no need to march past it.
+        let t_clear = if d.z > 0.0 {
+            (self.h_max - origin.z) / d.z
+        } else {
+            f64::INFINITY
+        };
+        let mut t_above = dt;
+        let mut t = 2.0 * dt;
+        loop {
+            if t > t_clear {
+                return Fate::Escapes;
+            }
+            let q = origin + t * d;
+            let Some((fx, fy)) = self.grid_coords(q.x, q.y) else {
+                return if d.z > 0.0 { Fate::Escapes } else { Fate::Lost };
+            };
+            if d.z > 0.0
+                && let Some(skip) = self.clear_of_block(q, fx, fy, d)
+            {
+                // At least one ordinary step, so that a ray grazing a block's edge (exit
+                // distance 0) still advances.
+                t_above = t;
+                t += (skip + 1e-3 * dt).max(dt);
+                continue;
+            }
+            if q.z < self.height_at(fx, fy) {
+                return Fate::Hits(self.refine(origin, d, t_above, t));
+            }
+            t_above = t;
+            t += dt;
+        }
+    }
+
+    /// Bisect between `t_above` (ray above the surface) and `t_below` for the crossing point.
+    fn refine(&self, origin: DVec3, d: DVec3, mut t_above: f64, mut t_below: f64) -> DVec3 {
+        for _ in 0..REFINE_STEPS {
+            let t = 0.5 * (t_above + t_below);
+            let q = origin + t * d;
+            match self.grid_coords(q.x, q.y) {
+                Some((fx, fy)) if q.z < self.height_at(fx, fy) => t_below = t,
+                _ => t_above = t,
+            }
+        }
+        origin + t_below * d
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn field(f: impl Fn(f64, f64) -> f64, n: usize, d: f64) -> HeightField {
+        let mut h = Vec::with_capacity(n * n);
+        for iy in 0..n {
+            for ix in 0..n {
+                h.push(f(ix as f64 * d, iy as f64 * d));
+            }
+        }
+        HeightField::new(h, n, n, d, d)
+    }
+
+    /// A flat plane never blocks a rising ray, and every descending ray meets it (lost at the
+    /// edge of a plane it cannot meet inside the footprint).
+    #[test]
+    fn flat_plane() {
+        let f = field(|_, _| 0.0, 32, 1.0);
+        let o = f.point(16, 16);
+        let up = DVec3::new(1.0, 0.3, 0.01).normalize();
+        assert_eq!(f.march(o, up), Fate::Escapes);
+        assert_eq!(f.march(o, DVec3::Z), Fate::Escapes);
+        let raised = o + DVec3::new(0.0, 0.0, 1.0);
+        match f.march(raised, DVec3::new(1.0, 0.0, -1.0).normalize()) {
+            Fate::Hits(p) => assert!((p - DVec3::new(17.0, 16.0, 0.0)).length() < 1e-3, "{p}"),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    /// A wall of height 2 at x = 20 (a ridge in the bilinear surface from x = 19 to 21) stops a ray
+    /// of slope 0.15 from x = 10 where `0.15 (x - 10) = 2 (x - 19)`, and lets a ray of slope 0.25
+    /// pass over it.
+    #[test]
+    fn wall_blocks_low_rays() {
+        let f = field(
+            |x, _| if (19.5..=20.5).contains(&x) { 2.0 } else { 0.0 },
+            40,
+            1.0,
+        );
+        let o = f.point(10, 20);
+        let low = DVec3::new(1.0, 0.0, 0.15).normalize();
+        let high = DVec3::new(1.0, 0.0, 0.25).normalize();
+        assert!(matches!(f.march(o, low), Fate::Hits(p) if (p.x - 36.5 / 1.85).abs() < 1e-2));
+        assert_eq!(f.march(o, high), Fate::Escapes);
+    }
+}

@@ -1,0 +1,435 @@
+//! The ray method: the BRDF of a height map by geometric optics.
+//!
+//! Every interior grid point of the map is a facet with the normal the `surface` crate computes
+//! (least-squares plane or bicubic spline). Under uniform illumination from `wi`, a facet
+//! reflects `wr = 2(wi·n)n - wi` and carries the share `R(wi·n) (wi·n) / (n_z N cos ti)` of the
+//! reflectance (`shared/docs/physics.md`, "Ray method"), with the Fresnel reflectance `R` of a
+//! dielectric or a metal at its local angle. Facets the source cannot see (shadowing) or whose
+//! reflected ray meets the surface again (masking) are found by marching over the height field;
+//! an optional second bounce follows masked rays one more reflection.
+//!
+//! The engine is planned once per map ([`RayEngine::new`]: normals, facet table, height field)
+//! and then queried per incidence: [`RayEngine::detect`] for any set of cone detectors (exact
+//! cone test, O(N + D·k) through a [direction index](index)), [`RayEngine::detect_hemisphere`]
+//! for a grid of cells that tiles the hemisphere, [`RayEngine::inplane`] for an in-plane curve.
+//! Results do not depend on the number of threads: every detector or cell sums its rays in a
+//! fixed order.
+//!
+//! ```no_run
+//! use gonio_scatter::ray::{RayEngine, RayOptions};
+//! let map = gonio_surface::io::read(std::path::Path::new("sample.x3p"))?;
+//! let engine = RayEngine::new(&map, RayOptions::default())?;
+//! let scatter_deg: Vec<f64> = (-75..=75).map(f64::from).collect();
+//! let curve = engine.inplane(20.0, &scatter_deg, 1.4f64.to_radians())?;
+//! println!("specular BRDF {} 1/sr", curve.points[95].brdf_per_sr);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod hemisphere;
+mod index;
+mod march;
+mod trace;
+
+#[cfg(test)]
+mod tests;
+
+pub use hemisphere::{HemisphereGrid, HemisphereTable};
+
+use crate::error::{Result, ScatterError};
+use crate::geometry::{CurvePoint, Detector, InplaneCurve, incidence_direction, inplane_direction};
+use glam::DVec3;
+use gonio_brdf::Ior;
+use gonio_brdf::fresnel::Polarised;
+use gonio_surface::HeightMap;
+use gonio_surface::normals::{NormalMethod, facet_normals};
+use index::{BinMask, DirectionIndex, Sums};
+use march::HeightField;
+use ndarray::Array2;
+use rayon::prelude::*;
+use trace::{Facet, Ray, Tracer};
+
+/// Options of the ray method.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RayOptions {
+    /// Refractive index of the material under the surface.
+    pub ior: Ior,
+    /// How facet normals are estimated from the heights.
+    pub normals: NormalMethod,
+    /// Shadowing and masking by the height field (a facet counts only if the source sees it and
+    /// its reflected ray leaves the surface). Off reproduces the original ray method, in which
+    /// every facet facing the source reflects into the upper hemisphere unobstructed.
+    pub shadowing: bool,
+    /// Follow a masked ray through one more specular reflection (needs `shadowing`).
+    pub second_bounce: bool,
+    /// Number of azimuths of incidence to average over (1: none). The source is rotated about z
+    /// in steps of `360°/azimuths` and the detectors with it, which averages an isotropic
+    /// surface's BRDF over more facets; keep 1 for an anisotropic surface.
+    pub azimuths: usize,
+    /// Also track s- and p-polarised reflectance (relative to each facet's local plane of
+    /// incidence). Slower: the Fresnel formula is evaluated in complex arithmetic.
+    pub polarised: bool,
+}
+
+impl Default for RayOptions {
+    /// Index 1.55, plane-fit normals, shadowing and masking on, one bounce, no azimuthal
+    /// averaging, unpolarised.
+    fn default() -> Self {
+        RayOptions {
+            ior: Ior::Dielectric(1.55),
+            normals: NormalMethod::Plane,
+            shadowing: true,
+            second_bounce: false,
+            azimuths: 1,
+            polarised: false,
+        }
+    }
+}
+
+/// What one cone detector read.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Reading {
+    /// Reflectance `rho` collected by the detector (unpolarised).
+    pub reflectance: f64,
+    /// BRDF averaged over the detector, `rho / (Omega cos ts)`, 1/sr.
+    pub brdf_per_sr: f64,
+    /// s- and p-polarised reflectance, when polarisation is tracked.
+    pub polarised: Option<Polarised>,
+    /// Number of rays that reached the detector (summed over azimuths).
+    pub hits: u64,
+}
+
+impl Reading {
+    /// Relative standard uncertainty of `reflectance` from counting statistics, `1/√hits`
+    /// (infinite with no hit).
+    pub fn rel_uncertainty(&self) -> f64 {
+        1.0 / (self.hits as f64).sqrt()
+    }
+}
+
+/// A planned ray-method engine for one height map: facets, normals and height field computed
+/// once, then queried for any number of incidences and detector sets.
+pub struct RayEngine {
+    facets: Vec<Facet>,
+    normals: Array2<DVec3>,
+    field: HeightField,
+    options: RayOptions,
+}
+
+impl RayEngine {
+    /// Plan the engine: facet normals by `options.normals`, the facet table and the height
+    /// field used for shadowing.
+    pub fn new(map: &HeightMap, options: RayOptions) -> Result<Self> {
+        Self::check_map(map)?;
+        let normals = facet_normals(map, options.normals);
+        Self::from_normals(map, normals, options)
+    }
+
+    /// Plan the engine with given unit normals of shape `(ny, nx)` (NaN where a point is not a
+    /// facet).
+    pub fn from_normals(
+        map: &HeightMap,
+        normals: Array2<DVec3>,
+        options: RayOptions,
+    ) -> Result<Self> {
+        Self::check_map(map)?;
+        if normals.dim() != (map.ny(), map.nx()) {
+            return Err(ScatterError::Invalid(format!(
+                "normals of shape {:?} do not match the {} × {} map",
+                normals.dim(),
+                map.nx(),
+                map.ny()
+            )));
+        }
+        if options.azimuths == 0 {
+            return Err(ScatterError::Invalid(
+                "the number of azimuths must be at least 1".into(),
+            ));
+        }
+        if options.second_bounce && !options.shadowing {
+            return Err(ScatterError::Invalid(
+                "a second bounce needs shadowing and masking on: without them no ray meets the \
+                 surface again"
+                    .into(),
+            ));
+        }
+        let (nx, ny) = (map.nx(), map.ny());
+        let heights: Vec<f64> = map.heights().iter().copied().collect();
+        let field = HeightField::new(heights, nx, ny, map.dx(), map.dy());
+        let facets: Vec<Facet> = normals
+            .indexed_iter()
+            .filter(|(_, n)| n.is_finite() && n.z > 0.0)
+            .map(|((iy, ix), &n)| Facet {
+                pos: field.point(ix, iy),
+                n,
+            })
+            .collect();
+        if facets.is_empty() {
+            return Err(ScatterError::Invalid(format!(
+                "the {nx} × {ny} map has no interior point with a valid 3 × 3 neighbourhood"
+            )));
+        }
+        Ok(RayEngine {
+            facets,
+            normals,
+            field,
+            options,
+        })
+    }
+
+    fn check_map(map: &HeightMap) -> Result<()> {
+        if map.nx() < 3 || map.ny() < 3 {
+            return Err(ScatterError::Invalid(format!(
+                "the map is {} × {} points; the ray method needs at least 3 × 3",
+                map.nx(),
+                map.ny()
+            )));
+        }
+        Ok(())
+    }
+
+    /// The options the engine was planned with.
+    pub fn options(&self) -> &RayOptions {
+        &self.options
+    }
+
+    /// Number of facets N (grid points with a valid normal).
+    pub fn facet_count(&self) -> usize {
+        self.facets.len()
+    }
+
+    /// Measured rms slopes `(sx, sy)` of the facets along x and y, `-n_x/n_z` and `-n_y/n_z`
+    /// about their means: the per-axis rms slopes a facet model of this map should use.
+    pub fn rms_slopes(&self) -> (f64, f64) {
+        let n = self.facets.len() as f64;
+        let (mut mx, mut my) = (0.0, 0.0);
+        for f in &self.facets {
+            mx += -f.n.x / f.n.z;
+            my += -f.n.y / f.n.z;
+        }
+        let (mx, my) = (mx / n, my / n);
+        let (mut vx, mut vy) = (0.0, 0.0);
+        for f in &self.facets {
+            vx += (-f.n.x / f.n.z - mx).powi(2);
+            vy += (-f.n.y / f.n.z - my).powi(2);
+        }
+        ((vx / n).sqrt(), (vy / n).sqrt())
+    }
+
+    /// Mean Fresnel reflectance `R(wi·n)` over all facets (zero for those facing away): what a
+    /// full hemisphere collects from a gently sloped surface without shadowing.
+    pub fn mean_facet_reflectance(&self, wi: DVec3) -> Result<f64> {
+        let wi = check_incidence(wi)?;
+        let sum: f64 = self
+            .facets
+            .iter()
+            .map(|f| {
+                let c = wi.dot(f.n);
+                if c > 0.0 {
+                    self.options.ior.reflectance(c)
+                } else {
+                    0.0
+                }
+            })
+            .sum();
+        Ok(sum / self.facets.len() as f64)
+    }
+
+    /// The tracer for source direction `wi` turned to azimuth step `k`.
+    fn tracer<'a>(&'a self, wi: DVec3, k: usize, wanted: Option<&'a BinMask>) -> Tracer<'a> {
+        let phi = std::f64::consts::TAU * k as f64 / self.options.azimuths as f64;
+        let (sin, cos) = phi.sin_cos();
+        Tracer {
+            field: &self.field,
+            normals: &self.normals,
+            ior: self.options.ior,
+            polarised: self.options.polarised,
+            shadowing: self.options.shadowing,
+            second_bounce: self.options.second_bounce,
+            wi: DVec3::new(cos * wi.x - sin * wi.y, sin * wi.x + cos * wi.y, wi.z),
+            to_detector: (cos, -sin),
+            scale: 1.0 / (self.facets.len() as f64 * wi.z),
+            wanted,
+        }
+    }
+
+    /// The rays that leave the surface for source direction `wi` at azimuth step `k`, rotated
+    /// back into the detectors' frame, in facet order; only those in `wanted` bins if given.
+    fn rays(&self, wi: DVec3, k: usize, wanted: Option<&BinMask>) -> Vec<Ray> {
+        let tracer = self.tracer(wi, k, wanted);
+        self.facets
+            .par_iter()
+            .filter_map(|f| tracer.trace(f))
+            .collect()
+    }
+
+    /// Every ray that leaves the surface for a source in direction `wi` (unit, `z > 0`), as
+    /// `(direction, reflectance carried)`, over all azimuths of incidence (rotated back into the
+    /// frame of `wi`, each carrying its share divided by the number of azimuths), in a fixed
+    /// order. The shares add up to the directional-hemispherical reflectance: the input of any
+    /// binning other than cones or [`HemisphereGrid`] (for instance a tabulated BRDF's cells).
+    pub fn reflected_rays(&self, wi: DVec3) -> Result<Vec<(DVec3, f64)>> {
+        let wi = check_incidence(wi)?;
+        let per_azimuth = 1.0 / self.options.azimuths as f64;
+        let mut out = Vec::new();
+        for k in 0..self.options.azimuths {
+            out.extend(
+                self.rays(wi, k, None)
+                    .iter()
+                    .map(|r| (r.d, r.w * per_azimuth)),
+            );
+        }
+        Ok(out)
+    }
+
+    /// Read a set of cone detectors for a source in direction `wi` (unit, `z > 0`).
+    ///
+    /// Each detector sums the rays inside its cone (`wo·d > cos alpha`); its reflectance is the
+    /// sum of the rays' shares, and its BRDF `rho / (Omega cos theta)`.
+    pub fn detect(&self, wi: DVec3, detectors: &[Detector]) -> Result<Vec<Reading>> {
+        let wi = check_incidence(wi)?;
+        let Some(min_half_angle) = check_detectors(detectors)? else {
+            return Ok(Vec::new());
+        };
+        let g = bins_for(min_half_angle, self.facets.len());
+        let wanted = BinMask::new(detectors, g);
+        let mut totals = vec![Sums::default(); detectors.len()];
+        for k in 0..self.options.azimuths {
+            let index = DirectionIndex::new(&self.rays(wi, k, Some(&wanted)), g);
+            let sums: Vec<Sums> = detectors.par_iter().map(|d| index.collect(d)).collect();
+            for (t, s) in totals.iter_mut().zip(&sums) {
+                t.add(s);
+            }
+        }
+        Ok(detectors
+            .iter()
+            .zip(&totals)
+            .map(|(d, s)| self.reading(d, s))
+            .collect())
+    }
+
+    fn reading(&self, det: &Detector, sums: &Sums) -> Reading {
+        let per_azimuth = 1.0 / self.options.azimuths as f64;
+        let reflectance = sums.w * per_azimuth;
+        Reading {
+            reflectance,
+            brdf_per_sr: reflectance / (det.solid_angle() * det.direction.z),
+            polarised: self.options.polarised.then_some(Polarised {
+                s: sums.ws * per_azimuth,
+                p: sums.wp * per_azimuth,
+            }),
+            hits: sums.hits,
+        }
+    }
+
+    /// Sum the light leaving the surface for a source in direction `wi` into the cells of a
+    /// hemisphere grid. Every ray that leaves lands in exactly one cell.
+    ///
+    /// No ray is stored: each fixed chunk of facets fills its own partial table, and the
+    /// partial tables are added in chunk order (the same order whatever the thread count).
+    pub fn detect_hemisphere(&self, wi: DVec3, grid: &HemisphereGrid) -> Result<HemisphereTable> {
+        let wi = check_incidence(wi)?;
+        let mut sums = vec![Sums::default(); grid.len()];
+        for k in 0..self.options.azimuths {
+            let tracer = self.tracer(wi, k, None);
+            let partials: Vec<Vec<Sums>> = self
+                .facets
+                .par_chunks(HEMISPHERE_CHUNK)
+                .map(|chunk| {
+                    let mut part = vec![Sums::default(); grid.len()];
+                    for ray in chunk.iter().filter_map(|f| tracer.trace(f)) {
+                        part[grid.cell(ray.d)].add_ray(&ray);
+                    }
+                    part
+                })
+                .collect();
+            for part in &partials {
+                for (s, p) in sums.iter_mut().zip(part) {
+                    s.add(p);
+                }
+            }
+        }
+        let per_azimuth = 1.0 / self.options.azimuths as f64;
+        Ok(HemisphereTable::from_sums(
+            *grid,
+            &sums,
+            per_azimuth,
+            self.options.polarised,
+        ))
+    }
+
+    /// The in-plane curve at incidence `incidence_deg` for detectors at the signed scattering
+    /// angles `scatter_deg` (degrees, physics.md convention: specular at `+incidence`) with cone
+    /// half-angle `half_angle` (radians).
+    pub fn inplane(
+        &self,
+        incidence_deg: f64,
+        scatter_deg: &[f64],
+        half_angle: f64,
+    ) -> Result<InplaneCurve> {
+        let detectors: Vec<Detector> = scatter_deg
+            .iter()
+            .map(|&ts| Detector {
+                direction: inplane_direction(ts.to_radians()),
+                half_angle,
+            })
+            .collect();
+        let readings = self.detect(incidence_direction(incidence_deg.to_radians()), &detectors)?;
+        Ok(InplaneCurve {
+            method: "ray".into(),
+            wavelength_nm: None,
+            incidence_deg,
+            points: scatter_deg
+                .iter()
+                .zip(&readings)
+                .map(|(&ts, r)| CurvePoint {
+                    scatter_deg: ts,
+                    brdf_per_sr: r.brdf_per_sr,
+                    reflectance: r.reflectance,
+                    rel_uncertainty: Some(r.rel_uncertainty()),
+                })
+                .collect(),
+        })
+    }
+}
+
+/// The unit source direction, or an error if `wi` is not a finite direction above the surface.
+fn check_incidence(wi: DVec3) -> Result<DVec3> {
+    let len = wi.length();
+    if !(len.is_finite() && len > 0.0 && wi.z / len > 1e-9) {
+        return Err(ScatterError::Invalid(format!(
+            "source direction {wi} must point above the surface (z > 0); incidence must be \
+             below 90°"
+        )));
+    }
+    Ok(wi / len)
+}
+
+/// Check every detector; returns the smallest half-angle, or `None` for an empty set.
+fn check_detectors(detectors: &[Detector]) -> Result<Option<f64>> {
+    for (i, d) in detectors.iter().enumerate() {
+        if !(d.half_angle > 0.0 && d.half_angle < std::f64::consts::FRAC_PI_2) {
+            return Err(ScatterError::Invalid(format!(
+                "detector {i}: half-angle {}° must be in (0°, 90°)",
+                d.half_angle.to_degrees()
+            )));
+        }
+        if !((d.direction.length() - 1.0).abs() < 1e-9 && d.direction.z > 0.0) {
+            return Err(ScatterError::Invalid(format!(
+                "detector {i}: direction {} must be a unit vector above the surface (z > 0)",
+                d.direction
+            )));
+        }
+    }
+    Ok(detectors.iter().map(|d| d.half_angle).reduce(f64::min))
+}
+
+/// Facets per chunk of a hemisphere run: each chunk fills one partial table.
+const HEMISPHERE_CHUNK: usize = 1 << 16;
+
+/// Bins per axis of the direction index: about one smallest half-angle wide, so that a
+/// detector visits a few bins, but no more bins than rays.
+fn bins_for(min_half_angle: f64, rays: usize) -> usize {
+    let by_angle = (2.0 / min_half_angle).ceil();
+    let by_count = (rays as f64).sqrt().ceil();
+    by_angle.min(by_count).clamp(1.0, 4096.0) as usize
+}

@@ -1,0 +1,136 @@
+//! What one facet does with the incident light: specular reflection, the power it intercepts,
+//! Fresnel reflectance at its local angle, shadowing and masking by the height field and an
+//! optional second bounce.
+//!
+//! Formulas from `shared/docs/physics.md`, section "Ray method" (geometric optics of a faceted
+//! surface, as in the facet model of K. E. Torrance & E. M. Sparrow, "Theory for off-specular
+//! reflection from roughened surfaces", JOSA 57, 1105 (1967)): a facet of unit normal
+//! `n` lit from `wi` reflects `wr = 2(wi·n)n - wi`, and its share of the reflectance is
+//! `R(wi·n) (wi·n) / (n_z N cos ti)` for `N` facets.
+
+use super::index::BinMask;
+use super::march::{Fate, HeightField};
+use glam::DVec3;
+use gonio_brdf::Ior;
+use ndarray::Array2;
+
+/// One facet: a grid point with a valid normal.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Facet {
+    /// Position in metres (`x = ix dx`, `y = iy dy`, height).
+    pub pos: DVec3,
+    /// Unit normal, `n_z > 0`.
+    pub n: DVec3,
+}
+
+/// A reflected ray leaving the surface, with its share of the reflectance (unpolarised, and
+/// for s and p polarisation when asked for).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Ray {
+    /// Unit direction, `z > 0`, in the detectors' frame.
+    pub d: DVec3,
+    /// Unpolarised reflectance carried.
+    pub w: f64,
+    /// Reflectance carried for s polarisation (0 unless polarisation is tracked).
+    pub ws: f64,
+    /// Reflectance carried for p polarisation (0 unless polarisation is tracked).
+    pub wp: f64,
+}
+
+/// Everything a facet needs to trace light for one incidence.
+pub(crate) struct Tracer<'a> {
+    pub field: &'a HeightField,
+    /// Normals of every grid point, shape `(ny, nx)`, for the second bounce.
+    pub normals: &'a Array2<DVec3>,
+    pub ior: Ior,
+    pub polarised: bool,
+    pub shadowing: bool,
+    pub second_bounce: bool,
+    /// Source direction in the map's frame.
+    pub wi: DVec3,
+    /// Rotation about z that takes map-frame directions into the detectors' frame, as
+    /// `(cos, sin)` of the angle.
+    pub to_detector: (f64, f64),
+    /// `1 / (N cos ti)`.
+    pub scale: f64,
+    /// When set (and without a second bounce), rays whose direction falls outside these bins
+    /// reach no detector and are dropped before the costly shadowing and masking tests.
+    pub wanted: Option<&'a BinMask>,
+}
+
+impl Tracer<'_> {
+    /// Fresnel reflectance at local incidence `cos_i`: unpolarised, s, p.
+    fn fresnel(&self, cos_i: f64) -> (f64, f64, f64) {
+        if self.polarised {
+            let p = self.ior.polarised(cos_i);
+            (p.unpolarised(), p.s, p.p)
+        } else {
+            (self.ior.reflectance(cos_i), 0.0, 0.0)
+        }
+    }
+
+    /// The ray a facet sends toward the detectors, or `None` when it faces away from the source,
+    /// is shadowed, or its reflected light does not leave the surface.
+    pub(crate) fn trace(&self, facet: &Facet) -> Option<Ray> {
+        let c = self.wi.dot(facet.n);
+        if c <= 0.0 {
+            return None;
+        }
+        let wr = 2.0 * c * facet.n - self.wi;
+        let unwanted = |d: DVec3| {
+            self.wanted
+                .is_some_and(|m| !m.contains(self.to_detector_frame(d)))
+        };
+        if !self.second_bounce && (wr.z <= 0.0 || unwanted(wr)) {
+            return None;
+        }
+        if self.shadowing && self.field.march(facet.pos, self.wi) != Fate::Escapes {
+            return None;
+        }
+        let (r, rs, rp) = self.fresnel(c);
+        let power = c / facet.n.z * self.scale;
+        let mut ray = Ray {
+            d: wr,
+            w: r * power,
+            ws: rs * power,
+            wp: rp * power,
+        };
+        if self.shadowing {
+            match self.field.march(facet.pos, wr) {
+                Fate::Escapes => {}
+                Fate::Hits(p) if self.second_bounce => ray = self.bounce(ray, p)?,
+                _ => return None,
+            }
+        }
+        ray.d = self.to_detector_frame(ray.d);
+        Some(ray)
+    }
+
+    fn to_detector_frame(&self, d: DVec3) -> DVec3 {
+        let (cos, sin) = self.to_detector;
+        DVec3::new(cos * d.x - sin * d.y, sin * d.x + cos * d.y, d.z)
+    }
+
+    /// Reflect `ray` a second time at the surface point `p`, using the normal of the nearest
+    /// facet, and follow it again; `None` if it meets the back of that facet or the surface a
+    /// third time.
+    fn bounce(&self, ray: Ray, p: DVec3) -> Option<Ray> {
+        let (ix, iy) = self.field.nearest(p.x, p.y);
+        let n = self.normals[[iy, ix]];
+        let c = -ray.d.dot(n);
+        if c.is_nan() || c <= 0.0 {
+            return None;
+        }
+        let d = ray.d + 2.0 * c * n;
+        if self.field.march(p, d) != Fate::Escapes {
+            return None;
+        }
+        let (r, rs, rp) = self.fresnel(c);
+        Some(Ray {
+            d,
+            w: ray.w * r,
+            ws: ray.ws * rs,
+            wp: ray.wp * rp,
+        })
+    }
+}
