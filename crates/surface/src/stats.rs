@@ -16,8 +16,8 @@
 //!   half the map along each axis. Sal (ISO 25178-2 §4.2.1) is the shortest lag at which it drops
 //!   to s = 0.2, searched along 720 directions over 180° (the ACF is even) in steps of a quarter
 //!   spacing with linear interpolation of the crossing; Str (§4.2.2) is Sal over the longest such
-//!   first-crossing distance, undefined when some direction never decays to s within the lag
-//!   range. For the Gaussian ACF `Sal = T sqrt(ln 5)`; for the exponential ACF `Sal = T ln 5`.
+//!   first-crossing distance. A direction that does not decay to s within the lag range
+//!   (grooves, waviness) counts with its reach, so Str is then an upper bound and flagged. For the Gaussian ACF `Sal = T sqrt(ln 5)`; for the exponential ACF `Sal = T ln 5`.
 //! - The PSD follows the convention `C(q) = ∫ ACF(r) exp(-i q·r) d²r` (m⁴, q in rad/m), so that
 //!   `Sq² = (2π)⁻² ∫ C(q) d²q` and a Gaussian ACF has `C(q) = π sigma² T² exp(-q² T²/4)`. It is
 //!   estimated as `dx dy |Z(q)|² / (nx ny ⟨w²⟩)` from the DFT of the levelled heights (invalid
@@ -52,8 +52,11 @@ pub struct Statistics {
     pub sdq: f64,
     /// Autocorrelation length, m: `None` if the ACF never decays to 0.2 within half the map.
     pub sal: Option<f64>,
-    /// Texture aspect ratio in (0, 1]: `None` if some direction never decays to 0.2.
+    /// Texture aspect ratio in (0, 1]: `None` if Sal is. When some direction does not decay to
+    /// 0.2 within half the map, this is an upper bound (see `str_is_upper_bound`).
     pub str: Option<f64>,
+    /// Whether `str` is only an upper bound (strongly anisotropic or wavy maps).
+    pub str_is_upper_bound: bool,
 }
 
 /// All [`Statistics`] of `map` after least-squares levelling.
@@ -62,15 +65,16 @@ pub fn statistics(map: &HeightMap) -> Result<Statistics> {
     let (sq, sa, ssk, sku) = height_parameters(&lev);
     let sdq = rms_gradient(&lev);
     let acf = Autocorrelation::of_levelled(&lev);
-    let (sal, str) = acf.sal_str(ACF_THRESHOLD);
+    let lengths = acf.sal_str(ACF_THRESHOLD);
     Ok(Statistics {
         sq,
         sa,
         ssk,
         sku,
         sdq,
-        sal,
-        str,
+        sal: lengths.sal,
+        str: lengths.str,
+        str_is_upper_bound: lengths.str_is_upper_bound,
     })
 }
 
@@ -224,9 +228,8 @@ impl Autocorrelation {
             + fv * ((1.0 - fu) * a[[j1, i]] + fu * a[[j1, i1]])
     }
 
-    /// Distance along direction `angle` (radians from +x) at which the ACF first drops to `s`,
-    /// or `None` if it does not within the lag grid.
-    pub fn decay_length(&self, angle: f64, s: f64) -> Option<f64> {
+    /// How the ACF decays along direction `angle` (radians from +x) to the threshold `s`.
+    pub fn decay(&self, angle: f64, s: f64) -> Decay {
         let step = 0.25 * self.dx.min(self.dy);
         let (sin, cos) = angle.sin_cos();
         let mut prev = self.at(0.0, 0.0);
@@ -234,29 +237,69 @@ impl Autocorrelation {
             let r = k as f64 * step;
             let a = self.at(r * cos, r * sin);
             if a.is_nan() {
-                return None;
+                return Decay::Beyond(r - step);
             }
             if a <= s {
-                return Some(r - step + step * (prev - s) / (prev - a));
+                return Decay::Crossing(r - step + step * (prev - s) / (prev - a));
             }
             prev = a;
         }
         unreachable!("the loop leaves the lag grid")
     }
 
-    /// (Sal, Str) for threshold `s` (module docs).
-    pub fn sal_str(&self, s: f64) -> (Option<f64>, Option<f64>) {
-        let lengths: Vec<Option<f64>> = (0..DIRECTIONS)
-            .into_par_iter()
-            .map(|k| self.decay_length(std::f64::consts::PI * k as f64 / DIRECTIONS as f64, s))
-            .collect();
-        let sal = lengths.iter().flatten().copied().reduce(f64::min);
-        let slowest: Option<Vec<f64>> = lengths.into_iter().collect();
-        let str = sal
-            .zip(slowest.and_then(|v| v.into_iter().reduce(f64::max)))
-            .map(|(fast, slow)| fast / slow);
-        (sal, str)
+    /// Distance along direction `angle` at which the ACF first drops to `s`, or `None` if it
+    /// does not within the lag grid.
+    pub fn decay_length(&self, angle: f64, s: f64) -> Option<f64> {
+        match self.decay(angle, s) {
+            Decay::Crossing(r) => Some(r),
+            Decay::Beyond(_) => None,
+        }
     }
+
+    /// Sal and Str for threshold `s` (module docs).
+    pub fn sal_str(&self, s: f64) -> TextureLengths {
+        let decays: Vec<Decay> = (0..DIRECTIONS)
+            .into_par_iter()
+            .map(|k| self.decay(std::f64::consts::PI * k as f64 / DIRECTIONS as f64, s))
+            .collect();
+        let crossing = |d: &Decay| match *d {
+            Decay::Crossing(r) => Some(r),
+            Decay::Beyond(_) => None,
+        };
+        let sal = decays.iter().filter_map(crossing).reduce(f64::min);
+        let slowest = decays
+            .iter()
+            .map(|d| match *d {
+                Decay::Crossing(r) | Decay::Beyond(r) => r,
+            })
+            .reduce(f64::max);
+        TextureLengths {
+            sal,
+            str: sal.zip(slowest).map(|(fast, slow)| fast / slow),
+            str_is_upper_bound: decays.iter().any(|d| matches!(d, Decay::Beyond(_))),
+        }
+    }
+}
+
+/// How the ACF decays along one direction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Decay {
+    /// It first drops to the threshold at this distance, m.
+    Crossing(f64),
+    /// It stays above the threshold up to this distance (the end of the lag grid), m.
+    Beyond(f64),
+}
+
+/// Sal and Str of an autocorrelation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TextureLengths {
+    /// Shortest first-crossing distance, m; `None` if no direction decays to the threshold.
+    pub sal: Option<f64>,
+    /// Sal over the longest first-crossing distance.
+    pub str: Option<f64>,
+    /// Some direction does not decay within the lag grid: its reach there stands in for its
+    /// decay length, so the true Str is at most `str`.
+    pub str_is_upper_bound: bool,
 }
 
 /// Smallest length >= n whose prime factors are 2, 3 and 5 (fast FFT sizes).
@@ -417,7 +460,10 @@ mod tests {
             "{:?} vs {sal}",
             st.sal
         );
-        assert_eq!(st.str, None);
+        // Along y the ACF never decays: Str is bounded by Sal over the reach along y, ny/2 lags.
+        assert!(st.str_is_upper_bound, "{st:?}");
+        let reach_y = (map.ny() / 2) as f64 * map.dy();
+        assert!(st.str.unwrap() <= st.sal.unwrap() / reach_y, "{st:?}");
     }
 
     fn gaussian(acf: Acf, seed: u64) -> GaussianSurface {
@@ -477,6 +523,7 @@ mod tests {
                 let map = req.generate().unwrap();
                 let st = statistics(&map).unwrap();
                 sal += st.sal.unwrap() / req.corr_length / runs as f64;
+                assert!(!st.str_is_upper_bound, "{acf:?}: {st:?}");
                 str += st.str.unwrap() / runs as f64;
                 let stretched = map.with_spacing(req.dx, 2.0 * req.dy).unwrap();
                 str_stretched += statistics(&stretched).unwrap().str.unwrap() / runs as f64;
