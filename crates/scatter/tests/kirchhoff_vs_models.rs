@@ -4,9 +4,9 @@
 //! Statistics behind the tolerances. One detector of half-angle alpha over a spot of diameter D
 //! averages about π(alpha D/λ)² speckle grains, each an independent exponential variate, so its
 //! reading scatters by 1/√(grains) about the ensemble mean; averaging R realisations divides that
-//! by √R. The Schwartz window weights the centre of the spot: `(∫W²)²/∫W⁴` is about 30% of the
-//! disc, so with D = 128 µm and λ = 500 nm a 2° cone holds about 60 grains (13% per realisation,
-//! 4.6% over 8) and a 3° cone about 135 (8.6%, 2.2% over 16). The realisation's own surface
+//! by √R. The Schwartz window weights the centre of the spot: `(∫W²)²/∫W⁴` is 44% of the disc,
+//! so with D = 128 µm and λ = 500 nm a 2° cone holds about 87 grains (11% per realisation, 3.8%
+//! over 8) and a 3° cone about 195 (7%, 1.8% over 16). The realisation's own surface
 //! statistics matter more in the tails: the spot sees only ~400 correlation areas, and a 1% error
 //! in the rms slope moves the 1%-of-peak point by about 9% (physics.md), so the series is
 //! evaluated with each spot's own W²-weighted rms height and slope along x and then averaged.
