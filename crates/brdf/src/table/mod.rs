@@ -17,6 +17,7 @@
 
 mod analysis;
 mod builder;
+mod fit_samples;
 pub mod coords;
 mod sampler;
 
