@@ -18,6 +18,7 @@
 mod analysis;
 mod builder;
 mod fit_samples;
+pub mod colour;
 pub mod coords;
 mod sampler;
 
@@ -39,6 +40,9 @@ pub enum Channels {
     Mono,
     /// Linear RGB (sRGB primaries).
     Rgb,
+    /// CIE XYZ divided by 100 (a BRDF in 1/sr per component: Y is the luminance-weighted BRDF),
+    /// e.g. a spectral table reduced under an illuminant by [`colour::reduce`].
+    Xyz,
     /// One value per wavelength, in nanometres, strictly increasing.
     Spectral { wavelengths_nm: Vec<f64> },
 }
@@ -48,7 +52,7 @@ impl Channels {
     pub fn count(&self) -> usize {
         match self {
             Channels::Mono => 1,
-            Channels::Rgb => 3,
+            Channels::Rgb | Channels::Xyz => 3,
             Channels::Spectral { wavelengths_nm } => wavelengths_nm.len(),
         }
     }
@@ -58,6 +62,7 @@ impl Channels {
         match self {
             Channels::Mono => vec!["f_per_sr".into()],
             Channels::Rgb => vec!["r_per_sr".into(), "g_per_sr".into(), "b_per_sr".into()],
+            Channels::Xyz => vec!["x_per_sr".into(), "y_per_sr".into(), "z_per_sr".into()],
             Channels::Spectral { wavelengths_nm } => wavelengths_nm
                 .iter()
                 .map(|w| format!("f_{w}nm_per_sr"))
@@ -86,6 +91,7 @@ impl Channels {
         match self {
             Channels::Mono => "mono".into(),
             Channels::Rgb => "rgb".into(),
+            Channels::Xyz => "xyz".into(),
             Channels::Spectral { wavelengths_nm: w } => {
                 format!(
                     "spectral ({} wavelengths, {}-{} nm)",
@@ -373,6 +379,7 @@ pub(crate) fn rgb_weights(channels: &Channels) -> Result<Vec<[f64; 3]>> {
     Ok(match channels {
         Channels::Mono => vec![[1.0; 3]],
         Channels::Rgb => vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        Channels::Xyz => colour::xyz_rgb_weights(),
         Channels::Spectral { wavelengths_nm } => {
             use gonio_color::{Illuminant, Observer, SpectralToXyz};
             SpectralToXyz::new(wavelengths_nm, Illuminant::D65, Observer::Cie1931TwoDegree)

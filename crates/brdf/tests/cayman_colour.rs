@@ -1,0 +1,115 @@
+//! The colour of the Cornell Cayman metallic paint (tests/data/cayman.astm, Cornell University
+//! Program of Computer Graphics reflectance data) survives the NIST pipeline: measured spectra →
+//! smoothing interpolation → spectral table → XYZ table. At every measured geometry the measured
+//! spectrum, reduced to colour, and the XYZ table's value there are compared in CIEDE2000.
+//!
+//! Scaling, the same for both sides: CIELAB of the XYZ of the reflectance factor π·f (the BRDF
+//! of the sample over that of the perfect reflecting diffuser, 1/π), relative to the white of
+//! the perfect diffuser under the illuminant (Y = 100). Near the specular peak π·f exceeds 1 and
+//! L* exceeds 100; CIELAB is still defined there and the comparison stays like for like.
+//!
+//! The Done-when comparison uses the table fitted to all geometries; a second one fits every
+//! geometry but each tenth and compares at those held out (the colour a table predicts where it
+//! was not measured).
+//! The figures are quoted in docs/color.md.
+
+use gonio_brdf::formats::astm;
+use gonio_brdf::formats::scattered::{Sample, ScatteredFit};
+use gonio_brdf::table::colour::{ColourSpace, reduce};
+use gonio_brdf::table::{BrdfTable, Channels};
+use gonio_color::{Illuminant, Observer, SpectralToXyz, Xyz, ciede2000, white};
+use std::f64::consts::PI;
+use std::path::Path;
+
+#[test]
+fn measured_and_tabulated_cayman_colours_agree() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cayman.astm");
+    let file = astm::read(&path).unwrap();
+    let (spectral, _) = astm::import(&path, astm::default_resolution()).unwrap();
+    let all: Vec<&Sample> = file.samples.iter().collect();
+    for (illuminant, observer) in [
+        (Illuminant::D65, Observer::Cie1931TwoDegree),
+        (Illuminant::A, Observer::Cie1964TenDegree),
+    ] {
+        let de = quantiles(&spectral, &all, &file.wavelengths_nm, illuminant, observer);
+        println!(
+            "{illuminant} {observer}, all {} geometries: {de}",
+            all.len()
+        );
+        assert!(de.median < 2.0, "median CIEDE2000 {}", de.median);
+    }
+
+    let train: Vec<Sample> = file
+        .samples
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| i % 10 != 0)
+        .map(|(_, s)| s.clone())
+        .collect();
+    let held: Vec<&Sample> = file.samples.iter().step_by(10).collect();
+    let channels = Channels::Spectral {
+        wavelengths_nm: file.wavelengths_nm.clone(),
+    };
+    let fit = ScatteredFit::new(&train, None).unwrap();
+    let spectral = fit
+        .to_table(astm::default_resolution(), channels, Default::default())
+        .unwrap();
+    let (illuminant, observer) = (Illuminant::D65, Observer::Cie1931TwoDegree);
+    let de = quantiles(&spectral, &held, &file.wavelengths_nm, illuminant, observer);
+    println!(
+        "{illuminant} {observer}, {} held-out geometries: {de}",
+        held.len()
+    );
+    assert!(de.median < 2.0, "held-out median CIEDE2000 {}", de.median);
+}
+
+/// Median, 90th percentile and maximum of CIEDE2000.
+struct Quantiles {
+    median: f64,
+    p90: f64,
+    max: f64,
+}
+
+impl std::fmt::Display for Quantiles {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "CIEDE2000 median {:.3}, 90th percentile {:.3}, max {:.3}",
+            self.median, self.p90, self.max
+        )
+    }
+}
+
+/// CIEDE2000 between each sample's measured colour and the colour of `spectral`'s XYZ table at
+/// its geometry.
+fn quantiles(
+    spectral: &BrdfTable,
+    samples: &[&Sample],
+    wavelengths_nm: &[f64],
+    illuminant: Illuminant,
+    observer: Observer,
+) -> Quantiles {
+    let bands = SpectralToXyz::new(wavelengths_nm, illuminant, observer).unwrap();
+    let table = reduce(spectral, ColourSpace::Xyz, illuminant, observer).unwrap();
+    let w = white(illuminant, observer);
+    let mut de: Vec<f64> = samples
+        .iter()
+        .map(|s| {
+            let measured = bands.xyz(&s.values).unwrap().to_array().map(|v| PI * v);
+            let mut t = [0.0; 3];
+            table.eval_channels(s.wo, s.wi, &mut t);
+            let tabulated = t.map(|v| 100.0 * PI * v);
+            ciede2000(
+                Xyz::from_array(measured).to_lab(w),
+                Xyz::from_array(tabulated).to_lab(w),
+            )
+        })
+        .collect();
+    de.sort_by(f64::total_cmp);
+    let q = |p: f64| de[((de.len() - 1) as f64 * p).round() as usize];
+    Quantiles {
+        median: q(0.5),
+        p90: q(0.9),
+        max: q(1.0),
+    }
+}
