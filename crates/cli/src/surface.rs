@@ -230,6 +230,7 @@ fn info_json(map: &HeightMap, st: &Statistics) -> Value {
         "sdq": num(st.sdq),
         "sal_m": st.sal.map_or(Value::Null, num),
         "str": st.str.map_or(Value::Null, num),
+        "str_upper_bound": st.str_is_upper_bound,
         "format": meta.format,
         "instrument": meta.instrument,
         "date": meta.date,
@@ -276,7 +277,11 @@ fn info_text(path: &Path, map: &HeightMap, st: &Statistics) -> String {
     );
     s += &format!(
         "  Str {:>12}       texture aspect ratio\n",
-        opt(st.str, &|v| format!("{v:.4}"))
+        opt(st.str, &|v| if st.str_is_upper_bound {
+            format!("<= {v:.4}")
+        } else {
+            format!("{v:.4}")
+        })
     );
     for (k, v) in meta
         .extra
