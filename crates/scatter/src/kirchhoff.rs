@@ -66,7 +66,7 @@ impl Spot {
     pub fn tiled(map: &HeightMap, diameter: f64, count: usize) -> Result<Vec<Spot>> {
         let (w, h) = map_extent(map);
         let (cols, rows) = ((w / diameter) as usize, (h / diameter) as usize);
-        if !(diameter > 0.0) || count == 0 || cols * rows < count {
+        if diameter.is_nan() || diameter <= 0.0 || count == 0 || cols * rows < count {
             return Err(ScatterError::Invalid(format!(
                 "{count} spots of {:.1} µm do not fit side by side on a {:.1} × {:.1} µm map \
                  ({} fit); use a smaller spot or fewer spots",
@@ -163,7 +163,7 @@ impl Kirchhoff {
                 spot.diameter * 1e6
             )));
         }
-        if !(options.phase_tolerance > 0.0) {
+        if options.phase_tolerance.is_nan() || options.phase_tolerance <= 0.0 {
             return Err(ScatterError::Invalid(format!(
                 "phase tolerance {} rad must be positive",
                 options.phase_tolerance
@@ -230,6 +230,7 @@ impl Kirchhoff {
     /// BRDF (1/sr) for light of `wavelength` (metres) from `wi` into `wo`, unit vectors away from
     /// the surface: the direct sum at exactly this pair of directions, with its speckle.
     pub fn brdf(&self, wavelength: f64, wi: DVec3, wo: DVec3) -> Result<f64> {
+        check_wavelength(wavelength)?;
         if wi.z <= 0.0 || wo.z <= 0.0 {
             return Ok(0.0);
         }
@@ -246,11 +247,7 @@ impl Kirchhoff {
     /// Reflectance `∫_cone f cos t dω` collected by `detector` for light of `wavelength` metres
     /// from `wi`.
     pub fn reflectance(&self, wavelength: f64, wi: DVec3, detector: &Detector) -> Result<f64> {
-        if !(wavelength > 0.0 && wavelength.is_finite()) {
-            return Err(ScatterError::Invalid(format!(
-                "wavelength {wavelength} m must be positive and finite"
-            )));
-        }
+        check_wavelength(wavelength)?;
         if !(detector.half_angle > 0.0 && detector.half_angle < 0.5 * PI) {
             return Err(ScatterError::Invalid(format!(
                 "detector half-angle {}° must lie in (0, 90)",
@@ -318,6 +315,17 @@ impl Kirchhoff {
                     .collect(),
             })
             .collect())
+    }
+}
+
+/// Fails unless `wavelength` (metres) is positive and finite.
+fn check_wavelength(wavelength: f64) -> Result<()> {
+    if wavelength > 0.0 && wavelength.is_finite() {
+        Ok(())
+    } else {
+        Err(ScatterError::Invalid(format!(
+            "wavelength {wavelength} m must be positive and finite"
+        )))
     }
 }
 

@@ -175,7 +175,7 @@ pub(crate) fn cells_across(diameter: f64, a: f64) -> usize {
     loop {
         let mut m = n;
         for p in [2, 3, 5] {
-            while m % p == 0 {
+            while m.is_multiple_of(p) {
                 m /= p;
             }
         }

@@ -62,6 +62,7 @@ impl Kirchhoff {
         wi: DVec3,
         grid: &HemisphereGrid,
     ) -> Result<HemisphereTable> {
+        super::check_wavelength(wavelength)?;
         let k = TAU / wavelength;
         let r = self.sampling_refinement(k * (wi.z + 1.0))?;
         let facets = self.grid(r);

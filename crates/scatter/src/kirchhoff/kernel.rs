@@ -12,9 +12,9 @@ const ROUND_MAGIC: f64 = 6_755_399_441_055_744.0;
 
 /// π/2 in three parts for Cody-Waite reduction (fdlibm's `pio2_1`, `pio2_2`, `pio2_3`): the first
 /// two have 33 significant bits, so `q · part` is exact for |q| < 2²⁰ (phases up to 1.6·10⁶ rad).
-const PIO2_1: f64 = 1.570_796_326_734_125_614_17;
-const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11;
-const PIO2_3: f64 = 2.022_266_248_711_166_455_80e-21;
+const PIO2_1: f64 = 1.570_796_326_734_125_6;
+const PIO2_2: f64 = 6.077_100_506_303_966e-11;
+const PIO2_3: f64 = 2.022_266_248_711_166_5e-21;
 
 /// Reduction of `x` to `r = x - q π/2` with |r| ≤ π/4 (Cody-Waite with three parts), and the
 /// bits of `q + 1.5·2⁵²`, whose two lowest bits are `q mod 4` (also for negative `q`, as 2⁵¹ is a
