@@ -9,6 +9,8 @@ use anyhow::{Context, Result, bail, ensure};
 use clap::{Args, ValueEnum};
 use gonio_brdf::Ior;
 use gonio_scatter::InplaneCurve;
+use gonio_scatter::analytic::{AnalyticModel, GaussianModel};
+use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions, Spot, average_curves};
 use gonio_scatter::ray::{RayEngine, RayOptions};
 use gonio_surface::normals::NormalMethod;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -19,8 +21,10 @@ use std::path::{Path, PathBuf};
 pub struct InplaneArgs {
     /// Height map file (X3P, SDF, GSF, Gwyddion ASCII, Zygo .dat, Wyko .opd, Sensofar .plu,
     /// Digital Surf .sur, Alicona .al3d); heights and spacings are read in metres from the file.
+    /// Leave it out to compute only the analytic --model curves.
     surface: Option<PathBuf>,
-    /// Methods, comma-separated. ray: geometric optics on the height map's facets.
+    /// Methods, comma-separated. ray: geometric optics on the height map's facets; kirchhoff:
+    /// the scalar Kirchhoff integral (wave optics, needs --wavelength-nm; docs/kirchhoff.md).
     #[arg(long, value_delimiter = ',', default_value = "ray")]
     method: Vec<Method>,
     /// Incidence angles in degrees from the surface normal, comma-separated (e.g. 20,45,60,70).
@@ -54,9 +58,30 @@ pub struct InplaneArgs {
     /// source and detectors turn together about the normal).
     #[arg(long, default_value_t = 1)]
     azimuths: usize,
-    /// Wavelength in nm at which the index applies; written to the wavelength_nm column.
+    /// Wavelengths in nm, comma-separated (e.g. 500,550,600): one Kirchhoff or wave-model curve
+    /// per wavelength and incidence. The ray method does not depend on it; a single value is
+    /// written to its wavelength_nm column.
+    #[arg(long, value_delimiter = ',')]
+    wavelength_nm: Vec<f64>,
+    /// Analytic models of a Gaussian random surface to add, comma-separated: beckmann
+    /// (Beckmann-Spizzichino series with the coherent specular term), geometric (its
+    /// geometric-optics limit), microfacet (Beckmann facets with Smith masking), smooth
+    /// (first-order small-roughness limit). Needs --sq-nm and --corr-um; no SURFACE needed.
+    #[arg(long, value_delimiter = ',')]
+    model: Vec<Model>,
+    /// Model: rms height Sq of the Gaussian surface, nm.
     #[arg(long)]
-    wavelength_nm: Option<f64>,
+    sq_nm: Option<f64>,
+    /// Model: correlation length T of its Gaussian autocorrelation exp(-r²/T²), µm.
+    #[arg(long)]
+    corr_um: Option<f64>,
+    /// Kirchhoff: diameter of the illuminated spot in µm (default: the largest circle that fits
+    /// the map). A detector of half-angle alpha averages about (alpha·D/λ)² speckle grains.
+    #[arg(long)]
+    spot_um: Option<f64>,
+    /// Kirchhoff: average over this many non-overlapping spots of --spot-um (speckle averaging).
+    #[arg(long, default_value_t = 1)]
+    spots: usize,
     /// Output CSV: method,wavelength_nm,incidence_deg,scatter_deg,brdf_per_sr,reflectance,
     /// rel_uncertainty (see docs/ray-method.md).
     #[arg(short, long)]
@@ -74,6 +99,17 @@ pub struct InplaneArgs {
 pub enum Method {
     /// Geometric optics on the facets of the height map (docs/ray-method.md).
     Ray,
+    /// Scalar Kirchhoff integral over the height map (docs/kirchhoff.md).
+    Kirchhoff,
+}
+
+/// An analytic model of a Gaussian random surface (docs/kirchhoff.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Model {
+    Beckmann,
+    Geometric,
+    Microfacet,
+    Smooth,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -88,11 +124,19 @@ pub fn run(args: InplaneArgs) -> Result<()> {
     let steps = args.method.len() * args.incidence_deg.len();
     let progress = progress_bar(steps as u64);
     let mut curves: Vec<InplaneCurve> = Vec::new();
-    for method in &args.method {
+    // Without a height map only the analytic models run.
+    let methods: &[Method] = if args.surface.is_none() && !args.model.is_empty() {
+        &[]
+    } else {
+        &args.method
+    };
+    for method in methods {
         match method {
             Method::Ray => curves.extend(ray_curves(&args, &scatter_deg, &progress)?),
+            Method::Kirchhoff => curves.extend(kirchhoff_curves(&args, &scatter_deg, &progress)?),
         }
     }
+    curves.extend(model_curves(&args, &scatter_deg)?);
     progress.finish_and_clear();
     gonio_instrument::curves::write_csv(&args.output, &curves)?;
     if let Some(png) = &args.plot {
@@ -132,12 +176,22 @@ fn check_args(args: &InplaneArgs) -> Result<()> {
             "--index-imag {k}: kappa must be >= 0"
         );
     }
-    if let Some(w) = args.wavelength_nm {
+    for &w in &args.wavelength_nm {
         ensure!(
             w.is_finite() && w > 0.0,
             "--wavelength-nm {w}: must be positive"
         );
     }
+    for (flag, v) in [
+        ("--sq-nm", args.sq_nm),
+        ("--corr-um", args.corr_um),
+        ("--spot-um", args.spot_um),
+    ] {
+        if let Some(v) = v {
+            ensure!(v.is_finite() && v > 0.0, "{flag} {v}: must be positive");
+        }
+    }
+    ensure!(args.spots >= 1, "--spots must be at least 1");
     ensure!(args.azimuths >= 1, "--azimuths must be at least 1");
     ensure!(
         !(args.second_bounce && args.no_shadowing),
@@ -194,10 +248,7 @@ fn ray_curves(
     progress.set_message(format!("reading {}", path.display()));
     let map = gonio_surface::io::read(path)?;
     let options = RayOptions {
-        ior: match args.index_imag {
-            Some(k) if k > 0.0 => Ior::Conductor(Complex64::new(args.index, k)),
-            _ => Ior::Dielectric(args.index),
-        },
+        ior: ior(args),
         normals: match args.normals {
             Normals::Plane => NormalMethod::Plane,
             Normals::Spline => NormalMethod::Spline,
@@ -213,9 +264,136 @@ fn ray_curves(
     for &ti in &args.incidence_deg {
         progress.set_message(format!("ray: incidence {ti}°"));
         let mut curve = engine.inplane(ti, scatter_deg, args.aperture_deg.to_radians())?;
-        curve.wavelength_nm = args.wavelength_nm;
+        curve.wavelength_nm = match args.wavelength_nm.as_slice() {
+            [w] => Some(*w),
+            _ => None,
+        };
         curves.push(curve);
         progress.inc(1);
+    }
+    Ok(curves)
+}
+
+/// The coating's index from --index and --index-imag.
+fn ior(args: &InplaneArgs) -> Ior {
+    match args.index_imag {
+        Some(k) if k > 0.0 => Ior::Conductor(Complex64::new(args.index, k)),
+        _ => Ior::Dielectric(args.index),
+    }
+}
+
+/// Wavelengths in metres, or an error naming what needs them.
+fn wavelengths_m(args: &InplaneArgs, what: &str) -> Result<Vec<f64>> {
+    ensure!(
+        !args.wavelength_nm.is_empty(),
+        "{what} depends on the wavelength: add --wavelength-nm, e.g. --wavelength-nm 500,550,600"
+    );
+    Ok(args.wavelength_nm.iter().map(|w| w * 1e-9).collect())
+}
+
+fn kirchhoff_curves(
+    args: &InplaneArgs,
+    scatter_deg: &[f64],
+    progress: &ProgressBar,
+) -> Result<Vec<InplaneCurve>> {
+    let Some(path) = &args.surface else {
+        bail!(
+            "--method kirchhoff needs a height map: gonio inplane SURFACE --method kirchhoff ..."
+        );
+    };
+    let wavelengths = wavelengths_m(args, "--method kirchhoff")?;
+    progress.set_message(format!("reading {}", path.display()));
+    let map = gonio_surface::io::read(path)?;
+    let spots = match (args.spot_um, args.spots) {
+        (None, 1) => vec![Spot::largest(&map)],
+        (None, _) => bail!(
+            "--spots {} needs --spot-um, the diameter of each spot",
+            args.spots
+        ),
+        (Some(d), n) => {
+            Spot::tiled(&map, d * 1e-6, n).with_context(|| format!("{}", path.display()))?
+        }
+    };
+    let incidences: Vec<f64> = args.incidence_deg.iter().map(|t| t.to_radians()).collect();
+    let scatter: Vec<f64> = scatter_deg.iter().map(|t| t.to_radians()).collect();
+    let detectors = spots.len() * wavelengths.len() * incidences.len() * scatter.len();
+    progress.inc_length((detectors - incidences.len()) as u64);
+    let mut sets = Vec::new();
+    for (i, spot) in spots.iter().enumerate() {
+        progress.set_message(format!("kirchhoff: spot {}/{}", i + 1, spots.len()));
+        let options = KirchhoffOptions {
+            spot: Some(*spot),
+            ..KirchhoffOptions::new(ior(args))
+        };
+        let engine =
+            Kirchhoff::new(&map, options).with_context(|| format!("{}", path.display()))?;
+        let curves = engine
+            .inplane(
+                &wavelengths,
+                &incidences,
+                &scatter,
+                args.aperture_deg.to_radians(),
+                &|| progress.inc(1),
+            )
+            .with_context(|| format!("{}", path.display()))?;
+        sets.push(curves);
+    }
+    // Label the curves (wavelength-major, then incidence) with the values as the user wrote them.
+    let mut curves = average_curves(&sets)?;
+    let labels = args
+        .wavelength_nm
+        .iter()
+        .flat_map(|&w| args.incidence_deg.iter().map(move |&ti| (w, ti)));
+    for (curve, (w, ti)) in curves.iter_mut().zip(labels) {
+        curve.wavelength_nm = Some(w);
+        label(curve, ti, scatter_deg);
+    }
+    Ok(curves)
+}
+
+/// Write the angles in degrees exactly as the user gave them (the library works in radians, and
+/// 60° → rad → deg is 59.99999999999999).
+fn label(curve: &mut InplaneCurve, incidence_deg: f64, scatter_deg: &[f64]) {
+    curve.incidence_deg = incidence_deg;
+    for (p, &ts) in curve.points.iter_mut().zip(scatter_deg) {
+        p.scatter_deg = ts;
+    }
+}
+
+fn model_curves(args: &InplaneArgs, scatter_deg: &[f64]) -> Result<Vec<InplaneCurve>> {
+    if args.model.is_empty() {
+        return Ok(Vec::new());
+    }
+    let (Some(sq), Some(corr)) = (args.sq_nm, args.corr_um) else {
+        bail!("--model needs the surface's --sq-nm and --corr-um");
+    };
+    let model = GaussianModel::new(sq * 1e-9, corr * 1e-6, ior(args))?;
+    let scatter: Vec<f64> = scatter_deg.iter().map(|t| t.to_radians()).collect();
+    let alpha = args.aperture_deg.to_radians();
+    let mut curves = Vec::new();
+    for m in &args.model {
+        let kind = match m {
+            Model::Beckmann => AnalyticModel::Beckmann,
+            Model::Geometric => AnalyticModel::Geometric,
+            Model::Microfacet => AnalyticModel::Microfacet,
+            Model::Smooth => AnalyticModel::Smooth,
+        };
+        // Ray-optics models do not depend on the wavelength: one curve per incidence.
+        let wavelengths: Vec<Option<f64>> = if kind.is_wave() {
+            wavelengths_m(args, &format!("--model {}", kind.name()))?;
+            args.wavelength_nm.iter().map(|&w| Some(w)).collect()
+        } else {
+            vec![None]
+        };
+        for &w in &wavelengths {
+            for &ti in &args.incidence_deg {
+                let wavelength = w.map_or(f64::NAN, |w| w * 1e-9);
+                let mut curve = model.inplane(kind, wavelength, ti.to_radians(), &scatter, alpha);
+                curve.wavelength_nm = w;
+                label(&mut curve, ti, scatter_deg);
+                curves.push(curve);
+            }
+        }
     }
     Ok(curves)
 }
