@@ -35,6 +35,8 @@ mod tests;
 
 pub use hemisphere::{HemisphereGrid, HemisphereTable};
 
+use hemisphere::CellLocator;
+
 use crate::error::{Result, ScatterError};
 use crate::geometry::{CurvePoint, Detector, InplaneCurve, incidence_direction, inplane_direction};
 use glam::DVec3;
@@ -328,6 +330,7 @@ impl RayEngine {
     /// partial tables are added in chunk order (the same order whatever the thread count).
     pub fn detect_hemisphere(&self, wi: DVec3, grid: &HemisphereGrid) -> Result<HemisphereTable> {
         let wi = check_incidence(wi)?;
+        let locator = CellLocator::new(*grid);
         let mut sums = vec![Sums::default(); grid.len()];
         for k in 0..self.options.azimuths {
             let tracer = self.tracer(wi, k, None);
@@ -337,7 +340,7 @@ impl RayEngine {
                 .map(|chunk| {
                     let mut part = vec![Sums::default(); grid.len()];
                     for ray in chunk.iter().filter_map(|f| tracer.trace(f)) {
-                        part[grid.cell(ray.d)].add_ray(&ray);
+                        part[locator.cell(ray.d)].add_ray(&ray);
                     }
                     part
                 })
