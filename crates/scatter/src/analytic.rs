@@ -23,7 +23,8 @@
 
 use crate::error::{Result, ScatterError};
 use crate::geometry::{
-    CurvePoint, Detector, InplaneCurve, incidence_direction, inplane_direction, spherical_direction,
+    CurvePoint, Detector, InplaneCurve, incidence_direction, inplane_direction, label_value,
+    spherical_direction,
 };
 use glam::DVec3;
 use gonio_brdf::Ior;
@@ -195,7 +196,7 @@ impl GaussianModel {
                 };
                 let rho = self.detector_reflectance(model, wavelength, theta_i, &detector);
                 CurvePoint {
-                    scatter_deg: ts.to_degrees(),
+                    scatter_deg: label_value(ts.to_degrees()),
                     brdf_per_sr: rho / (detector.solid_angle() * ts.cos()),
                     reflectance: rho,
                     rel_uncertainty: None,
@@ -204,8 +205,8 @@ impl GaussianModel {
             .collect();
         InplaneCurve {
             method: model.name().to_string(),
-            wavelength_nm: model.is_wave().then_some(wavelength * 1e9),
-            incidence_deg: theta_i.to_degrees(),
+            wavelength_nm: model.is_wave().then_some(label_value(wavelength * 1e9)),
+            incidence_deg: label_value(theta_i.to_degrees()),
             points,
         }
     }

@@ -20,7 +20,11 @@ pub fn inplane_direction(theta_s: f64) -> DVec3 {
 /// Direction `(ts, ps)` with `ps = 0` on the specular side:
 /// `wo = (sin ts cos ps, sin ts sin ps, cos ts)`.
 pub fn spherical_direction(theta: f64, phi: f64) -> DVec3 {
-    DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos())
+    DVec3::new(
+        theta.sin() * phi.cos(),
+        theta.sin() * phi.sin(),
+        theta.cos(),
+    )
 }
 
 /// Solid angle of a cone of half-angle `alpha` (radians): `2π(1 - cos alpha)` steradians.
@@ -40,6 +44,12 @@ impl Detector {
     pub fn solid_angle(&self) -> f64 {
         cone_solid_angle(self.half_angle)
     }
+}
+
+/// A value for a curve's label (degrees, nm) rounded to 10⁻⁹, so that a quantity converted from
+/// the user's unit to SI and back reads as given (60° → rad → deg is 59.99999999999999).
+pub fn label_value(x: f64) -> f64 {
+    (x * 1e9).round() / 1e9
 }
 
 /// One point of an in-plane curve.

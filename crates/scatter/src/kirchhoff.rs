@@ -27,7 +27,9 @@ mod hemisphere;
 mod kernel;
 
 use crate::error::{Result, ScatterError};
-use crate::geometry::{CurvePoint, Detector, InplaneCurve, incidence_direction, inplane_direction};
+use crate::geometry::{
+    CurvePoint, Detector, InplaneCurve, incidence_direction, inplane_direction, label_value,
+};
 use facets::FacetGrid;
 use glam::DVec3;
 use gonio_brdf::Ior;
@@ -301,13 +303,13 @@ impl Kirchhoff {
             .zip(jobs.chunks(scatter.len().max(1)))
             .map(|(rho, job)| InplaneCurve {
                 method: "kirchhoff".into(),
-                wavelength_nm: Some(job[0].0 * 1e9),
-                incidence_deg: job[0].1.to_degrees(),
+                wavelength_nm: Some(label_value(job[0].0 * 1e9)),
+                incidence_deg: label_value(job[0].1.to_degrees()),
                 points: rho
                     .iter()
                     .zip(job)
                     .map(|(&rho, &(_, _, ts))| CurvePoint {
-                        scatter_deg: ts.to_degrees(),
+                        scatter_deg: label_value(ts.to_degrees()),
                         brdf_per_sr: rho / (omega * ts.cos()),
                         reflectance: rho,
                         rel_uncertainty: None,

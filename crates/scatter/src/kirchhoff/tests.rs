@@ -326,3 +326,16 @@ fn rough_hemisphere_albedo_matches_series() {
     }
     assert!((total / albedo - 1.0).abs() < 0.01, "{total} vs {albedo}");
 }
+
+/// Curves are labelled with the angles and wavelengths as a person writes them, not with the
+/// rounding noise of the conversion to SI and back.
+#[test]
+fn curve_labels_read_as_given() {
+    let k_engine = engine(&flat(33, 1e-6));
+    let curves = k_engine
+        .inplane(&[550e-9], &[60f64.to_radians()], &[60f64.to_radians()], 0.05, &|| {})
+        .unwrap();
+    assert_eq!(curves[0].wavelength_nm, Some(550.0));
+    assert_eq!(curves[0].incidence_deg, 60.0);
+    assert_eq!(curves[0].points[0].scatter_deg, 60.0);
+}
