@@ -7,11 +7,11 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum BrdfError {
     /// Reading or writing a file failed at the operating-system level.
-    #[error("{path}: {source}")]
+    #[error("{path}: {cause}")]
     Io {
         path: PathBuf,
-        #[source]
-        source: std::io::Error,
+        /// The operating system's error (in the message, not repeated as a source).
+        cause: std::io::Error,
     },
     /// A file was read but its content is not what its format requires.
     #[error("{path}: {problem}")]
@@ -23,10 +23,10 @@ pub enum BrdfError {
 
 impl BrdfError {
     /// An I/O error on `path`.
-    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+    pub fn io(path: impl Into<PathBuf>, cause: std::io::Error) -> Self {
         BrdfError::Io {
             path: path.into(),
-            source,
+            cause,
         }
     }
 

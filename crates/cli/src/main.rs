@@ -1,6 +1,7 @@
 //! The `gonio` command: parses flags, calls into the gonio crates and formats their results.
 //! No physics lives here.
 
+mod brdf;
 mod color;
 mod compare;
 mod demo;
@@ -41,6 +42,10 @@ enum Command {
     Study(study::StudyArgs),
     /// Run the whole pipeline on the embedded default data and write out/report.html.
     Demo(demo::DemoArgs),
+    /// Tabulated BRDFs (.gbrdf): info, import (Cornell ASTM, MERL, CSV), export (MERL, Mitsuba
+    /// tensor, PAB-Opto, CSV), plot, tabulate an analytic model, fit a model.
+    #[command(subcommand)]
+    Brdf(brdf::BrdfCommand),
 }
 
 fn main() -> ExitCode {
@@ -49,6 +54,7 @@ fn main() -> ExitCode {
         Command::Surface(cmd) => surface::run(cmd),
         Command::Compare(args) => compare::run(args),
         Command::Demo(args) => demo::run(args),
+        Command::Brdf(cmd) => brdf::run(cmd),
         Command::Study(args) => study::run(args),
         Command::Inplane(args) => inplane::run(args),
         Command::Color(args) => color::run(args),

@@ -3,8 +3,10 @@
 //! data files and CSV. Scattered samples become tables through [`scattered`].
 
 pub mod astm;
+pub mod csv;
 pub mod merl;
 pub mod mitsuba;
+pub mod pabopto;
 pub mod scattered;
 pub mod tensor;
 pub mod warp;

@@ -71,10 +71,11 @@ fn coordinates_of(a: &HalfDiff) -> [f64; 3] {
     if p > PI {
         p = 2.0 * PI - p;
     }
+    let t = a.theta_d / FRAC_PI_2;
     [
         (a.theta_h.max(0.0) / FRAC_PI_2).sqrt(),
-        a.theta_d / FRAC_PI_2,
-        p / FRAC_PI_2,
+        t * p.cos(),
+        t * p.sin(),
     ]
 }
 
@@ -172,7 +173,7 @@ impl ScatteredFit {
         let mut best = ([0.1; 3], f64::INFINITY);
         for hu in [0.03, 0.05, 0.08, 0.12] {
             for ht in [0.05, 0.08, 0.13] {
-                for hp in [0.3, 0.6, 1.2] {
+                for hp in [0.05, 0.1, 0.2] {
                     let bw = [hu, ht, hp];
                     let err: f64 = (0..self.points.len())
                         .into_par_iter()
@@ -217,6 +218,10 @@ impl ScatteredFit {
         let mut a = [[0.0f64; 4]; 4];
         let mut rhs = vec![0.0f64; 4 * m];
         let mut wsum = 0.0;
+        // Range of the values of the well-weighted samples: the plane may not extrapolate
+        // beyond it.
+        let mut lo = vec![f64::INFINITY; m];
+        let mut hi = vec![f64::NEG_INFINITY; m];
         for (j, y) in self.points.iter().enumerate() {
             if Some(j) == skip {
                 continue;
@@ -241,6 +246,10 @@ impl ScatteredFit {
                 for r in 0..4 {
                     rhs[r * m + k] += w * d[r] * zk;
                 }
+                if w > 0.05 {
+                    lo[k] = lo[k].min(*zk);
+                    hi[k] = hi[k].max(*zk);
+                }
             }
         }
         if wsum < 1e-6 {
@@ -252,7 +261,13 @@ impl ScatteredFit {
         }
         match solve4(a, &mut rhs, m) {
             Some(()) => {
-                out.copy_from_slice(&rhs[..m]);
+                for (k, o) in out.iter_mut().enumerate() {
+                    *o = if lo[k] <= hi[k] {
+                        rhs[k].clamp(lo[k], hi[k])
+                    } else {
+                        rhs[k]
+                    };
+                }
                 true
             }
             None => false,

@@ -17,9 +17,9 @@
 
 mod analysis;
 mod builder;
-mod fit_samples;
 pub mod colour;
 pub mod coords;
+mod fit_samples;
 mod sampler;
 
 pub use analysis::AlbedoCurve;

@@ -1,0 +1,550 @@
+//! `gonio brdf`: tabulated BRDFs: summary, import, export, plots, tabulating an analytic model and
+//! fitting a model to a table. The work is done by the gonio-brdf crate.
+
+use crate::plot::{self, LinePlot, Series};
+use anyhow::{Context, Result, bail};
+use clap::{Args, Subcommand, ValueEnum};
+use glam::DVec3;
+use gonio_brdf::Brdf;
+use gonio_brdf::fit::{FitKind, FitOptions, fit};
+use gonio_brdf::formats::{astm, csv, merl, mitsuba, pabopto};
+use gonio_brdf::gbrdf;
+use gonio_brdf::models::ModelSpec;
+use gonio_brdf::table::colour::{self, ColourSpace};
+use gonio_brdf::table::{BrdfTable, Provenance, Resolution};
+use gonio_color::{Illuminant, Observer};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::{Path, PathBuf};
+
+/// Subcommands of `gonio brdf`.
+#[derive(Subcommand)]
+pub enum BrdfCommand {
+    /// Summary of a .gbrdf table: resolution, channels, provenance, albedo at 0/30/60/80°,
+    /// reciprocity error and peak value (1/sr).
+    Info(InfoArgs),
+    /// Import a measurement or another format into a .gbrdf table: Cornell ASTM text (.astm),
+    /// MERL .binary, or CSV samples (theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,<values per sr>).
+    Import(ImportArgs),
+    /// Export a .gbrdf table to MERL .binary, the Mitsuba 3 / pbrt-v4 tensor .bsdf, Radiance
+    /// PAB-Opto data files (a directory, one file per incidence) or CSV.
+    Export(ExportArgs),
+    /// Plot a table: in-plane curves on a log scale and a polar lobe view, as PNG.
+    Plot(PlotArgs),
+    /// Tabulate an analytic model into a .gbrdf table.
+    Tabulate(TabulateArgs),
+    /// Fit an analytic model to a table (Levenberg-Marquardt, weighted by cos θo dω).
+    Fit(FitArgs),
+    /// Compute the table of a height map by the ray method or the Kirchhoff approximation
+    /// (docs/brdf-tables.md, "Computing a table from a height map").
+    Compute(crate::brdf_compute::ComputeArgs),
+}
+
+#[derive(Args)]
+pub struct InfoArgs {
+    /// The table (.gbrdf).
+    table: PathBuf,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Formats `gonio brdf import` reads.
+#[derive(Clone, Copy, ValueEnum)]
+pub enum ImportFormat {
+    /// From the file extension (.astm, .binary, .csv).
+    Auto,
+    Astm,
+    Merl,
+    Csv,
+}
+
+#[derive(Args)]
+pub struct ImportArgs {
+    /// The file to import.
+    file: PathBuf,
+    /// Output table (.gbrdf).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Input format.
+    #[arg(long, value_enum, default_value = "auto")]
+    format: ImportFormat,
+    /// Nodes of the table built from scattered samples (ASTM, CSV): theta_h,theta_d,phi_d.
+    #[arg(long, value_delimiter = ',', default_values_t = [45usize, 45, 48])]
+    resolution: Vec<usize>,
+    /// Make the table reciprocal (each pair f(wi, wo), f(wo, wi) replaced by its mean).
+    #[arg(long)]
+    enforce_reciprocity: bool,
+    /// Reduce a spectral table to colour: `xyz` (CIE XYZ / 100, each in 1/sr) or `srgb` (linear
+    /// sRGB in 1/sr, white-balanced to D65 by Bradford), under --illuminant, seen by
+    /// --observer (docs/color.md). Default: keep the spectra.
+    #[arg(long, value_name = "SPACE",
+          value_parser = |s: &str| s.parse::<ColourSpace>().map_err(|e| e.to_string()))]
+    colour: Option<ColourSpace>,
+    /// CIE illuminant for --colour: D65 (daylight) or A (tungsten).
+    #[arg(long, default_value = "D65", value_parser = crate::color::parse_illuminant)]
+    illuminant: Illuminant,
+    /// CIE observer for --colour, by field size in degrees: 2 (CIE 1931) or 10 (CIE 1964).
+    #[arg(long, value_name = "DEG", default_value = "2",
+          value_parser = crate::color::parse_observer)]
+    observer: Observer,
+    /// Print the import summary as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Formats `gonio brdf export` writes.
+#[derive(Clone, Copy, ValueEnum)]
+pub enum ExportFormat {
+    Merl,
+    Mitsuba,
+    Pabopto,
+    Csv,
+}
+
+#[derive(Args)]
+pub struct ExportArgs {
+    /// The table (.gbrdf).
+    table: PathBuf,
+    /// Output format.
+    #[arg(long, value_enum)]
+    format: ExportFormat,
+    /// Output file (a directory for pabopto).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// CSV: angular step of the grid in degrees.
+    #[arg(long, default_value_t = 5.0)]
+    step_deg: f64,
+    /// pabopto: incidence angles in degrees, one file each.
+    #[arg(long, value_delimiter = ',', default_values_t = pabopto::DEFAULT_THETA_I_DEG)]
+    incidence_deg: Vec<f64>,
+}
+
+#[derive(Args)]
+pub struct PlotArgs {
+    /// The table (.gbrdf).
+    table: PathBuf,
+    /// Output PNG.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Incidence angles of the in-plane curves, degrees.
+    #[arg(long, value_delimiter = ',', default_values_t = [20.0, 45.0, 60.0, 75.0])]
+    incidence_deg: Vec<f64>,
+}
+
+#[derive(Args)]
+pub struct TabulateArgs {
+    /// The model as JSON, inline or in a file, e.g. '{"model":"ward","specular":0.05,"alpha":0.1,
+    /// "diffuse":0.3}' (fields in docs/brdf-models.md).
+    #[arg(long)]
+    model: String,
+    /// Nodes theta_h,theta_d,phi_d (phi_d even).
+    #[arg(long, value_delimiter = ',', default_values_t = [90usize, 90, 180])]
+    resolution: Vec<usize>,
+    /// One channel (the mean of R, G, B) instead of three.
+    #[arg(long)]
+    mono: bool,
+    /// Output table (.gbrdf).
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+/// Model families `gonio brdf fit` fits.
+#[derive(Clone, Copy, ValueEnum)]
+pub enum FitModel {
+    Ward,
+    Beckmann,
+    Ggx,
+    Phong,
+}
+
+#[derive(Args)]
+pub struct FitArgs {
+    /// The table (.gbrdf).
+    table: PathBuf,
+    /// Model family.
+    #[arg(long, value_enum)]
+    model: FitModel,
+    /// Add a Lambert term.
+    #[arg(long)]
+    diffuse: bool,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    json: bool,
+    /// Also plot table and fit in the plane of incidence (PNG).
+    #[arg(long)]
+    plot: Option<PathBuf>,
+}
+
+/// Run a `gonio brdf` subcommand.
+pub fn run(cmd: BrdfCommand) -> Result<()> {
+    match cmd {
+        BrdfCommand::Info(a) => info(a),
+        BrdfCommand::Import(a) => import(a),
+        BrdfCommand::Export(a) => export(a),
+        BrdfCommand::Plot(a) => plot_table(a),
+        BrdfCommand::Tabulate(a) => tabulate(a),
+        BrdfCommand::Fit(a) => fit_table(a),
+        BrdfCommand::Compute(a) => crate::brdf_compute::run(a),
+    }
+}
+
+fn load(path: &Path) -> Result<BrdfTable> {
+    gbrdf::open_mapped(path)
+        .context("cannot read the table (write one with `gonio brdf import` or `tabulate`)")
+}
+
+fn spinner(msg: &str) -> ProgressBar {
+    let pb = ProgressBar::new_spinner();
+    pb.set_style(
+        ProgressStyle::with_template("{spinner} {msg} {elapsed}").expect("valid template"),
+    );
+    pb.set_message(msg.to_string());
+    pb.enable_steady_tick(std::time::Duration::from_millis(120));
+    pb
+}
+
+fn resolution(v: &[usize]) -> Result<Resolution> {
+    if v.len() != 3 {
+        bail!("--resolution takes three node counts theta_h,theta_d,phi_d, e.g. 90,90,180");
+    }
+    let r = Resolution::isotropic(v[0], v[1], v[2]);
+    r.validate()
+        .map_err(|e| anyhow::anyhow!("--resolution: {e}"))?;
+    Ok(r)
+}
+
+/// Source in the x-z plane at negative x, the convention of in-plane goniometers.
+fn source(theta_deg: f64) -> DVec3 {
+    let t = theta_deg.to_radians();
+    DVec3::new(-t.sin(), 0.0, t.cos())
+}
+
+/// Detector at signed in-plane angle (positive: specular side).
+fn detector(theta_deg: f64) -> DVec3 {
+    let t = theta_deg.to_radians();
+    DVec3::new(t.sin(), 0.0, t.cos())
+}
+
+fn info(a: InfoArgs) -> Result<()> {
+    let t = load(&a.table)?;
+    let angles = [0.0, 30.0, 60.0, 80.0];
+    let albedo = t.albedo_curve(&angles);
+    let reciprocity = t.reciprocity_error();
+    let (peak, cell) = t.peak();
+    let (wi, wo) = t.resolution().cell_angles(cell).to_dirs();
+    let deg = |d: DVec3| {
+        (
+            d.z.clamp(-1.0, 1.0).acos().to_degrees(),
+            d.y.atan2(d.x).to_degrees(),
+        )
+    };
+    if a.json {
+        let rows: Vec<_> = albedo
+            .theta_i_deg
+            .iter()
+            .zip(&albedo.albedo)
+            .map(|(t, a)| serde_json::json!({"theta_i_deg": t, "albedo": a}))
+            .collect();
+        let out = serde_json::json!({
+            "file": a.table.display().to_string(),
+            "resolution": t.resolution(),
+            "isotropic": t.resolution().is_isotropic(),
+            "channels": t.channels(),
+            "provenance": t.provenance(),
+            "albedo": rows,
+            "reciprocity_error": reciprocity,
+            "peak_per_sr": peak,
+            "peak_theta_i_deg": deg(wi).0, "peak_phi_i_deg": deg(wi).1,
+            "peak_theta_o_deg": deg(wo).0, "peak_phi_o_deg": deg(wo).1,
+        });
+        println!("{}", serde_json::to_string_pretty(&out)?);
+        return Ok(());
+    }
+    println!("table        {}", a.table.display());
+    println!(
+        "resolution   {} ({})",
+        t.resolution().describe(),
+        if t.resolution().is_isotropic() {
+            "isotropic"
+        } else {
+            "anisotropic"
+        }
+    );
+    println!("channels     {}", t.channels().describe());
+    let p = t.provenance();
+    for (k, v) in [
+        ("source", &p.source),
+        ("method", &p.method),
+        ("date", &p.date),
+        ("description", &p.description),
+    ] {
+        if let Some(v) = v {
+            println!("{k:<12} {v}");
+        }
+    }
+    for (th, a) in albedo.theta_i_deg.iter().zip(&albedo.albedo) {
+        let mean = a.iter().sum::<f64>() / a.len() as f64;
+        println!("albedo {th:>3}°  {mean:.4} (mean of channels)");
+    }
+    println!("reciprocity  {reciprocity:.4} (relative |f(wi,wo) - f(wo,wi)|)");
+    let (ti, pi) = deg(wi);
+    let (to, po) = deg(wo);
+    println!(
+        "peak         {peak:.4e} 1/sr at theta_i {ti:.2}°, phi_i {pi:.1}°, theta_o {to:.2}°, phi_o {po:.1}°"
+    );
+    Ok(())
+}
+
+fn import(a: ImportArgs) -> Result<()> {
+    let ext = a
+        .file
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    let format = match (a.format, ext.as_str()) {
+        (ImportFormat::Auto, "astm") => ImportFormat::Astm,
+        (ImportFormat::Auto, "binary") => ImportFormat::Merl,
+        (ImportFormat::Auto, "csv") => ImportFormat::Csv,
+        (ImportFormat::Auto, _) => bail!(
+            "{}: cannot tell the format from the extension; give --format astm|merl|csv",
+            a.file.display()
+        ),
+        (f, _) => f,
+    };
+    let res = resolution(&a.resolution)?;
+    let pb = spinner("fitting and resampling");
+    let (mut table, residual) = match format {
+        ImportFormat::Astm => astm::import(&a.file, res).map(|(t, r)| (t, Some(r)))?,
+        ImportFormat::Csv => csv::import(&a.file, res).map(|(t, r)| (t, Some(r)))?,
+        ImportFormat::Merl => (merl::read(&a.file)?, None),
+        ImportFormat::Auto => unreachable!("resolved above"),
+    };
+    pb.finish_and_clear();
+    if a.enforce_reciprocity {
+        table.enforce_reciprocity();
+    }
+    if let Some(space) = a.colour {
+        table = colour::reduce(&table, space, a.illuminant, a.observer)
+            .with_context(|| format!("{}: --colour", a.file.display()))?;
+    }
+    gbrdf::write(&table, &a.output)?;
+    if a.json {
+        let out = serde_json::json!({
+            "output": a.output.display().to_string(),
+            "resolution": table.resolution(),
+            "channels": table.channels(),
+            "fit_residual": residual,
+        });
+        println!("{}", serde_json::to_string_pretty(&out)?);
+    } else {
+        println!(
+            "wrote {} ({}, {})",
+            a.output.display(),
+            table.resolution().describe(),
+            table.channels().describe()
+        );
+        if let Some(r) = residual {
+            println!(
+                "fit residual at the {} measured values above 1e-3 1/sr: median {:.1}%, rms {:.1}%",
+                r.count,
+                100.0 * r.median_relative,
+                100.0 * r.rms_relative
+            );
+        }
+    }
+    Ok(())
+}
+
+fn export(a: ExportArgs) -> Result<()> {
+    let t = load(&a.table)?;
+    let pb = spinner("exporting");
+    match a.format {
+        ExportFormat::Merl => merl::write(&t, &a.output)?,
+        ExportFormat::Mitsuba => mitsuba::write(&t, &a.output, mitsuba::MitsubaOptions::default())?,
+        ExportFormat::Csv => csv::write(&t, &a.output, a.step_deg)?,
+        ExportFormat::Pabopto => {
+            let name = a
+                .table
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or("brdf");
+            let files = pabopto::write(&t, &a.output, name, &a.incidence_deg)?;
+            pb.finish_and_clear();
+            println!("wrote {} files into {}", files.len(), a.output.display());
+            return Ok(());
+        }
+    }
+    pb.finish_and_clear();
+    println!("wrote {}", a.output.display());
+    Ok(())
+}
+
+/// In-plane curves (mean of channels) of any BRDF at the given incidences.
+fn in_plane(brdf: &dyn Brdf, incidence_deg: &[f64], label: &str, markers: bool) -> Vec<Series> {
+    incidence_deg
+        .iter()
+        .enumerate()
+        .map(|(k, &ti)| Series {
+            label: format!("{label}{ti}°"),
+            points: (-89..=89)
+                .map(|ts| {
+                    let f = brdf.eval(detector(ts as f64), source(ti));
+                    (ts as f64, (f.x + f.y + f.z) / 3.0)
+                })
+                .collect(),
+            colour: plot::palette(k),
+            markers,
+        })
+        .collect()
+}
+
+fn plot_table(a: PlotArgs) -> Result<()> {
+    let t = load(&a.table)?;
+    let curves = in_plane(&t, &a.incidence_deg, "theta_i ", false);
+    // Polar lobe view: f cos θo, normalised per curve, in the plane of incidence.
+    let lobes: Vec<Series> = curves
+        .iter()
+        .zip(&a.incidence_deg)
+        .map(|(c, ti)| {
+            let max = c
+                .points
+                .iter()
+                .map(|(ts, f)| f * ts.to_radians().cos())
+                .fold(0.0, f64::max);
+            Series {
+                label: format!("theta_i {ti}°"),
+                points: c
+                    .points
+                    .iter()
+                    .map(|(ts, f)| {
+                        let r = if max > 0.0 {
+                            f * ts.to_radians().cos() / max
+                        } else {
+                            0.0
+                        };
+                        (r * ts.to_radians().sin(), r * ts.to_radians().cos())
+                    })
+                    .collect(),
+                colour: c.colour,
+                markers: false,
+            }
+        })
+        .collect();
+    let title = a
+        .table
+        .file_name()
+        .and_then(|s| s.to_str())
+        .unwrap_or("table")
+        .to_string();
+    plot::render_png(&a.output, (1400, 600), |root| {
+        let (left, right) = root.split_horizontally(800);
+        plot::draw_line_plot(
+            &left,
+            &LinePlot {
+                title: &format!("{title}: in-plane BRDF"),
+                x_label: "theta_s_deg (signed, + = specular side)",
+                y_label: "f_per_sr (mean of channels)",
+                log_y: true,
+            },
+            &curves,
+        )?;
+        plot::draw_line_plot(
+            &right,
+            &LinePlot {
+                title: "lobes: f cos(theta_s), normalised",
+                x_label: "sin(theta_s) (+ = specular side)",
+                y_label: "cos(theta_s)",
+                log_y: false,
+            },
+            &lobes,
+        )
+    })?;
+    println!("wrote {}", a.output.display());
+    Ok(())
+}
+
+fn tabulate(a: TabulateArgs) -> Result<()> {
+    let text = if Path::new(&a.model).is_file() {
+        std::fs::read_to_string(&a.model).with_context(|| format!("{}: cannot read", a.model))?
+    } else {
+        a.model.clone()
+    };
+    let spec: ModelSpec = serde_json::from_str(&text)
+        .with_context(|| "--model: not a model description (see docs/brdf-models.md), e.g. '{\"model\":\"ward\",\"specular\":0.05,\"alpha\":0.1}'")?;
+    let model = spec.build()?;
+    let res = resolution(&a.resolution)?;
+    let pb = spinner("tabulating");
+    let table = BrdfTable::from_brdf(&model, res, a.mono, Provenance::new(text.trim(), "model"))?;
+    pb.finish_and_clear();
+    gbrdf::write(&table, &a.output)?;
+    println!(
+        "wrote {} ({}, {})",
+        a.output.display(),
+        table.resolution().describe(),
+        table.channels().describe()
+    );
+    Ok(())
+}
+
+fn fit_table(a: FitArgs) -> Result<()> {
+    let t = load(&a.table)?;
+    let kind = match a.model {
+        FitModel::Ward => FitKind::Ward,
+        FitModel::Beckmann => FitKind::Beckmann,
+        FitModel::Ggx => FitKind::Ggx,
+        FitModel::Phong => FitKind::Phong,
+    };
+    let samples = t.fit_samples(80f64.to_radians());
+    let pb = spinner("fitting");
+    let result = fit(
+        kind,
+        &samples,
+        FitOptions {
+            diffuse: a.diffuse,
+            ..FitOptions::default()
+        },
+    )?;
+    pb.finish_and_clear();
+    if let Some(path) = &a.plot {
+        let model = result.spec.build()?;
+        let inc = [20.0, 45.0, 70.0];
+        let mut series = in_plane(&t, &inc, "table ", true);
+        series.extend(in_plane(&model, &inc, "fit ", false));
+        plot::line_plot_png(
+            path,
+            (900, 600),
+            &LinePlot {
+                title: &format!("{} fit of {}", kind.name(), a.table.display()),
+                x_label: "theta_s_deg (signed, + = specular side)",
+                y_label: "f_per_sr (mean of channels)",
+                log_y: true,
+            },
+            &series,
+        )?;
+    }
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&result)?);
+        return Ok(());
+    }
+    println!(
+        "model        {}{} (fitted to the mean of the channels)",
+        kind.name(),
+        if a.diffuse { " + lambert" } else { "" }
+    );
+    for p in &result.parameters {
+        println!("{:<12} {:.6} ± {:.6}", p.name, p.value, p.uncertainty);
+    }
+    println!(
+        "residual     {:.2}% (weighted rms relative to the data)",
+        100.0 * result.residual_rms_relative
+    );
+    println!(
+        "converged    {} ({} evaluations, {} samples)",
+        result.converged,
+        result.evaluations,
+        samples.len()
+    );
+    println!("spec         {}", serde_json::to_string(&result.spec)?);
+    Ok(())
+}
