@@ -2,17 +2,21 @@
 //! and resampled on the table's grid (as NIST did with the painted-sample tables of Davidson).
 //!
 //! Each sample `(wi, wo, f)` is placed at three coordinates in which an isotropic BRDF is smooth:
-//! `u = sqrt(theta_h / 90°)` (the table's own spacing, which spreads the specular peak),
-//! `t = theta_d / 90°`, and `p = phi_d` folded to [0, 180°] / 90° by mirror symmetry about the
-//! plane of incidence (`phi_d ~ 360° - phi_d`), which an isotropic surface has. Reciprocity is
-//! not assumed: folding the Cornell paints by it as well (`phi_d ~ phi_d + 180°`) triples the
-//! held-out error, so those measurements are not reciprocal within their scatter.
+//! `u = sqrt(theta_h / 90°)` (the table's own spacing, which spreads the specular peak), and
+//! `(t cos p, t sin p)` with `t = theta_d / 90°` and `p = phi_d` folded into [0, 180°] by mirror
+//! symmetry about the plane of incidence (`phi_d ~ 360° - phi_d`), which an isotropic surface
+//! has. The polar form keeps `theta_d = 0`, where phi_d is undefined, a single point.
+//! Reciprocity is not assumed: folding the Cornell paints by it as well
+//! (`phi_d ~ phi_d + 180°`) tripled the held-out error, so those measurements are not
+//! reciprocal within their scatter.
 //! At any point the value is the local linear regression (locally weighted least squares of a
 //! plane, W. S. Cleveland, "Robust locally weighted regression and smoothing scatterplots",
 //! JASA 74, 1979) of `ln(f + eps)` on the samples, with Gaussian weights of per-coordinate
-//! bandwidths and a small ridge on the slopes. `eps` (1% of the channel's median) keeps zeros
-//! finite. Unless given, the bandwidths are chosen by leave-one-out cross-validation of the
-//! channel mean from a small grid. The fit residual at the measured points is reported.
+//! bandwidths and a small ridge on the slopes, clamped to the range of the samples that weigh
+//! in (so that a plane never extrapolates into a spike where samples are sparse). `eps` (1% of
+//! the channel's median) keeps zeros finite. Unless given, the bandwidths are chosen by
+//! leave-one-out cross-validation of the channel mean from a small grid. The fit residual at
+//! the measured points is reported.
 
 use crate::error::{BrdfError, Result};
 use crate::table::{BrdfTable, Channels, HalfDiff, Provenance, Resolution, TableBuilder};
@@ -46,7 +50,7 @@ pub struct FitResidual {
 /// Cornell files print 6 decimals and their smallest values scatter by tens of per cent.
 pub const NOISE_FLOOR_PER_SR: f64 = 1e-3;
 
-/// Bandwidths of the kernel in the (u, t, p) coordinates.
+/// Bandwidths of the kernel in the (u, t cos p, t sin p) coordinates.
 pub type Bandwidths = [f64; 3];
 
 /// A smoothing interpolant of scattered samples.
@@ -60,7 +64,7 @@ pub struct ScatteredFit {
     log_range: (f64, f64),
 }
 
-/// The (u, t, p) coordinates of a pair of directions.
+/// The (u, t cos p, t sin p) coordinates of a pair of directions.
 pub fn coordinates(wi: DVec3, wo: DVec3) -> Option<[f64; 3]> {
     let a = HalfDiff::from_dirs(wi, wo)?;
     Some(coordinates_of(&a))
