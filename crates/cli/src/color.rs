@@ -38,11 +38,11 @@ struct XyzArgs {
     json: bool,
 }
 
-fn parse_illuminant(name: &str) -> Result<Illuminant, String> {
+pub(crate) fn parse_illuminant(name: &str) -> Result<Illuminant, String> {
     Illuminant::from_name(name).ok_or_else(|| format!("unknown illuminant `{name}`; use D65 or A"))
 }
 
-fn parse_observer(deg: &str) -> Result<Observer, String> {
+pub(crate) fn parse_observer(deg: &str) -> Result<Observer, String> {
     deg.trim()
         .parse()
         .ok()
