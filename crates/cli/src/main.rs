@@ -9,6 +9,7 @@ mod inplane;
 mod report;
 mod study;
 mod plot;
+mod render;
 mod surface;
 
 use clap::{Parser, Subcommand};
@@ -46,6 +47,9 @@ enum Command {
     /// tensor, PAB-Opto, CSV), plot, tabulate an analytic model, fit a model.
     #[command(subcommand)]
     Brdf(brdf::BrdfCommand),
+    /// Render a scene file with the path tracer:
+    /// `gonio render SCENE.toml [--spp N] [--seed S] -o OUT.{exr,hdr,png}` (docs/render.md).
+    Render(render::RenderArgs),
 }
 
 fn main() -> ExitCode {
@@ -58,6 +62,7 @@ fn main() -> ExitCode {
         Command::Study(args) => study::run(args),
         Command::Inplane(args) => inplane::run(args),
         Command::Color(args) => color::run(args),
+        Command::Render(args) => render::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
