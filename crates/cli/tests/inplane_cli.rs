@@ -1,0 +1,143 @@
+//! End-to-end tests of `gonio inplane`: a synthesised height map through the real binary, the
+//! CSV columns, the JSON, the plot, and errors that exit with status 2 without writing output.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn gonio(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_gonio"))
+        .args(args)
+        .output()
+        .expect("run gonio")
+}
+
+fn ok(args: &[&str]) -> Output {
+    let out = gonio(args);
+    assert!(
+        out.status.success(),
+        "gonio {args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
+fn gen_map(dir: &Path) -> String {
+    let path = dir.join("gauss.x3p").to_str().unwrap().to_string();
+    let args = [
+        "surface",
+        "gen",
+        "--sq-nm",
+        "300",
+        "--corr-um",
+        "6",
+        "--size",
+        "256",
+    ];
+    ok(&[&args[..], &["--dx-um", "0.5", "--seed", "4", "-o", &path]].concat());
+    path
+}
+
+#[test]
+fn ray_curves_csv_json_and_plot() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = gen_map(dir.path());
+    let csv = dir.path().join("out.csv");
+    let png = dir.path().join("out.png");
+    let out = ok(&[
+        "inplane",
+        &map,
+        "--method",
+        "ray",
+        "--incidence-deg",
+        "20,60",
+        "--scatter-deg=-75:75:1",
+        "--aperture-deg",
+        "1.4",
+        "--index",
+        "1.55",
+        "--wavelength-nm",
+        "550",
+        "-o",
+        csv.to_str().unwrap(),
+        "--plot",
+        png.to_str().unwrap(),
+        "--json",
+    ]);
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap();
+    assert!(
+        header
+            .starts_with("method,wavelength_nm,incidence_deg,scatter_deg,brdf_per_sr,reflectance")
+    );
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 2 * 151);
+    // The brightest detector of each curve lies near the specular angle +ti (slopes ~0.1 rad).
+    for ti in ["20", "60"] {
+        let best = rows
+            .iter()
+            .filter(|r| r[0] == "ray" && r[1] == "550" && r[2] == ti)
+            .max_by(|a, b| {
+                a[5].parse::<f64>()
+                    .unwrap()
+                    .total_cmp(&b[5].parse::<f64>().unwrap())
+            })
+            .unwrap();
+        let peak: f64 = best[3].parse().unwrap();
+        assert!(
+            (peak - ti.parse::<f64>().unwrap()).abs() <= 6.0,
+            "{ti}: peak at {peak}"
+        );
+    }
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["curves"].as_array().unwrap().len(), 2);
+    assert_eq!(json["curves"][1]["incidence_deg"], 60.0);
+    assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+}
+
+#[test]
+fn bad_input_exits_2_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = gen_map(dir.path());
+    let csv = dir.path().join("x.csv");
+    let csv = csv.to_str().unwrap();
+    for args in [
+        vec!["inplane", &map, "--incidence-deg", "95", "-o", csv],
+        vec![
+            "inplane",
+            &map,
+            "--incidence-deg",
+            "20",
+            "--scatter-deg=5:1:1",
+            "-o",
+            csv,
+        ],
+        vec![
+            "inplane",
+            &map,
+            "--incidence-deg",
+            "20",
+            "--aperture-deg",
+            "0",
+            "-o",
+            csv,
+        ],
+        vec!["inplane", "--incidence-deg", "20", "-o", csv],
+        vec!["inplane", "missing.x3p", "--incidence-deg", "20", "-o", csv],
+        vec![
+            "inplane",
+            &map,
+            "--incidence-deg",
+            "20",
+            "--no-shadowing",
+            "--second-bounce",
+            "-o",
+            csv,
+        ],
+    ] {
+        let out = gonio(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(!String::from_utf8_lossy(&out.stderr).is_empty());
+    }
+    assert!(!Path::new(csv).exists());
+}
