@@ -2,6 +2,7 @@
 //! No physics lives here.
 
 mod brdf;
+mod brdf_compute;
 mod color;
 mod compare;
 mod demo;
