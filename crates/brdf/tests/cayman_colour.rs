@@ -181,3 +181,61 @@ fn colour_travel_is_kept() {
     assert!(travel.0 > 20.0, "the data's hue travel {:.1}°", travel.0);
     assert!((travel.0 - travel.1).abs() < 3.0, "{travel:?}");
 }
+
+/// What the tristimulus shortcut (render in linear sRGB, multiply colours at each bounce) costs
+/// against spectral transport for paths that meet the Cayman paint twice: for pairs of measured
+/// geometries, the colour of the product of the two spectra (π f_a · π f_b) against the product
+/// of their linear sRGB colours, both through the same white-balanced D65 reduction. One bounce
+/// is exact (the reduction is linear), and so is a second bounce on a grey surface.
+#[test]
+fn tristimulus_shortcut_error_on_two_bounces() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cayman.astm");
+    let file = astm::read(&path).unwrap();
+    let bands = SpectralToXyz::new(
+        &file.wavelengths_nm,
+        Illuminant::D65,
+        Observer::Cie1931TwoDegree,
+    )
+    .unwrap();
+    let w = gonio_color::srgb::srgb_white();
+    let lab = |c: gonio_color::LinearSrgb| c.to_xyz().to_lab(w);
+    let rgb = |v: &[f64]| bands.linear_srgb(v).unwrap();
+    let spectra: Vec<Vec<f64>> = file
+        .samples
+        .iter()
+        .step_by(7)
+        .map(|s| s.values.iter().map(|v| PI * v).collect())
+        .collect();
+    let mut de = Vec::new();
+    for a in &spectra {
+        let ca = rgb(a);
+        let grey: Vec<f64> = a.iter().map(|v| 0.4 * v).collect();
+        let shortcut = gonio_color::LinearSrgb {
+            r: 0.4 * ca.r,
+            g: 0.4 * ca.g,
+            b: 0.4 * ca.b,
+        };
+        assert!(ciede2000(lab(rgb(&grey)), lab(shortcut)) < 1e-9);
+        for b in &spectra {
+            let cb = rgb(b);
+            let product: Vec<f64> = a.iter().zip(b).map(|(x, y)| x * y).collect();
+            let shortcut = gonio_color::LinearSrgb {
+                r: ca.r * cb.r,
+                g: ca.g * cb.g,
+                b: ca.b * cb.b,
+            };
+            de.push(ciede2000(lab(rgb(&product)), lab(shortcut)));
+        }
+    }
+    de.sort_by(f64::total_cmp);
+    let q = |p: f64| de[((de.len() - 1) as f64 * p).round() as usize];
+    println!(
+        "two Cayman bounces, {} pairs: shortcut vs spectral CIEDE2000 median {:.2}, 90th \
+         percentile {:.2}, max {:.2}",
+        de.len(),
+        q(0.5),
+        q(0.9),
+        q(1.0)
+    );
+    assert!(de.iter().all(|d| d.is_finite()));
+}
