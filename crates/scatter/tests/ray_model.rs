@@ -57,7 +57,7 @@ fn rotate_z(v: DVec3, phi: f64) -> DVec3 {
     DVec3::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z)
 }
 
-const SEEDS: [u64; 3] = [1, 2, 3];
+const SEEDS: [u64; 2] = [1, 2];
 const AZIMUTHS: usize = 8;
 const INCIDENCE_DEG: [f64; 4] = [20.0, 45.0, 60.0, 70.0];
 
