@@ -7,22 +7,17 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
     /// Reading or writing a file failed at the operating-system level.
-    #[error("{path}: {source}")]
+    #[error("{path}: {error}")]
     Io {
         path: PathBuf,
-        #[source]
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// A scene file (or a file it refers to) is malformed or asks for something impossible.
     #[error("{path}: {problem}")]
     Scene { path: PathBuf, problem: String },
-    /// A BRDF could not be built or loaded.
-    #[error("{path}: {source}")]
-    Brdf {
-        path: PathBuf,
-        #[source]
-        source: gonio_brdf::BrdfError,
-    },
+    /// A BRDF could not be built or loaded (the error names the file).
+    #[error(transparent)]
+    Brdf(#[from] gonio_brdf::BrdfError),
     /// An image could not be read or written.
     #[error("{path}: {problem}")]
     Image { path: PathBuf, problem: String },

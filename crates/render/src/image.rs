@@ -144,7 +144,7 @@ impl Image {
             .unwrap_or(Path::new("."));
         let io = |e: std::io::Error| RenderError::Io {
             path: path.to_path_buf(),
-            source: e,
+            error: e,
         };
         let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(io)?;
         {
@@ -162,12 +162,12 @@ impl Image {
         let img = image::ImageReader::open(path)
             .map_err(|e| RenderError::Io {
                 path: path.to_path_buf(),
-                source: e,
+                error: e,
             })?
             .with_guessed_format()
             .map_err(|e| RenderError::Io {
                 path: path.to_path_buf(),
-                source: e,
+                error: e,
             })?
             .decode()
             .map_err(|e| RenderError::image(path, format!("cannot decode: {e}")))?;

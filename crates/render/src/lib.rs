@@ -23,6 +23,7 @@ pub mod integrator;
 pub mod light;
 pub mod material;
 pub mod scene;
+pub mod surface;
 
 pub use error::{RenderError, Result};
 pub use image::{Display, Image, ToneCurve};

@@ -45,10 +45,7 @@ pub fn read_table(path: &Path) -> Result<BrdfTable> {
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase)
         .unwrap_or_default();
-    let wrap = |source| RenderError::Brdf {
-        path: path.to_path_buf(),
-        source,
-    };
+    let wrap = RenderError::Brdf;
     match ext.as_str() {
         "gbrdf" => gbrdf::read(path).map_err(wrap),
         "astm" => astm::import(path, astm::default_resolution())

@@ -78,7 +78,7 @@ pub struct RenderDesc {
     pub max_bounces: Option<u32>,
 }
 
-/// `[materials.NAME]`: exactly one of `brdf`, `table`.
+/// `[materials.NAME]`: exactly one of `brdf`, `table`, `surface`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialDesc {
@@ -86,6 +86,8 @@ pub struct MaterialDesc {
     pub brdf: Option<ModelSpec>,
     /// A table file: `.gbrdf`, `.astm` or `.binary`.
     pub table: Option<PathBuf>,
+    /// A height map and a scattering method.
+    pub surface: Option<crate::surface::SurfaceDesc>,
 }
 
 /// The transform fields every shape and planar light accepts.
@@ -244,7 +246,7 @@ impl Scene {
     pub fn from_file(path: &Path) -> Result<Scene> {
         let text = std::fs::read_to_string(path).map_err(|e| RenderError::Io {
             path: path.to_path_buf(),
-            source: e,
+            error: e,
         })?;
         Scene::from_toml(&text, path)
     }
@@ -295,12 +297,17 @@ impl Scene {
         let mut materials = Vec::new();
         let mut material_index = BTreeMap::new();
         for (name, m) in &desc.materials {
-            let brdf = match (&m.brdf, &m.table) {
-                (Some(spec), None) => material::from_model(spec, path, name)?,
-                (None, Some(file)) => material::sampled(material::read_table(&resolve(file))?),
+            let brdf = match (&m.brdf, &m.table, &m.surface) {
+                (Some(spec), None, None) => material::from_model(spec, path, name)?,
+                (None, Some(file), None) => {
+                    material::sampled(material::read_table(&resolve(file))?)
+                }
+                (None, None, Some(surface)) => {
+                    material::sampled(crate::surface::table(surface, dir, path, name)?)
+                }
                 _ => {
                     return Err(bad(format!(
-                        "material `{name}`: give exactly one of `brdf`, `table`"
+                        "material `{name}`: give exactly one of `brdf`, `table`, `surface`"
                     )));
                 }
             };

@@ -6,7 +6,7 @@ use glam::{DVec2, DVec3};
 use gonio_brdf::models::{Lambert, Model, ModelSpec};
 use gonio_brdf::table::{BrdfTable, Provenance, Resolution, SampledTable};
 use gonio_brdf::{Brdf, Rgb};
-use gonio_render::{Image, RenderOptions, Scene, render};
+use gonio_render::{BrdfSampling, Image, RenderOptions, Scene, render};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -167,8 +167,9 @@ fn image_does_not_depend_on_the_thread_count() {
     assert_ne!(a, c, "another seed gives other noise");
 }
 
-/// An equirectangular sky: a gradient, a dim ground and a bright window 30° high in front.
-fn write_environment(dir: &Path) -> std::path::PathBuf {
+/// An equirectangular sky: a gradient, a dim ground and a window 30° high in front, of
+/// radiance `window`.
+fn write_environment(dir: &Path, window: f64) -> std::path::PathBuf {
     let (w, h) = (128, 64);
     let mut img = Image::new(w, h);
     for j in 0..h {
@@ -182,7 +183,7 @@ fn write_environment(dir: &Path) -> std::path::PathBuf {
             };
             // The window: around +z (phi = 90°), 60° from the zenith.
             if (phi - std::f64::consts::FRAC_PI_2).abs() < 0.25 && (theta - 1.05).abs() < 0.2 {
-                v = [40.0, 38.0, 35.0];
+                v = [window, 0.95 * window, 0.9 * window];
             }
             img.pixels[j * w + i] = v.map(|c| c as f32);
         }
@@ -236,7 +237,7 @@ fn rel_rmse(a: &Image, b: &Image, pixels: &[(usize, f64)]) -> f64 {
 #[test]
 fn tabulated_ward_renders_like_the_analytic_ward() {
     let dir = tempfile::tempdir().unwrap();
-    let mut s = env_scene(&write_environment(dir.path()));
+    let mut s = env_scene(&write_environment(dir.path(), 40.0));
     let ward: ModelSpec = serde_json::from_str(
         r#"{"model": "ward", "specular": 0.3, "alpha": 0.15, "diffuse": 0.4}"#,
     )
@@ -257,4 +258,54 @@ fn tabulated_ward_renders_like_the_analytic_ward() {
     let err = rel_rmse(&tabulated, &analytic, &pixels);
     eprintln!("relative RMSE table vs analytic Ward: {:.3}%", 100.0 * err);
     assert!(err < 0.02, "relative RMSE {:.2}%", 100.0 * err);
+}
+
+#[test]
+fn importance_sampling_of_the_epoxy_table_pays() {
+    let dir = tempfile::tempdir().unwrap();
+    // A window 5 times brighter than the sky: the lobe of the table, not the light, makes
+    // the difference.
+    let mut s = env_scene(&write_environment(dir.path(), 5.0));
+    s.camera = gonio_render::camera::Camera::new(
+        DVec3::new(0.0, 0.0, 4.0),
+        DVec3::ZERO,
+        DVec3::Y,
+        30.0,
+        24,
+        24,
+    )
+    .unwrap();
+    let desc = gonio_render::surface::SurfaceDesc {
+        file: None,
+        epoxy_sq_nm: Some(201.0),
+        seed: Some(1),
+        points: Some(128),
+        method: None,
+        index: None,
+        azimuths: None,
+    };
+    let t = std::time::Instant::now();
+    let table =
+        gonio_render::surface::table(&desc, dir.path(), Path::new("test.toml"), "epoxy").unwrap();
+    eprintln!("table {:.1} s", t.elapsed().as_secs_f64());
+    s.materials[0].brdf = Arc::new(SampledTable::new(table));
+    let (reference, _) = render(&s, &opts(1024, 99)).unwrap();
+    eprintln!("reference {:.1} s", t.elapsed().as_secs_f64());
+    let pixels = sphere_pixels(&s);
+    let rmse = |sampling: BrdfSampling| {
+        let o = RenderOptions {
+            sampling,
+            ..opts(16, 5)
+        };
+        let (img, _) = render(&s, &o).unwrap();
+        rel_rmse(&img, &reference, &pixels)
+    };
+    let (alias, cosine) = (rmse(BrdfSampling::Importance), rmse(BrdfSampling::Cosine));
+    eprintln!(
+        "16 spp relative RMSE: alias {:.2}%, cosine {:.2}%, ratio {:.1}",
+        100.0 * alias,
+        100.0 * cosine,
+        cosine / alias
+    );
+    assert!(cosine > 5.0 * alias, "alias {alias}, cosine {cosine}");
 }

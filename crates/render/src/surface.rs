@@ -1,0 +1,157 @@
+//! Materials computed from topography: a height map (a file, or a synthetic epoxy surface of
+//! the `surface` crate) turned into a tabulated BRDF by the ray method
+//! ([`gonio_scatter::table::ray_table`]) when the scene is loaded. The table is cached as a
+//! `.gbrdf` file in `.gonio-cache/` beside the scene file, under a key made of every input
+//! (the settings, and the height-map file's size and modification time), so that later loads
+//! read it instead of recomputing it.
+
+use crate::error::{RenderError, Result};
+use gonio_brdf::Ior;
+use gonio_brdf::gbrdf;
+use gonio_brdf::table::{BrdfTable, Provenance};
+use gonio_scatter::ray::{RayEngine, RayOptions};
+use gonio_scatter::table::{TableOptions, ray_table};
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+
+/// `surface = { ... }` in a material: the height map and the scattering method.
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SurfaceDesc {
+    /// A height-map file (any format `gonio surface` reads).
+    #[serde(default)]
+    pub file: Option<PathBuf>,
+    /// Or a synthetic epoxy sample of this rms height, nm
+    /// (`gonio_surface::synth::epoxy_surface`).
+    #[serde(default)]
+    pub epoxy_sq_nm: Option<f64>,
+    /// Seed of the synthetic surface (default 1).
+    #[serde(default)]
+    pub seed: Option<u64>,
+    /// Points along each side of the synthetic surface (default 512: 256 µm at the epoxy
+    /// series' 0.5 µm spacing, about 40 correlation lengths).
+    #[serde(default)]
+    pub points: Option<usize>,
+    /// The scattering method: `ray` (geometric optics, the default).
+    #[serde(default)]
+    pub method: Option<String>,
+    /// Refractive index of the coating (default 1.55).
+    #[serde(default)]
+    pub index: Option<f64>,
+    /// Azimuths of incidence the ray method averages over (default 1; isotropic surfaces).
+    #[serde(default)]
+    pub azimuths: Option<usize>,
+}
+
+/// The cache key: FNV-1a (64 bits) of every input, as text.
+fn cache_key(text: &str) -> u64 {
+    text.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}
+
+/// The BRDF table of material `name` described by `desc`; `dir` is the scene file's directory
+/// (for relative paths and the cache) and `scene` names the file in errors.
+pub fn table(desc: &SurfaceDesc, dir: &Path, scene: &Path, name: &str) -> Result<BrdfTable> {
+    let bad = |p: String| RenderError::scene(scene, format!("material `{name}`: {p}"));
+    let method = desc.method.as_deref().unwrap_or("ray");
+    if method != "ray" {
+        return Err(bad(format!(
+            "surface method `{method}` is not available here; use `ray`"
+        )));
+    }
+    let index = desc.index.unwrap_or(1.55);
+    if index.is_nan() || index <= 1.0 {
+        return Err(bad(format!("surface `index` must exceed 1, got {index}")));
+    }
+    let azimuths = desc.azimuths.unwrap_or(1);
+    if azimuths == 0 || azimuths > 64 {
+        return Err(bad(format!(
+            "surface `azimuths` must be 1 to 64, got {azimuths}"
+        )));
+    }
+    let seed = desc.seed.unwrap_or(1);
+    let points = desc.points.unwrap_or(512);
+    if !(16..=8192).contains(&points) {
+        return Err(bad(format!(
+            "surface `points` must be 16 to 8192, got {points}"
+        )));
+    }
+    let (source, stamp) = match (&desc.file, desc.epoxy_sq_nm) {
+        (Some(file), None) => {
+            let path = if file.is_absolute() {
+                file.clone()
+            } else {
+                dir.join(file)
+            };
+            let meta = std::fs::metadata(&path).map_err(|e| RenderError::Io {
+                path: path.clone(),
+                error: e,
+            })?;
+            let modified = meta
+                .modified()
+                .ok()
+                .and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok())
+                .map_or(0, |d| d.as_nanos());
+            let stamp = format!(
+                "file={}|len={}|mtime={modified}",
+                path.display(),
+                meta.len()
+            );
+            (Source::File(path), stamp)
+        }
+        (None, Some(sq_nm)) => {
+            if sq_nm.is_nan() || sq_nm <= 0.0 {
+                return Err(bad(format!("`epoxy_sq_nm` must be positive, got {sq_nm}")));
+            }
+            (
+                Source::Epoxy(sq_nm),
+                format!("epoxy_sq_nm={sq_nm}|seed={seed}|points={points}"),
+            )
+        }
+        _ => {
+            return Err(bad(
+                "a surface needs exactly one of `file` (a height map) or `epoxy_sq_nm`".into(),
+            ));
+        }
+    };
+    let options = TableOptions::isotropic();
+    let key = cache_key(&format!(
+        "gonio-render surface v1|{stamp}|method=ray|index={index}|azimuths={azimuths}|{:?}",
+        options
+    ));
+    let cache = dir.join(".gonio-cache").join(format!("{key:016x}.gbrdf"));
+    if let Ok(table) = gbrdf::read(&cache) {
+        return Ok(table);
+    }
+    let map = match &source {
+        Source::File(path) => gonio_surface::io::read(path)
+            .map_err(|e| RenderError::scene(path, format!("cannot read the height map: {e}")))?,
+        Source::Epoxy(sq_nm) => gonio_surface::synth::GaussianSurface {
+            nx: points,
+            ny: points,
+            ..gonio_surface::synth::epoxy_surface(sq_nm * 1e-9, seed)
+        }
+        .generate()
+        .map_err(|e| bad(format!("cannot synthesise the surface: {e}")))?,
+    };
+    let ray_options = RayOptions {
+        ior: Ior::Dielectric(index),
+        azimuths,
+        ..RayOptions::default()
+    };
+    let engine = RayEngine::new(&map, ray_options).map_err(|e| bad(format!("ray method: {e}")))?;
+    let provenance = Provenance::new(stamp, "ray");
+    let table = ray_table(&engine, &options, provenance, &mut |_, _| {})
+        .map_err(|e| bad(format!("ray method: {e}")))?;
+    if std::fs::create_dir_all(cache.parent().expect("has a parent")).is_ok() {
+        // A cache that cannot be written only costs time on the next load.
+        let _ = gbrdf::write(&table, &cache);
+    }
+    Ok(table)
+}
+
+enum Source {
+    File(PathBuf),
+    Epoxy(f64),
+}
