@@ -7,6 +7,7 @@ use crate::study::{self, StudyOutputs};
 use crate::surface::plot_height_map;
 use anyhow::{Context, Result};
 use clap::Args;
+use gonio_instrument::specimens::RaySpecimen;
 use gonio_instrument::study::StudyConfig;
 use gonio_scatter::ray::{RayEngine, RayOptions};
 use gonio_surface::stats::{Statistics, statistics};
@@ -99,7 +100,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
         ..StudyConfig::starr()
     };
     let (out, seconds) = timed(|| study::execute(&samples, &config, &dir.join("study")));
-    sections.push(study_section(&out?, &config, seconds));
+    sections.push(study_section(&out?, &config, &plan, seconds));
 
     let report = Report {
         title: "gonio demo report".into(),
@@ -223,6 +224,7 @@ fn real_file_section(dir: &Path) -> Result<Section> {
         .iter()
         .map(|&ti| engine.inplane(ti, &scatter, 1.4f64.to_radians()))
         .collect::<Result<Vec<_>, _>>()?;
+    let gloss = gonio_instrument::measure(&RaySpecimen { engine: &engine })?;
     let csv = dir.join("real_inplane.csv");
     gonio_instrument::curves::write_csv(&csv, &curves)?;
     let curves_png = dir.join("real_inplane.png");
@@ -255,12 +257,30 @@ fn real_file_section(dir: &Path) -> Result<Section> {
                     csv.display()
                 ),
             },
+            Block::Table {
+                headers: ["GU 20°", "GU 60°", "GU 85°", "haze", "DOI"]
+                    .map(String::from)
+                    .to_vec(),
+                rows: vec![vec![
+                    format!("{:.1}", gloss.gu20),
+                    format!("{:.1}", gloss.gu60),
+                    format!("{:.1}", gloss.gu85),
+                    format!("{:.2}", gloss.haze),
+                    format!("{:.1}", gloss.doi),
+                ]],
+            },
+            Block::Code(format!(
+                "gonio surface info {REAL_FILE_NAME}\n\
+                 gonio inplane {REAL_FILE_NAME} --method ray --incidence-deg 20,45,60,70 \
+                 --scatter-deg=-75:75:1 --aperture-deg 1.4 --index 1.55 -o real_inplane.csv --plot real_inplane.png\n\
+                 gonio gloss {REAL_FILE_NAME} --index 1.55"
+            )),
         ],
         seconds: 0.0,
     })
 }
 
-fn study_section(out: &StudyOutputs, config: &StudyConfig, seconds: f64) -> Section {
+fn study_section(out: &StudyOutputs, config: &StudyConfig, plan: &Plan, seconds: f64) -> Section {
     let mut blocks = vec![Block::Text(format!(
         "For every sample, in-plane curves at the NIST STARR geometry (incidence {} degrees, \
          scatter -75..75° in 1° steps, 1.4° detectors) by the ray method and by the Kirchhoff \
@@ -295,6 +315,46 @@ fn study_section(out: &StudyOutputs, config: &StudyConfig, seconds: f64) -> Sect
             ]
         })
         .collect();
+    blocks.push(Block::Text(
+        "Gloss, haze and distinctness of image that the virtual meters read on each sample, \
+         from the rays the ray method reflects and from the Kirchhoff field at 550 nm (ISO 2813 \
+         apertures; haze and DOI after ASTM E430 at 30°, see docs/instruments.md). The Kirchhoff \
+         readings of these small maps are limited by the spot's diffraction (about λ/(L cos θ)), \
+         most at 85° and in the 0.1° DOI slit."
+            .into(),
+    ));
+    blocks.push(Block::Table {
+        headers: [
+            "sample", "Sq (nm)", "GU 20°", "GU 60°", "GU 85°", "haze", "DOI",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: out
+            .results
+            .iter()
+            .flat_map(|r| {
+                [
+                    ("ray", Some(&r.gloss_ray)),
+                    ("Kirchhoff 550 nm", r.gloss_kirchhoff.as_ref()),
+                ]
+                .into_iter()
+                .filter_map(|(method, g)| {
+                    let g = g?;
+                    Some(vec![
+                        r.label.clone(),
+                        method.to_string(),
+                        format!("{:.1}", r.statistics.sq * 1e9),
+                        format!("{:.1}", g.gu20),
+                        format!("{:.1}", g.gu60),
+                        format!("{:.1}", g.gu85),
+                        format!("{:.2}", g.haze),
+                        format!("{:.1}", g.doi),
+                    ])
+                })
+                .collect::<Vec<_>>()
+            })
+            .collect(),
+    });
     blocks.push(Block::Table {
         headers: [
             "sample",
@@ -309,6 +369,23 @@ fn study_section(out: &StudyOutputs, config: &StudyConfig, seconds: f64) -> Sect
         .to_vec(),
         rows,
     });
+    blocks.push(Block::Code(format!(
+        "gonio study --sq-nm {} --corr-um {} --size {} --dx-um {} --wavelength-nm {} -o study",
+        out.results
+            .iter()
+            .map(|r| format!("{:.0}", r.statistics.sq * 1e9))
+            .collect::<Vec<_>>()
+            .join(","),
+        gonio_surface::synth::EPOXY_CORR_LENGTH_M * 1e6,
+        plan.size,
+        plan.dx * 1e6,
+        config
+            .wavelengths_nm
+            .iter()
+            .map(|v| v.to_string())
+            .collect::<Vec<_>>()
+            .join(","),
+    )));
     for (path, caption) in &out.plots {
         blocks.push(Block::Image {
             path: path.clone(),

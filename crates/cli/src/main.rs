@@ -6,6 +6,7 @@ mod brdf_compute;
 mod color;
 mod compare;
 mod demo;
+mod gloss;
 mod inplane;
 mod report;
 mod study;
@@ -51,6 +52,8 @@ enum Command {
     /// Render a scene file with the path tracer:
     /// `gonio render SCENE.toml [--spp N] [--seed S] -o OUT.{exr,hdr,png}` (docs/render.md).
     Render(render::RenderArgs),
+    /// Gloss (ISO 2813, 20/60/85°), haze and DOI (ASTM E430) of a height map or BRDF table.
+    Gloss(gloss::GlossArgs),
 }
 
 fn main() -> ExitCode {
@@ -59,6 +62,7 @@ fn main() -> ExitCode {
         Command::Surface(cmd) => surface::run(cmd),
         Command::Compare(args) => compare::run(args),
         Command::Demo(args) => demo::run(args),
+        Command::Gloss(args) => gloss::run(args),
         Command::Brdf(cmd) => brdf::run(cmd),
         Command::Study(args) => study::run(args),
         Command::Inplane(args) => inplane::run(args),

@@ -57,7 +57,12 @@ pub struct LinePlot<'a> {
 }
 
 /// Draw `series` into a PNG of `size` pixels at `path`.
-pub fn line_plot_png(path: &Path, size: (u32, u32), plot: &LinePlot, series: &[Series]) -> Result<()> {
+pub fn line_plot_png(
+    path: &Path,
+    size: (u32, u32),
+    plot: &LinePlot,
+    series: &[Series],
+) -> Result<()> {
     render_png(path, size, |root| draw_line_plot(root, plot, series))
 }
 
@@ -71,7 +76,10 @@ where
     DB::ErrorType: 'static,
 {
     let finite = |&(x, y): &(f64, f64)| x.is_finite() && y.is_finite() && (!plot.log_y || y > 0.0);
-    let all: Vec<(f64, f64)> = series.iter().flat_map(|s| s.points.iter().copied().filter(finite)).collect();
+    let all: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|s| s.points.iter().copied().filter(finite))
+        .collect();
     anyhow::ensure!(!all.is_empty(), "nothing to plot in '{}'", plot.title);
     let (mut x0, mut x1) = min_max(all.iter().map(|p| p.0));
     let (mut y0, mut y1) = min_max(all.iter().map(|p| p.1));
@@ -79,7 +87,7 @@ where
         x0 -= 0.5;
         x1 += 0.5;
     }
-    let series_iter = series.iter().enumerate();
+    let series_iter = series.iter();
     if plot.log_y {
         y0 = y0.max(y1 * 1e-12);
         if y1 <= y0 {
@@ -98,7 +106,7 @@ where
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .label_style(("sans-serif", 13))
             .draw()?;
-        for (_, s) in series_iter {
+        for s in series_iter {
             let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(finite).collect();
             draw_series(&mut chart, s, pts)?;
         }
@@ -121,7 +129,7 @@ where
             .y_desc(plot.y_label)
             .label_style(("sans-serif", 13))
             .draw()?;
-        for (_, s) in series_iter {
+        for s in series_iter {
             let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(finite).collect();
             draw_series(&mut chart, s, pts)?;
         }
@@ -148,8 +156,9 @@ where
         chart.draw_series(LineSeries::new(pts, colour.stroke_width(2)))?
     };
     if !s.label.is_empty() {
-        anno.label(s.label.clone())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
+        anno.label(s.label.clone()).legend(move |(x, y)| {
+            PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
+        });
     }
     Ok(())
 }
@@ -171,7 +180,9 @@ where
 }
 
 fn min_max(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))
+    values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+        (lo.min(v), hi.max(v))
+    })
 }
 
 /// Render with `draw` into an RGB buffer of `size` and write it to `path` as PNG, atomically.
@@ -188,7 +199,8 @@ pub fn render_png(
         draw(&root)?;
         root.present()?;
     }
-    let img = image::RgbImage::from_raw(size.0, size.1, buf).context("plot buffer has the wrong size")?;
+    let img =
+        image::RgbImage::from_raw(size.0, size.1, buf).context("plot buffer has the wrong size")?;
     save_image_atomic(path, &image::DynamicImage::ImageRgb8(img))
 }
 
@@ -196,11 +208,16 @@ pub fn render_png(
 pub fn save_image_atomic(path: &Path, img: &image::DynamicImage) -> Result<()> {
     let format = image::ImageFormat::from_path(path)
         .with_context(|| format!("{}: unknown image extension (use .png)", path.display()))?;
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let mut tmp = tempfile::NamedTempFile::new_in(dir).with_context(|| format!("{}: cannot create file", path.display()))?;
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let mut tmp = tempfile::NamedTempFile::new_in(dir)
+        .with_context(|| format!("{}: cannot create file", path.display()))?;
     img.write_to(&mut std::io::BufWriter::new(tmp.as_file_mut()), format)
         .with_context(|| format!("{}: cannot encode image", path.display()))?;
-    tmp.persist(path).with_context(|| format!("{}: cannot write", path.display()))?;
+    tmp.persist(path)
+        .with_context(|| format!("{}: cannot write", path.display()))?;
     Ok(())
 }
 

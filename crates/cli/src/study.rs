@@ -6,6 +6,7 @@
 use crate::plot::{self, LinePlot, Series};
 use anyhow::{Context, Result, ensure};
 use clap::Args;
+use gonio_instrument::GlossReport;
 use gonio_instrument::curves::write_csv;
 use gonio_instrument::study::{self, PeakRow, Sample, SampleResult, StudyConfig};
 use gonio_scatter::InplaneCurve;
@@ -164,6 +165,15 @@ pub fn execute(samples: &[Sample], config: &StudyConfig, dir: &Path) -> Result<S
     let csv = dir.join("peaks.csv");
     write_peaks_csv(&csv, &peaks)?;
     files.push(csv);
+    let gloss_csv = dir.join("gloss.csv");
+    write_gloss_csv(&gloss_csv, &results)?;
+    files.push(gloss_csv);
+    let gloss_png = dir.join("gloss_vs_roughness.png");
+    plot_gloss(&gloss_png, &results)?;
+    plots.push((
+        gloss_png,
+        "Gloss (ISO 2813, 20/60/85°) against roughness, by the ray method and the Kirchhoff approximation".to_string(),
+    ));
     for (name, caption, value) in [
         (
             "peak_vs_roughness.png",
@@ -307,6 +317,57 @@ fn plot_peaks(
     plot::line_plot_png(path, (900, 600), &spec, &series)
 }
 
+fn plot_gloss(path: &Path, results: &[SampleResult]) -> Result<()> {
+    let mut series = Vec::new();
+    for (i, label) in ["20°", "60°", "85°"].into_iter().enumerate() {
+        let pick = |g: &GlossReport| [g.gu20, g.gu60, g.gu85][i];
+        let x = |r: &SampleResult| (r.statistics.sq * 1e9).log10();
+        series.push(Series {
+            label: format!("ray {label}"),
+            points: results.iter().map(|r| (x(r), pick(&r.gloss_ray))).collect(),
+            colour: plot::palette(i),
+            markers: false,
+        });
+        let kirchhoff: Vec<(f64, f64)> = results
+            .iter()
+            .filter_map(|r| Some((x(r), pick(r.gloss_kirchhoff.as_ref()?))))
+            .collect();
+        if !kirchhoff.is_empty() {
+            series.push(Series {
+                label: format!("Kirchhoff 550 nm {label}"),
+                points: kirchhoff,
+                colour: plot::palette(i),
+                markers: true,
+            });
+        }
+    }
+    let spec = LinePlot {
+        title: "Specular gloss against roughness: ray (lines), Kirchhoff (dots)",
+        x_label: "log10(Sq / nm)",
+        y_label: "gloss units (GU)",
+        log_y: false,
+    };
+    plot::line_plot_png(path, (900, 600), &spec, &series)
+}
+
+fn write_gloss_csv(path: &Path, results: &[SampleResult]) -> Result<()> {
+    let mut s = String::from("sample,sq_m,sdq,method,gu20,gu60,gu85,haze,doi\n");
+    for r in results {
+        let methods = [
+            ("ray", Some(&r.gloss_ray)),
+            ("kirchhoff_550nm", r.gloss_kirchhoff.as_ref()),
+        ];
+        for (method, g) in methods {
+            let Some(g) = g else { continue };
+            s.push_str(&format!(
+                "{},{:.6e},{:.6},{method},{:.3},{:.3},{:.3},{:.4},{:.3}\n",
+                r.label, r.statistics.sq, r.statistics.sdq, g.gu20, g.gu60, g.gu85, g.haze, g.doi
+            ));
+        }
+    }
+    write_atomic(path, s.as_bytes())
+}
+
 fn write_peaks_csv(path: &Path, peaks: &[PeakRow]) -> Result<()> {
     let mut s = String::from(
         "sample,sq_m,method,wavelength_nm,incidence_deg,peak_deg,peak_reflectance,fwhm_deg\n",
@@ -338,6 +399,8 @@ fn summary_json(out: &StudyOutputs) -> serde_json::Value {
                 "sa_m": r.statistics.sa,
                 "sdq": r.statistics.sdq,
                 "sal_m": r.statistics.sal,
+                "gloss_ray": r.gloss_ray,
+                "gloss_kirchhoff_550nm": r.gloss_kirchhoff,
             })
         })
         .collect();

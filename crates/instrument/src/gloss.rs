@@ -12,6 +12,7 @@
 //! the signed in-plane angle `a` (positive on the specular side, as in physics.md) and the
 //! perpendicular elevation `b`; its solid-angle element is `cos b da db`.
 
+use crate::error::Result;
 use crate::quadrature::gauss_legendre_on;
 use glam::DVec3;
 use gonio_brdf::Ior;
@@ -75,7 +76,7 @@ impl Window {
 pub trait Specimen: Sync {
     /// For light arriving from the unit direction `wi` (toward the source), the fraction of its
     /// flux that leaves the specimen within each of `windows`.
-    fn reflectance_into(&self, wi: DVec3, windows: &[Window]) -> Vec<f64>;
+    fn reflectance_into(&self, wi: DVec3, windows: &[Window]) -> Result<Vec<f64>>;
 
     /// Gauss-Legendre order (per axis) over the source aperture; specimens that are costly to
     /// query (a ray trace per source direction) use fewer directions.
@@ -89,13 +90,13 @@ pub trait Specimen: Sync {
 pub struct Smooth(pub Ior);
 
 impl Specimen for Smooth {
-    fn reflectance_into(&self, wi: DVec3, windows: &[Window]) -> Vec<f64> {
+    fn reflectance_into(&self, wi: DVec3, windows: &[Window]) -> Result<Vec<f64>> {
         let mirror = DVec3::new(-wi.x, -wi.y, wi.z);
         let r = self.0.reflectance(wi.z);
-        windows
+        Ok(windows
             .iter()
             .map(|w| if w.contains(mirror) { r } else { 0.0 })
-            .collect()
+            .collect())
     }
 }
 
@@ -115,8 +116,8 @@ impl<F: Fn(DVec3, DVec3) -> f64 + Sync> BrdfSpecimen<F> {
 }
 
 impl<F: Fn(DVec3, DVec3) -> f64 + Sync> Specimen for BrdfSpecimen<F> {
-    fn reflectance_into(&self, wi: DVec3, windows: &[Window]) -> Vec<f64> {
-        windows
+    fn reflectance_into(&self, wi: DVec3, windows: &[Window]) -> Result<Vec<f64>> {
+        Ok(windows
             .iter()
             .map(|window| {
                 window
@@ -126,7 +127,7 @@ impl<F: Fn(DVec3, DVec3) -> f64 + Sync> Specimen for BrdfSpecimen<F> {
                     .map(|(wo, dw)| (self.brdf)(wi, wo) * wo.z * dw)
                     .sum()
             })
-            .collect()
+            .collect())
     }
 }
 
@@ -163,8 +164,8 @@ impl Geometry {
 
     /// The reading of the meter: reflectance into the receptor averaged over the source
     /// aperture.
-    pub fn reading(&self, specimen: &dyn Specimen) -> f64 {
-        readings(self.theta, self.source, &[self.receptor], specimen)[0]
+    pub fn reading(&self, specimen: &dyn Specimen) -> Result<f64> {
+        Ok(readings(self.theta, self.source, &[self.receptor], specimen)?[0])
     }
 }
 
@@ -176,7 +177,7 @@ pub fn readings(
     source: Aperture,
     receptors: &[Window],
     specimen: &dyn Specimen,
-) -> Vec<f64> {
+) -> Result<Vec<f64>> {
     let source = Window {
         centre: -theta,
         aperture: source,
@@ -187,19 +188,19 @@ pub fn readings(
         let weight = wi.z * dw;
         for (s, r) in sums
             .iter_mut()
-            .zip(specimen.reflectance_into(wi, receptors))
+            .zip(specimen.reflectance_into(wi, receptors)?)
         {
             *s += weight * r;
         }
         norm += weight;
     }
-    sums.into_iter().map(|s| s / norm).collect()
+    Ok(sums.into_iter().map(|s| s / norm).collect())
 }
 
 /// Specular gloss in gloss units at an ISO 2813 geometry.
-pub fn gloss_units(specimen: &dyn Specimen, geometry: &Geometry) -> f64 {
+pub fn gloss_units(specimen: &dyn Specimen, geometry: &Geometry) -> Result<f64> {
     let standard = Smooth(Ior::Dielectric(STANDARD_INDEX));
-    100.0 * geometry.reading(specimen) / geometry.reading(&standard)
+    Ok(100.0 * geometry.reading(specimen)? / geometry.reading(&standard)?)
 }
 
 /// The E430-style geometry gonio implements (ASTM E430, abridged goniophotometry at 30°):
@@ -243,7 +244,7 @@ pub struct GlossReport {
 }
 
 /// Measure gloss at 20/60/85°, haze and DOI.
-pub fn measure(specimen: &dyn Specimen) -> GlossReport {
+pub fn measure(specimen: &dyn Specimen) -> Result<GlossReport> {
     let gu = |deg| gloss_units(specimen, &Geometry::iso2813(deg).expect("ISO 2813 angle"));
     let theta = e430::THETA_DEG.to_radians();
     let at = |offset_deg: f64, aperture: Aperture| Window {
@@ -258,25 +259,25 @@ pub fn measure(specimen: &dyn Specimen) -> GlossReport {
         at(haze, e430::receptor()),
         at(-haze, e430::receptor()),
     ];
-    let r = readings(theta, e430::source(), &windows, specimen);
+    let r = readings(theta, e430::source(), &windows, specimen)?;
     let standard = readings(
         theta,
         e430::source(),
         &windows[..1],
         &Smooth(Ior::Dielectric(STANDARD_INDEX)),
-    )[0];
+    )?[0];
     let (specular, near, far) = (r[0], 0.5 * (r[1] + r[2]), 0.5 * (r[3] + r[4]));
-    GlossReport {
-        gu20: gu(20),
-        gu60: gu(60),
-        gu85: gu(85),
+    Ok(GlossReport {
+        gu20: gu(20)?,
+        gu60: gu(60)?,
+        gu85: gu(85)?,
         haze: 100.0 * far / standard,
         doi: if specular > 0.0 {
             100.0 * (specular - near) / specular
         } else {
             0.0
         },
-    }
+    })
 }
 
 #[cfg(test)]
@@ -286,13 +287,13 @@ mod tests {
     /// physics.md: a perfectly smooth n = 1.55 surface reads 95.4, 97.3 and 99.8 GU.
     #[test]
     fn smooth_surface_gloss() {
-        let r = measure(&Smooth(Ior::Dielectric(1.55)));
+        let r = measure(&Smooth(Ior::Dielectric(1.55))).unwrap();
         assert!((r.gu20 - 95.4).abs() < 0.05, "{}", r.gu20);
         assert!((r.gu60 - 97.3).abs() < 0.05, "{}", r.gu60);
         assert!((r.gu85 - 99.8).abs() < 0.05, "{}", r.gu85);
         assert_eq!(r.haze, 0.0);
         assert_eq!(r.doi, 100.0);
-        let std = measure(&Smooth(Ior::Dielectric(STANDARD_INDEX)));
+        let std = measure(&Smooth(Ior::Dielectric(STANDARD_INDEX))).unwrap();
         assert!((std.gu60 - 100.0).abs() < 1e-12);
     }
 
@@ -352,7 +353,7 @@ mod tests {
             let specimen = BrdfSpecimen::new(microfacet(m, 1.55));
             for deg in [20, 60, 85] {
                 let g = Geometry::iso2813(deg).unwrap();
-                let ours = gloss_units(&specimen, &g);
+                let ours = gloss_units(&specimen, &g).unwrap();
                 // The smooth standard's reading is R at each source direction's own angle; the
                 // source is 0.75° wide, so R(theta) differs from it by far less than 0.1%.
                 let reference = 100.0 * midpoint_reading(&f, &g) / standard(&g);
@@ -374,7 +375,7 @@ mod tests {
         let omega =
             g.receptor.aperture.in_plane * 2.0 * (0.5 * g.receptor.aperture.perpendicular).sin();
         let expect = g.theta.cos() * omega / std::f64::consts::PI;
-        let got = g.reading(&lambert);
+        let got = g.reading(&lambert).unwrap();
         assert!((got / expect - 1.0).abs() < 2e-3, "{got} vs {expect}");
     }
 }

@@ -6,6 +6,7 @@ pub mod curves;
 pub mod error;
 pub mod gloss;
 mod quadrature;
+pub mod specimens;
 pub mod study;
 
 pub use error::{InstrumentError, Result};

@@ -4,12 +4,17 @@
 
 use crate::compare::{Peak, peak};
 use crate::error::{InstrumentError, Result};
+use crate::gloss::{GlossReport, measure};
+use crate::specimens::{KirchhoffSpecimen, RaySpecimen};
 use gonio_brdf::Ior;
 use gonio_scatter::InplaneCurve;
 use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions};
 use gonio_scatter::ray::{RayEngine, RayOptions};
 use gonio_surface::HeightMap;
 use gonio_surface::stats::{Statistics, statistics};
+
+/// Wavelength of the Kirchhoff gloss readings: 550 nm, near the peak of the photopic response.
+pub const GLOSS_WAVELENGTH: f64 = 550e-9;
 
 /// What to compute for every sample.
 #[derive(Debug, Clone, PartialEq)]
@@ -54,6 +59,10 @@ pub struct Sample {
 pub struct SampleResult {
     pub label: String,
     pub statistics: Statistics,
+    /// Gloss, haze and DOI by the ray method.
+    pub gloss_ray: GlossReport,
+    /// Gloss, haze and DOI by the Kirchhoff approximation at 550 nm (when computed).
+    pub gloss_kirchhoff: Option<GlossReport>,
     /// Ray curves (one per incidence), then Kirchhoff curves (per wavelength and incidence).
     pub curves: Vec<InplaneCurve>,
 }
@@ -113,11 +122,13 @@ pub fn run(
                     ..RayOptions::default()
                 },
             )?;
+            let gloss_ray = measure(&RaySpecimen { engine: &engine })?;
             let mut curves = config
                 .incidences_deg
                 .iter()
                 .map(|&ti| engine.inplane(ti, &config.scatter_deg, config.half_angle))
                 .collect::<Result<Vec<_>, _>>()?;
+            let mut gloss_kirchhoff = None;
             if config.kirchhoff && !config.wavelengths_nm.is_empty() {
                 progress(&format!("{}: Kirchhoff", s.label));
                 let k = Kirchhoff::new(&s.map, KirchhoffOptions::new(ior))?;
@@ -136,10 +147,16 @@ pub fn run(
                     config.half_angle,
                     &|| {},
                 )?);
+                gloss_kirchhoff = Some(measure(&KirchhoffSpecimen {
+                    engine: &k,
+                    wavelength: GLOSS_WAVELENGTH,
+                })?);
             }
             Ok(SampleResult {
                 label: s.label.clone(),
                 statistics: stats,
+                gloss_ray,
+                gloss_kirchhoff,
                 curves,
             })
         })

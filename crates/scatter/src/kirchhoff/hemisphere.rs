@@ -32,8 +32,8 @@ const POINTS_PER_WAVE: f64 = 10.0;
 struct Bin {
     /// Index into the transposed FFT output, `p * ny + q`.
     index: usize,
-    /// Hemisphere cell.
-    cell: usize,
+    /// Outgoing direction.
+    wo: DVec3,
     /// First of the four `vz` nodes to interpolate from, and the position between them in
     /// node spacings (in [0, 3]).
     node: usize,
@@ -62,6 +62,26 @@ impl Kirchhoff {
         wi: DVec3,
         grid: &HemisphereGrid,
     ) -> Result<HemisphereTable> {
+        let mut reflectance = vec![0.0; grid.len()];
+        let mut hits = vec![0u64; grid.len()];
+        for (wo, share) in self.scattered(wavelength, wi)? {
+            let cell = grid.cell(wo);
+            reflectance[cell] += share;
+            hits[cell] += 1;
+        }
+        Ok(HemisphereTable {
+            grid: *grid,
+            reflectance,
+            reflectance_sp: None,
+            hits,
+        })
+    }
+
+    /// The light scattered over the whole hemisphere for light of `wavelength` metres from `wi`,
+    /// as the lattice of outgoing directions the spot resolves, each with its share of the
+    /// reflectance (`f cos t dω` of its lattice cell). A detector of any shape reads the sum of
+    /// the shares that fall in it.
+    pub fn scattered(&self, wavelength: f64, wi: DVec3) -> Result<Vec<(DVec3, f64)>> {
         super::check_wavelength(wavelength)?;
         let k = TAU / wavelength;
         let r = self.sampling_refinement(k * (wi.z + 1.0))?;
@@ -108,7 +128,7 @@ impl Kirchhoff {
                 let node = (x.floor() as usize).saturating_sub(1).min(nodes - 4);
                 Bin {
                     index,
-                    cell: grid.cell(wo),
+                    wo,
                     node,
                     t: x - node as f64,
                     weight: brdf_factor(self.ior, wi, wo) * norm / wo.z,
@@ -116,8 +136,7 @@ impl Kirchhoff {
             })
             .collect();
         bins.sort_by_key(|b| b.node);
-        let mut reflectance = vec![0.0; grid.len()];
-        let mut hits = vec![0u64; grid.len()];
+        let mut out = Vec::with_capacity(bins.len());
         let mut window: Vec<Vec<Complex64>> = (0..4)
             .map(|i| spectrum(facets, lo + i as f64 * step))
             .collect();
@@ -130,15 +149,9 @@ impl Kirchhoff {
             }
             let l = lagrange4(b.t);
             let e: Complex64 = (0..4).map(|i| window[i][b.index] * l[i]).sum();
-            reflectance[b.cell] += b.weight * e.norm_sqr();
-            hits[b.cell] += 1;
+            out.push((b.wo, b.weight * e.norm_sqr()));
         }
-        Ok(HemisphereTable {
-            grid: *grid,
-            reflectance,
-            reflectance_sp: None,
-            hits,
-        })
+        Ok(out)
     }
 }
 
