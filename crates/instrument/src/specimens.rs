@@ -5,6 +5,7 @@
 use crate::error::Result;
 use crate::gloss::{Specimen, Window};
 use glam::DVec3;
+use gonio_scatter::Detector;
 use gonio_scatter::kirchhoff::Kirchhoff;
 use gonio_scatter::ray::RayEngine;
 
@@ -41,13 +42,33 @@ pub struct KirchhoffSpecimen<'a> {
 
 impl Specimen for KirchhoffSpecimen<'_> {
     fn reflectance_into(&self, wi: DVec3, windows: &[Window]) -> Result<Vec<f64>> {
-        let cloud = self.engine.scattered(self.wavelength, wi)?;
+        let cloud =
+            self.engine
+                .scattered_in_cone(self.wavelength, wi, &bounding_cone(wi, windows))?;
         Ok(collect(&cloud, windows))
     }
 
     /// Each source direction costs a set of full-map FFTs, so a 2 × 2 rule averages the source.
     fn source_order(&self) -> usize {
         2
+    }
+}
+
+/// A cone about the mirror direction of `wi` that holds every window: the angle from the mirror
+/// direction to each window's centre plus the window's half-diagonal, with a 10% margin.
+fn bounding_cone(wi: DVec3, windows: &[Window]) -> Detector {
+    let mirror = DVec3::new(-wi.x, -wi.y, wi.z);
+    let reach = windows
+        .iter()
+        .map(|w| {
+            let centre = DVec3::new(w.centre.sin(), 0.0, w.centre.cos());
+            let half_diagonal = 0.5 * w.aperture.in_plane.hypot(w.aperture.perpendicular);
+            mirror.dot(centre).clamp(-1.0, 1.0).acos() + half_diagonal
+        })
+        .fold(0.0f64, f64::max);
+    Detector {
+        direction: mirror,
+        half_angle: (1.1 * reach).min(std::f64::consts::FRAC_PI_2),
     }
 }
 
