@@ -76,7 +76,10 @@ pub fn run(args: CompareArgs) -> Result<()> {
         .iter()
         .map(|(m, c)| {
             compare(m, c).with_context(|| {
-                format!("incidence {}°: a curve has no positive reflectance", m.incidence_deg)
+                format!(
+                    "incidence {}°: a curve has no positive reflectance",
+                    m.incidence_deg
+                )
             })
         })
         .collect::<Result<_>>()?;
@@ -90,7 +93,11 @@ pub fn run(args: CompareArgs) -> Result<()> {
         for (i, (m, c)) in pairs.iter().enumerate() {
             let colour = plot::palette(i);
             let pts = |curve: &InplaneCurve| {
-                curve.points.iter().map(|p| (p.scatter_deg, p.reflectance)).collect()
+                curve
+                    .points
+                    .iter()
+                    .map(|p| (p.scatter_deg, p.reflectance))
+                    .collect()
             };
             series.push(Series {
                 label: format!("{} {}°", m.method, m.incidence_deg),
@@ -120,7 +127,15 @@ pub fn run(args: CompareArgs) -> Result<()> {
 fn print_table(rows: &[Comparison]) {
     println!(
         "{:>9} {:>10} {:>6} | {:>8} {:>11} {:>8} | {:>8} {:>11} {:>8}",
-        "incid_deg", "rms_log10", "points", "peak_deg", "peak_rho", "fwhm_deg", "peak_deg", "peak_rho", "fwhm_deg"
+        "incid_deg",
+        "rms_log10",
+        "points",
+        "peak_deg",
+        "peak_rho",
+        "fwhm_deg",
+        "peak_deg",
+        "peak_rho",
+        "fwhm_deg"
     );
     let fwhm = |v: Option<f64>| v.map_or("-".to_string(), |w| format!("{w:.2}"));
     for c in rows {

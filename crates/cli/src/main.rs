@@ -8,10 +8,10 @@ mod compare;
 mod demo;
 mod gloss;
 mod inplane;
-mod report;
-mod study;
 mod plot;
 mod render;
+mod report;
+mod study;
 mod surface;
 
 use clap::{Parser, Subcommand};

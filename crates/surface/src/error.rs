@@ -32,7 +32,11 @@ pub enum SurfaceError {
 
 impl SurfaceError {
     /// A format error for `path` in the given format.
-    pub fn format(path: impl Into<PathBuf>, format: &'static str, message: impl Into<String>) -> Self {
+    pub fn format(
+        path: impl Into<PathBuf>,
+        format: &'static str,
+        message: impl Into<String>,
+    ) -> Self {
         SurfaceError::Format {
             path: path.into(),
             format,

@@ -27,7 +27,10 @@ impl Metadata {
     /// The warnings a reader raised about the file (a checksum that does not match, ...), for a
     /// program to show; the map was read all the same.
     pub fn warnings(&self) -> impl Iterator<Item = &str> {
-        self.extra.iter().filter(|(k, _)| k == WARNING_KEY).map(|(_, v)| v.as_str())
+        self.extra
+            .iter()
+            .filter(|(k, _)| k == WARNING_KEY)
+            .map(|(_, v)| v.as_str())
     }
 
     /// Record a warning about the file in [`Metadata::extra`].

@@ -333,7 +333,13 @@ fn rough_hemisphere_albedo_matches_series() {
 fn curve_labels_read_as_given() {
     let k_engine = engine(&flat(33, 1e-6));
     let curves = k_engine
-        .inplane(&[550e-9], &[60f64.to_radians()], &[60f64.to_radians()], 0.05, &|| {})
+        .inplane(
+            &[550e-9],
+            &[60f64.to_radians()],
+            &[60f64.to_radians()],
+            0.05,
+            &|| {},
+        )
         .unwrap();
     assert_eq!(curves[0].wavelength_nm, Some(550.0));
     assert_eq!(curves[0].incidence_deg, 60.0);
