@@ -1,15 +1,9 @@
 //! `gonio color xyz` end to end: a ColorChecker patch written as a spectrum CSV, its JSON and text
 //! output, and the errors for bad files and flags.
 
+mod common;
+use common::gonio;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn gonio(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_gonio"))
-        .args(args)
-        .output()
-        .expect("run gonio")
-}
 
 /// Patch 1 ("dark skin") of N. Ohta's ColorChecker table as a `wavelength_nm,value` CSV.
 fn dark_skin_csv(dir: &Path) -> PathBuf {

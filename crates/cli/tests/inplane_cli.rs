@@ -1,25 +1,9 @@
 //! End-to-end tests of `gonio inplane`: a synthesised height map through the real binary, the
 //! CSV columns, the JSON, the plot, and errors that exit with status 2 without writing output.
 
+mod common;
+use common::{gonio, ok};
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn gonio(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_gonio"))
-        .args(args)
-        .output()
-        .expect("run gonio")
-}
-
-fn ok(args: &[&str]) -> Output {
-    let out = gonio(args);
-    assert!(
-        out.status.success(),
-        "gonio {args:?} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
-}
 
 fn gen_map(dir: &Path) -> String {
     let path = dir.join("gauss.x3p").to_str().unwrap().to_string();

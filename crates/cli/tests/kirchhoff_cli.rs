@@ -1,24 +1,8 @@
 //! End-to-end tests of `gonio inplane --method kirchhoff` and `--model ...` through the real
 //! binary: the CSV they write, the agreement of the two on a smooth surface, and the errors.
 
-use std::process::{Command, Output};
-
-fn gonio(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_gonio"))
-        .args(args)
-        .output()
-        .expect("run gonio")
-}
-
-fn ok(args: &[&str]) -> Output {
-    let out = gonio(args);
-    assert!(
-        out.status.success(),
-        "gonio {args:?} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
-}
+mod common;
+use common::{gonio, ok};
 
 /// Rows `(method, wavelength_nm, incidence_deg, scatter_deg, reflectance)` of a CSV.
 fn rows(path: &std::path::Path) -> Vec<(String, String, f64, f64, f64)> {

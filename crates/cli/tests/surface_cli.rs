@@ -1,25 +1,9 @@
 //! End-to-end tests of `gonio surface ...`: synthesise, inspect, edit and plot height maps
 //! through the real binary.
 
+mod common;
+use common::{gonio, ok};
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn gonio(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_gonio"))
-        .args(args)
-        .output()
-        .expect("run gonio")
-}
-
-fn ok(args: &[&str]) -> Output {
-    let out = gonio(args);
-    assert!(
-        out.status.success(),
-        "gonio {args:?} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
-}
 
 fn info_json(file: &Path) -> serde_json::Value {
     let out = ok(&["surface", "info", file.to_str().unwrap(), "--json"]);
