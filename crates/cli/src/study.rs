@@ -94,6 +94,11 @@ pub fn run(args: StudyArgs) -> Result<()> {
         for f in out.files.iter().chain(out.plots.iter().map(|p| &p.0)) {
             eprintln!("wrote {}", f.display());
         }
+        for r in &out.results {
+            for note in &r.notes {
+                eprintln!("note: {}: {note}", r.label);
+            }
+        }
     }
     Ok(())
 }
@@ -401,6 +406,7 @@ fn summary_json(out: &StudyOutputs) -> serde_json::Value {
                 "sal_m": r.statistics.sal,
                 "gloss_ray": r.gloss_ray,
                 "gloss_kirchhoff_550nm": r.gloss_kirchhoff,
+                "notes": r.notes,
             })
         })
         .collect();

@@ -63,6 +63,8 @@ pub struct SampleResult {
     pub gloss_ray: GlossReport,
     /// Gloss, haze and DOI by the Kirchhoff approximation at 550 nm (when computed).
     pub gloss_kirchhoff: Option<GlossReport>,
+    /// What could not be computed for this sample, and why.
+    pub notes: Vec<String>,
     /// Ray curves (one per incidence), then Kirchhoff curves (per wavelength and incidence).
     pub curves: Vec<InplaneCurve>,
 }
@@ -129,6 +131,7 @@ pub fn run(
                 .map(|&ti| engine.inplane(ti, &config.scatter_deg, config.half_angle))
                 .collect::<Result<Vec<_>, _>>()?;
             let mut gloss_kirchhoff = None;
+            let mut notes = Vec::new();
             if config.kirchhoff && !config.wavelengths_nm.is_empty() {
                 progress(&format!("{}: Kirchhoff", s.label));
                 let k = Kirchhoff::new(&s.map, KirchhoffOptions::new(ior))?;
@@ -147,16 +150,23 @@ pub fn run(
                     config.half_angle,
                     &|| {},
                 )?);
-                gloss_kirchhoff = Some(measure(&KirchhoffSpecimen {
+                // Gloss needs the whole receptor cones at 20–85°: a rough map may be too coarse
+                // for the Kirchhoff sampling there even where the in-plane curves could be
+                // computed; the sample then has no Kirchhoff gloss, and a note says why.
+                match measure(&KirchhoffSpecimen {
                     engine: &k,
                     wavelength: GLOSS_WAVELENGTH,
-                })?);
+                }) {
+                    Ok(g) => gloss_kirchhoff = Some(g),
+                    Err(e) => notes.push(format!("no Kirchhoff gloss: {e}")),
+                }
             }
             Ok(SampleResult {
                 label: s.label.clone(),
                 statistics: stats,
                 gloss_ray,
                 gloss_kirchhoff,
+                notes,
                 curves,
             })
         })
