@@ -1,16 +1,8 @@
 //! `gonio brdf` end to end: tabulate a model, summarise, export to every format, import back,
 //! fit, and a missing file exits with status 2.
 
-use std::path::Path;
-use std::process::Command;
-
-fn gonio(args: &[&str], dir: &Path) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_gonio"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
-}
+mod common;
+use common::gonio_in as gonio;
 
 #[test]
 fn tabulate_info_export_import_fit() {

@@ -2,16 +2,9 @@
 //! Graphics reflectance data) imported to an XYZ table under illuminant A and to a linear-sRGB
 //! table; an unknown colour space or illuminant exits with status 2 and says what to use.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn gonio(args: &[&str], dir: &Path) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_gonio"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
-}
+mod common;
+use common::gonio_in as gonio;
+use std::path::PathBuf;
 
 fn cayman() -> String {
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../brdf/tests/data/cayman.astm");

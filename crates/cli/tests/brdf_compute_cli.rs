@@ -1,16 +1,8 @@
 //! `gonio brdf compute` end to end: a ray table of a small synthetic map, its provenance in
 //! the .gbrdf header and its albedo near Fresnel; bad flags exit with status 2 and no file.
 
-use std::path::Path;
-use std::process::Command;
-
-fn gonio(args: &[&str], dir: &Path) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_gonio"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
-}
+mod common;
+use common::gonio_in as gonio;
 
 #[test]
 fn compute_writes_a_table_with_provenance() {

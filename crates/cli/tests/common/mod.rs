@@ -22,3 +22,12 @@ pub fn ok(args: &[&str]) -> Output {
     );
     out
 }
+
+/// Run `gonio` with `args` in the working directory `dir`.
+pub fn gonio_in(args: &[&str], dir: &std::path::Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_gonio"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("run gonio")
+}
