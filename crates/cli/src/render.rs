@@ -3,7 +3,7 @@
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use gonio_render::{BrdfSampling, RenderOptions, Scene};
+use gonio_render::{BrdfSampling, ColourMode, RenderOptions, Scene};
 use std::path::PathBuf;
 
 #[derive(Args)]
@@ -31,6 +31,11 @@ pub struct RenderArgs {
     /// every material (to compare the noise of the two).
     #[arg(long, value_enum, default_value_t = Sampling::Importance)]
     sampling: Sampling,
+    /// Render spectrally: four hero wavelengths per path (380–780 nm), spectral BRDF tables
+    /// evaluated at them, RGB lights and materials turned into spectra, colour formed at the film
+    /// (D65, CIE 1931 2°). Default: the tristimulus shortcut (everything in linear sRGB).
+    #[arg(long)]
+    spectral: bool,
     /// Exposure of PNG output in stops, replacing the scene's.
     #[arg(long, allow_hyphen_values = true)]
     exposure: Option<f64>,
@@ -56,6 +61,11 @@ pub fn run(args: RenderArgs) -> Result<()> {
             Sampling::Importance => BrdfSampling::Importance,
             Sampling::Cosine => BrdfSampling::Cosine,
         },
+        colour: if args.spectral {
+            ColourMode::Spectral
+        } else {
+            ColourMode::Tristimulus
+        },
         progress: true,
     };
     let (image, stats) = gonio_render::render(&scene, &opts)
@@ -73,6 +83,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             "rays": stats.rays,
             "seconds": stats.seconds,
             "rays_per_second": stats.rays_per_second(),
+            "colour_mode": if args.spectral { "spectral" } else { "tristimulus" },
         });
         println!("{}", serde_json::to_string_pretty(&out)?);
     } else {

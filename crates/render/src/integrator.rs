@@ -1,8 +1,7 @@
-//! The path tracer: unidirectional paths from the camera with next-event estimation at every
-//! surface interaction and multiple importance sampling of light and BRDF samples with the power
-//! heuristic (Veach, "Robust Monte Carlo methods for light transport simulation", 1997, §9.2.4,
-//! β = 2), BRDF sampling through [`Brdf::sample`], and Russian roulette after three bounces
-//! (pbrt-v4 §14.5.4).
+//! The render loop: samples per pixel, tiles over threads, and the film. Each sample traces one
+//! path ([`crate::path`]) and the pixel is their mean, in linear sRGB. In the spectral mode
+//! ([`ColourMode::Spectral`]) each sample also draws its wavelengths ([`crate::spectral`]) and
+//! the film turns the path's spectral values into linear sRGB.
 //!
 //! Samples come from Owen-scrambled Sobol sequences (Burley, "Practical hash-based Owen
 //! scrambling", JCGT 9(4), 2020, the `sobol_burley` crate): sample `s` of pixel `p` uses the
@@ -11,12 +10,12 @@
 //! and its index, so the image is identical for any number of threads.
 
 use crate::error::{RenderError, Result};
-use crate::geometry::Ray;
 use crate::image::Image;
-use crate::scene::{PrimKind, Scene};
-use glam::{DVec2, DVec3};
-use gonio_brdf::sampling::{Frame, cosine_hemisphere, cosine_hemisphere_pdf};
-use gonio_brdf::{Brdf, BrdfSample, Rgb};
+use crate::path::{Sampler, Tristimulus, mix, radiance};
+use crate::scene::Scene;
+use crate::spectral::{SpectralFilmSetup, SpectralPath};
+use glam::DVec2;
+use gonio_brdf::Rgb;
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -44,16 +43,33 @@ pub struct RenderOptions {
     pub threads: Option<usize>,
     /// How BRDF samples are drawn.
     pub sampling: BrdfSampling,
+    /// How colour is carried along a path: linear sRGB (the default) or spectrally.
+    pub colour: ColourMode,
     /// Show a progress bar on a terminal.
     pub progress: bool,
 }
 
+/// How colour is carried along a path.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ColourMode {
+    /// The tristimulus shortcut: every BRDF and light in linear sRGB (spectral tables reduced
+    /// under D65 by their band weights), multiplied channel by channel along the path.
+    #[default]
+    Tristimulus,
+    /// Hero-wavelength spectral rendering (Wilkie et al. 2014): four wavelengths per path,
+    /// spectral tables evaluated at them, RGB materials and lights turned into spectra, and the
+    /// spectral values turned into colour at the film (D65, CIE 1931 2°). See
+    /// [`crate::spectral`].
+    Spectral,
+}
+
 /// The settings of one render, every choice made.
-struct Settings {
-    spp: u32,
-    seed: u32,
-    max_bounces: u32,
-    sampling: BrdfSampling,
+pub(crate) struct Settings {
+    pub spp: u32,
+    pub seed: u32,
+    pub max_bounces: u32,
+    pub sampling: BrdfSampling,
+    pub colour: ColourMode,
 }
 
 /// What a render cost.
@@ -84,6 +100,7 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> Result<(Image, RenderSt
             .or(scene.render.max_bounces)
             .unwrap_or(8),
         sampling: options.sampling,
+        colour: options.colour,
     };
     if opts.spp == 0 || opts.spp > 1 << 16 {
         return Err(RenderError::Invalid(format!(
@@ -93,6 +110,7 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> Result<(Image, RenderSt
     }
     let opts = &opts;
     let start = Instant::now();
+    let spectral = SpectralFilmSetup::new();
     let (w, h) = (scene.camera.width, scene.camera.height);
     let tiles: Vec<(usize, usize)> = (0..h.div_ceil(TILE))
         .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
@@ -114,7 +132,7 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> Result<(Image, RenderSt
                 let mut out = Vec::with_capacity(TILE * TILE);
                 for y in y0..(y0 + TILE).min(h) {
                     for x in x0..(x0 + TILE).min(w) {
-                        out.push(pixel(scene, opts, x, y, &mut rays));
+                        out.push(pixel(scene, opts, &spectral, x, y, &mut rays));
                     }
                 }
                 bar.inc(1);
@@ -151,46 +169,15 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> Result<(Image, RenderSt
     ))
 }
 
-/// 32-bit finaliser of MurmurHash3 (Appleby), mixing the seed and the pixel index.
-fn mix(mut x: u32) -> u32 {
-    x ^= x >> 16;
-    x = x.wrapping_mul(0x85eb_ca6b);
-    x ^= x >> 13;
-    x = x.wrapping_mul(0xc2b2_ae35);
-    x ^ (x >> 16)
-}
-
-/// The sample stream of one path: successive dimensions of one Sobol sample.
-struct Sampler {
-    index: u32,
-    seed: u32,
-    dim: u32,
-}
-
-impl Sampler {
-    fn next(&mut self) -> f64 {
-        let d = self.dim;
-        self.dim += 1;
-        // Past the 256 dimensions of the tables, continue with freshly seeded sequences.
-        let seed = if d < sobol_burley::NUM_DIMENSIONS {
-            self.seed
-        } else {
-            mix(self.seed ^ mix(d / sobol_burley::NUM_DIMENSIONS))
-        };
-        f64::from(sobol_burley::sample(
-            self.index,
-            d % sobol_burley::NUM_DIMENSIONS,
-            seed,
-        ))
-    }
-
-    fn next2(&mut self) -> DVec2 {
-        DVec2::new(self.next(), self.next())
-    }
-}
-
-/// The mean radiance of pixel (`x`, `y`).
-fn pixel(scene: &Scene, opts: &Settings, x: usize, y: usize, rays: &mut u64) -> [f32; 3] {
+/// The mean radiance of pixel (`x`, `y`), linear sRGB.
+fn pixel(
+    scene: &Scene,
+    opts: &Settings,
+    spectral: &SpectralFilmSetup,
+    x: usize,
+    y: usize,
+    rays: &mut u64,
+) -> [f32; 3] {
     let index = (y * scene.camera.width + x) as u32;
     let seed = mix(mix(opts.seed) ^ index);
     let mut sum = Rgb::ZERO;
@@ -201,172 +188,18 @@ fn pixel(scene: &Scene, opts: &Settings, x: usize, y: usize, rays: &mut u64) -> 
             dim: 0,
         };
         let film = DVec2::new(x as f64, y as f64) + sampler.next2();
-        let l = radiance(scene, opts, scene.camera.ray(film), &mut sampler, rays);
+        let ray = scene.camera.ray(film);
+        let l = match opts.colour {
+            ColourMode::Tristimulus => radiance(scene, opts, &Tristimulus, ray, &mut sampler, rays),
+            ColourMode::Spectral => {
+                let path = SpectralPath::new(spectral, s, seed);
+                let v = radiance(scene, opts, &path, ray, &mut sampler, rays);
+                path.to_rgb(v)
+            }
+        };
         if l.is_finite() {
             sum += l;
         }
     }
     (sum / f64::from(opts.spp)).as_vec3().to_array()
-}
-
-/// The power heuristic with β = 2 for a sample of density `a` against a strategy of density `b`.
-fn power(a: f64, b: f64) -> f64 {
-    let (a2, b2) = (a * a, b * b);
-    if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
-}
-
-/// A BRDF sample by the chosen strategy.
-fn sample_brdf(brdf: &dyn Brdf, wo: DVec3, u: DVec2, how: BrdfSampling) -> Option<BrdfSample> {
-    match how {
-        BrdfSampling::Importance => brdf.sample(wo, u),
-        BrdfSampling::Cosine => {
-            let wi = cosine_hemisphere(u);
-            let pdf = cosine_hemisphere_pdf(wi.z);
-            (pdf > 0.0).then(|| BrdfSample {
-                wi,
-                f: brdf.eval(wo, wi),
-                pdf,
-            })
-        }
-    }
-}
-
-/// The density of [`sample_brdf`].
-fn brdf_pdf(brdf: &dyn Brdf, wo: DVec3, wi: DVec3, how: BrdfSampling) -> f64 {
-    match how {
-        BrdfSampling::Importance => brdf.pdf(wo, wi),
-        BrdfSampling::Cosine => cosine_hemisphere_pdf(wi.z),
-    }
-}
-
-/// A point just off the surface on the side of `n`, so that a ray from it does not hit the
-/// surface it leaves.
-fn offset(p: DVec3, n: DVec3) -> DVec3 {
-    p + n * (1e-7 * (1.0 + p.abs().max_element()))
-}
-
-/// Radiance along `ray`.
-fn radiance(
-    scene: &Scene,
-    opts: &Settings,
-    mut ray: Ray,
-    sampler: &mut Sampler,
-    rays: &mut u64,
-) -> Rgb {
-    let shapes = scene.accel.shapes();
-    let n_lights = scene.lights.len();
-    let p_select = 1.0 / n_lights.max(1) as f64;
-    let mut l = Rgb::ZERO;
-    let mut beta = Rgb::ONE;
-    // Density of the BRDF sample that produced `ray` (None: a camera ray).
-    let mut prev_pdf: Option<f64> = None;
-    let mut prev_p = ray.origin;
-    for bounce in 0..=opts.max_bounces {
-        *rays += 1;
-        let Some(hit) = scene.accel.intersect(&ray, 0.0, f64::INFINITY) else {
-            for light in scene.lights.iter().filter(|l| l.is_infinite()) {
-                let le = light.le(ray.dir);
-                let w = prev_pdf.map_or(1.0, |pdf| {
-                    power(
-                        pdf,
-                        p_select * light.pdf(prev_p, ray.dir, DVec3::ZERO, shapes),
-                    )
-                });
-                l += beta * le * w;
-            }
-            break;
-        };
-        let material = match scene.prims[hit.prim] {
-            PrimKind::Emitter(k) => {
-                let light = &scene.lights[k];
-                let le = light.emitted(hit.ng, ray.dir);
-                let w = prev_pdf.map_or(1.0, |pdf| {
-                    power(pdf, p_select * light.pdf(prev_p, ray.dir, hit.p, shapes))
-                });
-                l += beta * le * w;
-                break;
-            }
-            PrimKind::Surface(m) => &scene.materials[m],
-        };
-        let brdf: &dyn Brdf = material.brdf.as_ref();
-        // Two-sided surfaces: shade the side the ray arrives from.
-        let (ng, ns) = if hit.ng.dot(ray.dir) > 0.0 {
-            (-hit.ng, -hit.ns)
-        } else {
-            (hit.ng, hit.ns)
-        };
-        let frame = Frame {
-            s: hit.tangent,
-            t: ns.cross(hit.tangent),
-            n: ns,
-        };
-        let wo = frame.to_local(-ray.dir);
-        if wo.z <= 0.0 {
-            break;
-        }
-        let origin = offset(hit.p, ng);
-
-        // Next-event estimation: one light chosen uniformly.
-        if n_lights > 0 {
-            let k = ((sampler.next() * n_lights as f64) as usize).min(n_lights - 1);
-            let u = sampler.next2();
-            if let Some(ls) = scene.lights[k].sample(hit.p, u, shapes) {
-                let wi = frame.to_local(ls.wi);
-                if wi.z > 0.0 && ls.wi.dot(ng) > 0.0 && ls.li != Rgb::ZERO && ls.pdf > 0.0 {
-                    let f = brdf.eval(wo, wi);
-                    if f != Rgb::ZERO {
-                        *rays += 1;
-                        let shadow = Ray { origin, dir: ls.wi };
-                        // Stop short of the light itself (the origin is offset too).
-                        let t_max = if ls.dist.is_finite() {
-                            ls.dist * (1.0 - 1e-5)
-                        } else {
-                            f64::INFINITY
-                        };
-                        if !scene.accel.occluded(&shadow, 0.0, t_max) {
-                            let pdf_l = p_select * ls.pdf;
-                            let w = if ls.delta {
-                                1.0
-                            } else {
-                                power(pdf_l, brdf_pdf(brdf, wo, wi, opts.sampling))
-                            };
-                            l += beta * f * ls.li * (wi.z * w / pdf_l);
-                        }
-                    }
-                }
-            }
-        } else {
-            sampler.next();
-            sampler.next2();
-        }
-        if bounce == opts.max_bounces {
-            break;
-        }
-
-        // Continue the path by sampling the BRDF.
-        let u = sampler.next2();
-        let Some(s) = sample_brdf(brdf, wo, u, opts.sampling) else {
-            break;
-        };
-        let wi_world = frame.to_world(s.wi);
-        if s.pdf <= 0.0 || s.wi.z <= 0.0 || wi_world.dot(ng) <= 0.0 {
-            break;
-        }
-        beta *= s.f * (s.wi.z / s.pdf);
-        prev_pdf = Some(s.pdf);
-        prev_p = hit.p;
-        ray = Ray {
-            origin,
-            dir: wi_world.normalize(),
-        };
-        let u_rr = sampler.next();
-        if bounce >= 3 {
-            let q = beta.max_element().min(0.95);
-            if u_rr >= q || q.is_nan() {
-                break;
-            }
-            beta /= q;
-        }
-    }
-    l
 }

@@ -22,12 +22,14 @@ pub mod image;
 pub mod integrator;
 pub mod light;
 pub mod material;
+mod path;
 pub mod scene;
+pub mod spectral;
 pub mod surface;
 
 pub use error::{RenderError, Result};
 pub use image::{Display, Image, ToneCurve};
-pub use integrator::{BrdfSampling, RenderOptions, RenderStats, render};
+pub use integrator::{BrdfSampling, ColourMode, RenderOptions, RenderStats, render};
 pub use scene::Scene;
 
 use std::path::Path;

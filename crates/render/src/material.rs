@@ -2,9 +2,11 @@
 //! crate (its [`ModelSpec`]), a tabulated BRDF read from a file (`.gbrdf`, Cornell `.astm`, MERL
 //! `.binary`), importance-sampled with the alias-method sampler of
 //! [`gonio_brdf::table::SampledTable`], or a height map turned into a table by a scattering
-//! method (see [`crate::scene`]).
+//! method (see [`crate::scene`]). A spectral table also keeps its spectra for the spectral
+//! colour mode ([`crate::spectral::SpectralTable`]).
 
 use crate::error::{RenderError, Result};
+use crate::spectral::SpectralTable;
 use gonio_brdf::formats::{astm, merl};
 use gonio_brdf::models::ModelSpec;
 use gonio_brdf::table::{BrdfTable, SampledTable};
@@ -17,8 +19,34 @@ use std::sync::Arc;
 pub struct Material {
     /// Its name in the scene file.
     pub name: String,
-    /// The BRDF in the shading frame (z = shading normal, x = surface tangent).
+    /// The BRDF in the shading frame (z = shading normal, x = surface tangent), in linear sRGB.
     pub brdf: Arc<dyn Brdf>,
+    /// For a spectral table, the same table evaluated at the wavelengths of a path (spectral
+    /// mode); `None` for every other BRDF, whose linear sRGB the spectral mode turns into a
+    /// spectrum. Set it to `None` when replacing `brdf`.
+    pub spectral: Option<SpectralTable>,
+}
+
+impl Material {
+    /// A material of an analytic model or any other BRDF in linear sRGB.
+    pub fn new(name: impl Into<String>, brdf: Arc<dyn Brdf>) -> Material {
+        Material {
+            name: name.into(),
+            brdf,
+            spectral: None,
+        }
+    }
+
+    /// A material of a tabulated BRDF, importance-sampled by the alias method; a spectral table
+    /// keeps its spectra for the spectral mode.
+    pub fn from_table(name: impl Into<String>, table: BrdfTable) -> Material {
+        let sampled = Arc::new(SampledTable::new(table));
+        Material {
+            name: name.into(),
+            spectral: SpectralTable::new(sampled.clone()),
+            brdf: sampled,
+        }
+    }
 }
 
 impl std::fmt::Debug for Material {
@@ -57,9 +85,4 @@ pub fn read_table(path: &Path) -> Result<BrdfTable> {
             "unknown BRDF table extension: use .gbrdf, .astm (Cornell) or .binary (MERL)",
         )),
     }
-}
-
-/// A table wrapped with its importance sampler.
-pub fn sampled(table: BrdfTable) -> Arc<dyn Brdf> {
-    Arc::new(SampledTable::new(table))
 }

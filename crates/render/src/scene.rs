@@ -297,14 +297,17 @@ impl Scene {
         let mut materials = Vec::new();
         let mut material_index = BTreeMap::new();
         for (name, m) in &desc.materials {
-            let brdf = match (&m.brdf, &m.table, &m.surface) {
-                (Some(spec), None, None) => material::from_model(spec, path, name)?,
+            let material = match (&m.brdf, &m.table, &m.surface) {
+                (Some(spec), None, None) => {
+                    Material::new(name.clone(), material::from_model(spec, path, name)?)
+                }
                 (None, Some(file), None) => {
-                    material::sampled(material::read_table(&resolve(file))?)
+                    Material::from_table(name.clone(), material::read_table(&resolve(file))?)
                 }
-                (None, None, Some(surface)) => {
-                    material::sampled(crate::surface::table(surface, dir, path, name)?)
-                }
+                (None, None, Some(surface)) => Material::from_table(
+                    name.clone(),
+                    crate::surface::table(surface, dir, path, name)?,
+                ),
                 _ => {
                     return Err(bad(format!(
                         "material `{name}`: give exactly one of `brdf`, `table`, `surface`"
@@ -312,10 +315,7 @@ impl Scene {
                 }
             };
             material_index.insert(name.clone(), materials.len());
-            materials.push(Material {
-                name: name.clone(),
-                brdf,
-            });
+            materials.push(material);
         }
 
         let mut shapes = Vec::new();

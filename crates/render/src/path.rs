@@ -1,0 +1,306 @@
+//! One light path from the camera: unidirectional path tracing with next-event estimation at
+//! every surface interaction and multiple importance sampling of light and BRDF samples with the
+//! power heuristic (Veach, "Robust Monte Carlo methods for light transport simulation", 1997,
+//! §9.2.4, β = 2), BRDF sampling through [`Brdf::sample`], and Russian roulette after three
+//! bounces (pbrt-v4 §14.5.4).
+//!
+//! The path is written once for both colour modes: a [`Shading`] says what a path carries (linear
+//! sRGB, or the values at the path's wavelengths, [`crate::spectral`]), how a material is
+//! evaluated and sampled, and how a light's RGB radiance becomes what the path carries. Every
+//! random decision takes the next dimension of the path's [`Sampler`], in the same order in both
+//! modes, so that the two modes trace the same directions from the same seed.
+
+use crate::geometry::Ray;
+use crate::integrator::{BrdfSampling, Settings};
+use crate::material::Material;
+use crate::scene::{PrimKind, Scene};
+use glam::{DVec2, DVec3, DVec4};
+use gonio_brdf::sampling::{Frame, cosine_hemisphere, cosine_hemisphere_pdf};
+use gonio_brdf::{Brdf, BrdfSample, Rgb};
+use std::ops::{Add, AddAssign, DivAssign, Mul, MulAssign};
+
+/// What a path carries: three colour channels ([`Rgb`]) or four wavelengths ([`DVec4`]).
+pub(crate) trait Carried:
+    Copy
+    + PartialEq
+    + Add<Output = Self>
+    + AddAssign
+    + Mul<Output = Self>
+    + MulAssign
+    + Mul<f64, Output = Self>
+    + DivAssign<f64>
+{
+    const ZERO: Self;
+    const ONE: Self;
+    /// The largest component (for Russian roulette).
+    fn max_component(self) -> f64;
+}
+
+impl Carried for Rgb {
+    const ZERO: Self = Rgb::ZERO;
+    const ONE: Self = Rgb::ONE;
+    fn max_component(self) -> f64 {
+        self.max_element()
+    }
+}
+
+impl Carried for DVec4 {
+    const ZERO: Self = DVec4::ZERO;
+    const ONE: Self = DVec4::ONE;
+    fn max_component(self) -> f64 {
+        self.max_element()
+    }
+}
+
+/// How a path evaluates materials and lights.
+pub(crate) trait Shading {
+    type C: Carried;
+    /// A linear sRGB value (a light's radiance, an RGB BRDF value) as carried.
+    fn carry_rgb(&self, rgb: Rgb) -> Self::C;
+    /// The material's BRDF for the pair (`wo` toward the viewer, `wi` toward the light).
+    fn eval(&self, material: &Material, wo: DVec3, wi: DVec3) -> Self::C;
+    /// A BRDF sample by the strategy `how`: the direction, the BRDF value and the pdf.
+    fn sample(
+        &self,
+        material: &Material,
+        wo: DVec3,
+        u: DVec2,
+        how: BrdfSampling,
+    ) -> Option<(DVec3, Self::C, f64)>;
+}
+
+/// The tristimulus shortcut: every material evaluated in linear sRGB (a spectral table through
+/// its band weights under D65, [`gonio_brdf::table::BrdfTable::to_rgb`]), colours multiplied
+/// channel by channel.
+pub(crate) struct Tristimulus;
+
+impl Shading for Tristimulus {
+    type C = Rgb;
+
+    fn carry_rgb(&self, rgb: Rgb) -> Rgb {
+        rgb
+    }
+
+    fn eval(&self, material: &Material, wo: DVec3, wi: DVec3) -> Rgb {
+        material.brdf.eval(wo, wi)
+    }
+
+    fn sample(
+        &self,
+        material: &Material,
+        wo: DVec3,
+        u: DVec2,
+        how: BrdfSampling,
+    ) -> Option<(DVec3, Rgb, f64)> {
+        sample_brdf(material.brdf.as_ref(), wo, u, how).map(|s| (s.wi, s.f, s.pdf))
+    }
+}
+
+/// 32-bit finaliser of MurmurHash3 (Appleby), mixing the seed and the pixel index.
+pub(crate) fn mix(mut x: u32) -> u32 {
+    x ^= x >> 16;
+    x = x.wrapping_mul(0x85eb_ca6b);
+    x ^= x >> 13;
+    x = x.wrapping_mul(0xc2b2_ae35);
+    x ^ (x >> 16)
+}
+
+/// The sample stream of one path: successive dimensions of one Owen-scrambled Sobol sample.
+pub(crate) struct Sampler {
+    /// The sample's index within its pixel.
+    pub index: u32,
+    /// The pixel's scramble seed.
+    pub seed: u32,
+    /// The next dimension.
+    pub dim: u32,
+}
+
+impl Sampler {
+    pub(crate) fn next(&mut self) -> f64 {
+        let d = self.dim;
+        self.dim += 1;
+        // Past the 256 dimensions of the tables, continue with freshly seeded sequences.
+        let seed = if d < sobol_burley::NUM_DIMENSIONS {
+            self.seed
+        } else {
+            mix(self.seed ^ mix(d / sobol_burley::NUM_DIMENSIONS))
+        };
+        f64::from(sobol_burley::sample(
+            self.index,
+            d % sobol_burley::NUM_DIMENSIONS,
+            seed,
+        ))
+    }
+
+    pub(crate) fn next2(&mut self) -> DVec2 {
+        DVec2::new(self.next(), self.next())
+    }
+}
+
+/// The power heuristic with β = 2 for a sample of density `a` against a strategy of density `b`.
+fn power(a: f64, b: f64) -> f64 {
+    let (a2, b2) = (a * a, b * b);
+    if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
+}
+
+/// A BRDF sample by the chosen strategy.
+pub(crate) fn sample_brdf(
+    brdf: &dyn Brdf,
+    wo: DVec3,
+    u: DVec2,
+    how: BrdfSampling,
+) -> Option<BrdfSample> {
+    match how {
+        BrdfSampling::Importance => brdf.sample(wo, u),
+        BrdfSampling::Cosine => {
+            let wi = cosine_hemisphere(u);
+            let pdf = cosine_hemisphere_pdf(wi.z);
+            (pdf > 0.0).then(|| BrdfSample {
+                wi,
+                f: brdf.eval(wo, wi),
+                pdf,
+            })
+        }
+    }
+}
+
+/// The density of [`sample_brdf`].
+fn brdf_pdf(brdf: &dyn Brdf, wo: DVec3, wi: DVec3, how: BrdfSampling) -> f64 {
+    match how {
+        BrdfSampling::Importance => brdf.pdf(wo, wi),
+        BrdfSampling::Cosine => cosine_hemisphere_pdf(wi.z),
+    }
+}
+
+/// A point just off the surface on the side of `n`, so that a ray from it does not hit the
+/// surface it leaves.
+fn offset(p: DVec3, n: DVec3) -> DVec3 {
+    p + n * (1e-7 * (1.0 + p.abs().max_element()))
+}
+
+/// Radiance along `ray`, as `shading` carries it.
+pub(crate) fn radiance<S: Shading>(
+    scene: &Scene,
+    opts: &Settings,
+    shading: &S,
+    mut ray: Ray,
+    sampler: &mut Sampler,
+    rays: &mut u64,
+) -> S::C {
+    let shapes = scene.accel.shapes();
+    let n_lights = scene.lights.len();
+    let p_select = 1.0 / n_lights.max(1) as f64;
+    let mut l = S::C::ZERO;
+    let mut beta = S::C::ONE;
+    // Density of the BRDF sample that produced `ray` (None: a camera ray).
+    let mut prev_pdf: Option<f64> = None;
+    let mut prev_p = ray.origin;
+    for bounce in 0..=opts.max_bounces {
+        *rays += 1;
+        let Some(hit) = scene.accel.intersect(&ray, 0.0, f64::INFINITY) else {
+            for light in scene.lights.iter().filter(|l| l.is_infinite()) {
+                let le = shading.carry_rgb(light.le(ray.dir));
+                let w = prev_pdf.map_or(1.0, |pdf| {
+                    power(
+                        pdf,
+                        p_select * light.pdf(prev_p, ray.dir, DVec3::ZERO, shapes),
+                    )
+                });
+                l += beta * le * w;
+            }
+            break;
+        };
+        let material = match scene.prims[hit.prim] {
+            PrimKind::Emitter(k) => {
+                let light = &scene.lights[k];
+                let le = shading.carry_rgb(light.emitted(hit.ng, ray.dir));
+                let w = prev_pdf.map_or(1.0, |pdf| {
+                    power(pdf, p_select * light.pdf(prev_p, ray.dir, hit.p, shapes))
+                });
+                l += beta * le * w;
+                break;
+            }
+            PrimKind::Surface(m) => &scene.materials[m],
+        };
+        let brdf: &dyn Brdf = material.brdf.as_ref();
+        // Two-sided surfaces: shade the side the ray arrives from.
+        let (ng, ns) = if hit.ng.dot(ray.dir) > 0.0 {
+            (-hit.ng, -hit.ns)
+        } else {
+            (hit.ng, hit.ns)
+        };
+        let frame = Frame {
+            s: hit.tangent,
+            t: ns.cross(hit.tangent),
+            n: ns,
+        };
+        let wo = frame.to_local(-ray.dir);
+        if wo.z <= 0.0 {
+            break;
+        }
+        let origin = offset(hit.p, ng);
+
+        // Next-event estimation: one light chosen uniformly.
+        if n_lights > 0 {
+            let k = ((sampler.next() * n_lights as f64) as usize).min(n_lights - 1);
+            let u = sampler.next2();
+            if let Some(ls) = scene.lights[k].sample(hit.p, u, shapes) {
+                let wi = frame.to_local(ls.wi);
+                if wi.z > 0.0 && ls.wi.dot(ng) > 0.0 && ls.li != Rgb::ZERO && ls.pdf > 0.0 {
+                    let f = shading.eval(material, wo, wi);
+                    if f != S::C::ZERO {
+                        *rays += 1;
+                        let shadow = Ray { origin, dir: ls.wi };
+                        // Stop short of the light itself (the origin is offset too).
+                        let t_max = if ls.dist.is_finite() {
+                            ls.dist * (1.0 - 1e-5)
+                        } else {
+                            f64::INFINITY
+                        };
+                        if !scene.accel.occluded(&shadow, 0.0, t_max) {
+                            let pdf_l = p_select * ls.pdf;
+                            let w = if ls.delta {
+                                1.0
+                            } else {
+                                power(pdf_l, brdf_pdf(brdf, wo, wi, opts.sampling))
+                            };
+                            l += beta * f * shading.carry_rgb(ls.li) * (wi.z * w / pdf_l);
+                        }
+                    }
+                }
+            }
+        } else {
+            sampler.next();
+            sampler.next2();
+        }
+        if bounce == opts.max_bounces {
+            break;
+        }
+
+        // Continue the path by sampling the BRDF.
+        let u = sampler.next2();
+        let Some((wi, f, pdf)) = shading.sample(material, wo, u, opts.sampling) else {
+            break;
+        };
+        let wi_world = frame.to_world(wi);
+        if pdf <= 0.0 || wi.z <= 0.0 || wi_world.dot(ng) <= 0.0 {
+            break;
+        }
+        beta *= f * (wi.z / pdf);
+        prev_pdf = Some(pdf);
+        prev_p = hit.p;
+        ray = Ray {
+            origin,
+            dir: wi_world.normalize(),
+        };
+        let u_rr = sampler.next();
+        if bounce >= 3 {
+            let q = beta.max_component().min(0.95);
+            if u_rr >= q || q.is_nan() {
+                break;
+            }
+            beta /= q;
+        }
+    }
+    l
+}

@@ -1,0 +1,298 @@
+//! Spectral rendering ([`crate::ColourMode::Spectral`]): hero-wavelength spectral sampling
+//! (A. Wilkie, S. Nawaz, M. Droske, A. Weidlich, J. Hanika, "Hero Wavelength Spectral Sampling",
+//! Computer Graphics Forum 33(4), EGSR 2014, section 4; as in pbrt-v4 §4.6.6). Each camera path
+//! draws a hero wavelength uniformly over 380–780 nm and carries it with its three rotations by
+//! 100 nm ([`gonio_color::HeroSampler`]); the directions are sampled as in the tristimulus mode
+//! and every BRDF value, weighted by `cos θ / pdf`, is taken at the four wavelengths. The film
+//! ([`gonio_color::SpectralFilm`]) turns the four values into linear sRGB with the weights
+//! `W(λ_j) / (4 p(λ_j))` of illuminant D65 and the CIE 1931 2° observer.
+//!
+//! What a path carries at λ is radiance relative to D65: the film weights contain D65's spectral
+//! power, normalised so that the value 1 at every wavelength displays as linear sRGB (1, 1, 1).
+//! This is the illuminant under which the tristimulus shortcut reduces spectral tables
+//! ([`gonio_brdf::table::BrdfTable::to_rgb`]), so for a path that meets one surface under a white
+//! light the two modes agree up to Monte Carlo noise.
+//!
+//! - Spectral tables ([`SpectralTable`]) are evaluated at the path's wavelengths, linearly between
+//!   the table's bands and holding the end bands beyond them (the convention of the tristimulus
+//!   band weights, [`gonio_color::SpectralToXyz`]).
+//! - Everything given in linear sRGB (light and environment radiances, analytic models, RGB and
+//!   monochrome tables) becomes a spectrum by [`RgbUpsampling`]: a fixed linear combination of
+//!   three smooth basis spectra whose coefficients are solved so that the spectrum's colour under
+//!   D65 is the given linear sRGB (the three-basis method of A. S. Glassner, "How to derive a
+//!   spectrum from an RGB triplet", IEEE Computer Graphics and Applications 9(4), 1989). Grey
+//!   (r = g = b) becomes exactly a flat spectrum, so a grey scene renders as in the tristimulus
+//!   mode; for a light of RGB c the emitted spectral radiance is `s_c(λ) · D65(λ)` on the film's
+//!   scale.
+
+use crate::integrator::BrdfSampling;
+use crate::material::Material;
+use crate::path::{Shading, mix, sample_brdf};
+use glam::{DMat3, DVec2, DVec3, DVec4};
+use gonio_brdf::Rgb;
+use gonio_brdf::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
+use gonio_brdf::table::{BrdfTable, Channels, SampledTable};
+use gonio_color::{
+    Colorimetry, HERO_COUNT, HeroSampler, Illuminant, Observer, SpectralFilm, Spectrum,
+};
+use std::sync::{Arc, LazyLock};
+
+/// The illuminant of the film (and of the tristimulus shortcut's reduction).
+pub const ILLUMINANT: Illuminant = Illuminant::D65;
+/// The observer of the film.
+pub const OBSERVER: Observer = Observer::Cie1931TwoDegree;
+
+/// Where the blue and green basis spectra cross (nm).
+const BLUE_GREEN_NM: f64 = 490.0;
+/// Where the green and red basis spectra cross (nm).
+const GREEN_RED_NM: f64 = 585.0;
+/// Width of the logistic edges of the basis spectra (nm).
+const EDGE_NM: f64 = 10.0;
+
+/// Linear sRGB → spectrum (Glassner 1989). The basis spectra are a smooth partition of unity:
+/// `red(λ) = σ((λ − 585 nm)/10 nm)`, `blue(λ) = 1 − σ((λ − 490 nm)/10 nm)`,
+/// `green = 1 − red − blue`, σ the logistic function; all three lie in [0, 1] and sum to 1.
+/// With `M` the 3 × 3 matrix whose column c is the linear sRGB of basis c as a reflectance under
+/// D65 (CIE 1931 2°, white-balanced, [`Colorimetry::of_reflectance`]), the spectrum of `rgb` is
+/// `s(λ) = basis(λ) · M⁻¹ rgb`. It is linear in `rgb`, its colour under D65 is exactly `rgb`, and
+/// (1, 1, 1) gives s ≡ 1. Colours more saturated than the basis give negative coefficients and
+/// may give negative values at some wavelengths (the film still integrates them to the right
+/// colour).
+pub struct RgbUpsampling {
+    /// `M⁻¹`.
+    to_coefficients: DMat3,
+}
+
+impl RgbUpsampling {
+    /// The upsampling (built once).
+    pub fn get() -> &'static RgbUpsampling {
+        static UPSAMPLING: LazyLock<RgbUpsampling> = LazyLock::new(|| {
+            let grid: Vec<f64> = (360..=830).map(f64::from).collect();
+            let columns: [DVec3; 3] = std::array::from_fn(|c| {
+                let values = grid.iter().map(|&w| basis(w)[c]).collect();
+                let spectrum =
+                    Spectrum::new(grid.clone(), values).expect("the 1 nm grid is increasing");
+                let rgb = Colorimetry::of_reflectance(&spectrum, ILLUMINANT, OBSERVER).linear_srgb;
+                DVec3::new(rgb.r, rgb.g, rgb.b)
+            });
+            RgbUpsampling {
+                to_coefficients: DMat3::from_cols(columns[0], columns[1], columns[2]).inverse(),
+            }
+        });
+        &UPSAMPLING
+    }
+
+    /// The weights `w(λ) = M⁻ᵀ basis(λ)`: the spectrum of `rgb` at λ is `rgb · w(λ)`.
+    pub fn weights(&self, wavelength_nm: f64) -> DVec3 {
+        self.to_coefficients.transpose() * DVec3::from_array(basis(wavelength_nm))
+    }
+
+    /// The spectrum of `rgb` at `wavelength_nm`.
+    pub fn value(&self, rgb: Rgb, wavelength_nm: f64) -> f64 {
+        rgb.dot(self.weights(wavelength_nm))
+    }
+}
+
+/// The basis spectra [red, green, blue] at `wavelength_nm`.
+fn basis(wavelength_nm: f64) -> [f64; 3] {
+    let logistic = |edge: f64| 1.0 / (1.0 + (-(wavelength_nm - edge) / EDGE_NM).exp());
+    let red = logistic(GREEN_RED_NM);
+    let blue = 1.0 - logistic(BLUE_GREEN_NM);
+    [red, 1.0 - red - blue, blue]
+}
+
+/// A spectral table with its importance sampler, evaluated at a path's wavelengths.
+#[derive(Clone)]
+pub struct SpectralTable {
+    sampled: Arc<SampledTable>,
+}
+
+impl SpectralTable {
+    /// The spectral view of `sampled`; `None` unless its channels are spectral.
+    pub fn new(sampled: Arc<SampledTable>) -> Option<SpectralTable> {
+        matches!(sampled.table().channels(), Channels::Spectral { .. })
+            .then_some(SpectralTable { sampled })
+    }
+
+    /// The table.
+    pub fn table(&self) -> &BrdfTable {
+        self.sampled.table()
+    }
+
+    /// `f(wi, wo)` in 1/sr at each of `wavelengths_nm`: the table's channels interpolated at the
+    /// pair of directions, then linearly between bands (end bands held beyond the range).
+    pub fn eval(&self, wo: DVec3, wi: DVec3, wavelengths_nm: &[f64; HERO_COUNT]) -> DVec4 {
+        let table = self.sampled.table();
+        let Channels::Spectral {
+            wavelengths_nm: bands,
+        } = table.channels()
+        else {
+            unreachable!("SpectralTable::new admits spectral tables only");
+        };
+        let mut stack = [0.0f64; 64];
+        let mut heap = Vec::new();
+        let values = if bands.len() <= stack.len() {
+            &mut stack[..bands.len()]
+        } else {
+            heap.resize(bands.len(), 0.0);
+            &mut heap[..]
+        };
+        table.eval_channels(wo, wi, values);
+        DVec4::from_array(wavelengths_nm.map(|w| band_value(bands, values, w)))
+    }
+}
+
+/// The value at `wavelength_nm` of a spectrum given at `bands`: linear between bands, the end
+/// values held beyond them.
+fn band_value(bands: &[f64], values: &[f64], wavelength_nm: f64) -> f64 {
+    let last = bands.len() - 1;
+    if wavelength_nm <= bands[0] {
+        return values[0];
+    }
+    if wavelength_nm >= bands[last] {
+        return values[last];
+    }
+    let i = bands.partition_point(|&b| b <= wavelength_nm) - 1;
+    let t = (wavelength_nm - bands[i]) / (bands[i + 1] - bands[i]);
+    values[i] + t * (values[i + 1] - values[i])
+}
+
+/// What every spectral path of a render shares: the wavelength sampler and the film.
+pub(crate) struct SpectralFilmSetup {
+    film: SpectralFilm,
+}
+
+impl SpectralFilmSetup {
+    pub(crate) fn new() -> SpectralFilmSetup {
+        SpectralFilmSetup {
+            film: SpectralFilm::new(HeroSampler::visible(), ILLUMINANT, OBSERVER),
+        }
+    }
+}
+
+/// Scrambles the wavelength stream apart from the path's own dimensions.
+const WAVELENGTH_STREAM: u32 = 0x6c8e_9cf5;
+
+/// One spectral path: its wavelengths, the upsampling weights at them and the film weights.
+pub(crate) struct SpectralPath {
+    wavelengths_nm: [f64; HERO_COUNT],
+    /// Per wavelength, `w(λ)` of [`RgbUpsampling::weights`].
+    upsample: [DVec3; HERO_COUNT],
+    /// Per wavelength, the film's linear sRGB weights.
+    film: [[f64; 3]; HERO_COUNT],
+}
+
+impl SpectralPath {
+    /// The wavelengths of sample `index` of the pixel with scramble seed `seed`: the hero comes
+    /// from its own Owen-scrambled Sobol stream (stratified over the pixel's samples), so the
+    /// path's other random decisions use the same dimensions as in the tristimulus mode.
+    pub(crate) fn new(setup: &SpectralFilmSetup, index: u32, seed: u32) -> SpectralPath {
+        let u = f64::from(sobol_burley::sample(
+            index,
+            0,
+            mix(seed ^ WAVELENGTH_STREAM),
+        ));
+        let wavelengths_nm = setup.film.sampler().sample(u);
+        let up = RgbUpsampling::get();
+        SpectralPath {
+            wavelengths_nm,
+            upsample: wavelengths_nm.map(|w| up.weights(w)),
+            film: setup.film.rgb_weights(&wavelengths_nm),
+        }
+    }
+
+    /// The path's linear sRGB from its values at the four wavelengths.
+    pub(crate) fn to_rgb(&self, values: DVec4) -> Rgb {
+        self.film
+            .iter()
+            .zip(values.to_array())
+            .map(|(w, v)| Rgb::from_array(*w) * v)
+            .sum()
+    }
+}
+
+impl Shading for SpectralPath {
+    type C = DVec4;
+
+    fn carry_rgb(&self, rgb: Rgb) -> DVec4 {
+        DVec4::from_array(self.upsample.map(|w| rgb.dot(w)))
+    }
+
+    fn eval(&self, material: &Material, wo: DVec3, wi: DVec3) -> DVec4 {
+        match &material.spectral {
+            Some(table) => table.eval(wo, wi, &self.wavelengths_nm),
+            None => self.carry_rgb(material.brdf.eval(wo, wi)),
+        }
+    }
+
+    fn sample(
+        &self,
+        material: &Material,
+        wo: DVec3,
+        u: DVec2,
+        how: BrdfSampling,
+    ) -> Option<(DVec3, DVec4, f64)> {
+        let Some(table) = &material.spectral else {
+            return sample_brdf(material.brdf.as_ref(), wo, u, how)
+                .map(|s| (s.wi, self.carry_rgb(s.f), s.pdf));
+        };
+        // The directions of the tristimulus mode (SampledTable::sample), spectral values.
+        let (wi, pdf) = match how {
+            BrdfSampling::Importance => {
+                let sampler = table.sampled.sampler();
+                let wi = sampler.sample_direction(wo, u)?;
+                (wi, sampler.pdf(wo, wi))
+            }
+            BrdfSampling::Cosine => {
+                let wi = cosine_hemisphere(u);
+                (wi, cosine_hemisphere_pdf(wi.z))
+            }
+        };
+        (pdf > 0.0).then(|| (wi, table.eval(wo, wi, &self.wavelengths_nm), pdf))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The upsampled spectrum's colour under D65, integrated independently by the colour crate,
+    /// is the input; grey gives a flat spectrum; the basis is a partition of unity.
+    #[test]
+    fn upsampling_round_trips_and_keeps_grey_flat() {
+        let up = RgbUpsampling::get();
+        let grid: Vec<f64> = (360..=830).map(f64::from).collect();
+        for rgb in [
+            Rgb::new(0.8, 0.3, 0.1),
+            Rgb::new(0.1, 0.5, 0.9),
+            Rgb::new(0.25, 0.6, 0.2),
+            Rgb::splat(0.4),
+        ] {
+            let values = grid.iter().map(|&w| up.value(rgb, w)).collect();
+            let s = Spectrum::new(grid.clone(), values).unwrap();
+            let back = Colorimetry::of_reflectance(&s, ILLUMINANT, OBSERVER).linear_srgb;
+            let err = (DVec3::new(back.r, back.g, back.b) - rgb)
+                .abs()
+                .max_element();
+            assert!(err < 1e-9, "{rgb}: {back:?}");
+        }
+        for w in [380.0, 452.5, 490.0, 585.0, 700.0, 780.0] {
+            assert!((up.value(Rgb::splat(0.7), w) - 0.7).abs() < 1e-9);
+            let b = basis(w);
+            assert!(b.iter().all(|v| (0.0..=1.0).contains(v)));
+            assert!((b.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn band_values_interpolate_and_hold_the_ends() {
+        let bands = [400.0, 410.0, 430.0];
+        let values = [1.0, 2.0, 4.0];
+        assert_eq!(band_value(&bands, &values, 380.0), 1.0);
+        assert_eq!(band_value(&bands, &values, 405.0), 1.5);
+        assert_eq!(band_value(&bands, &values, 420.0), 3.0);
+        assert_eq!(band_value(&bands, &values, 430.0), 4.0);
+        assert_eq!(band_value(&bands, &values, 700.0), 4.0);
+        assert_eq!(band_value(&[550.0], &[0.3], 700.0), 0.3);
+    }
+}
