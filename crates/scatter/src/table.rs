@@ -13,7 +13,9 @@
 //! what makes few incidences enough: a specular lobe sits at the same `h` for every incidence,
 //! and only its amplitude (Fresnel, shadowing) changes with `theta_i`.
 //!
-//! - Ray method: every ray [`RayEngine::reflected_rays`] returns is deposited. Isotropic tables
+//! - Ray method: every ray the engine reflects is deposited as it is traced
+//!   ([`RayEngine::fold_rays`]: fixed chunks of facets fill partial slices, added in order, so
+//!   no ray is stored and the table is the same on any number of threads). Isotropic tables
 //!   take one source azimuth and fold the slice about the plane of incidence; to average over
 //!   more facet orientations use the engine's `azimuths` option.
 //! - Kirchhoff: the full-hemisphere map [`Kirchhoff::hemisphere`] of each source and wavelength
@@ -198,9 +200,13 @@ pub fn ray_table(
     let incidences = options.incidences();
     let mut slices = Vec::with_capacity(incidences.len());
     for (k, &wi) in incidences.iter().enumerate() {
-        let rays = engine.reflected_rays(wi)?;
+        let partials = engine.fold_rays(
+            wi,
+            || vec![0.0; grid.len()],
+            |part, wo, w| grid.deposit(part, wi, wo, w),
+        )?;
         let measure = grid.measures(wi);
-        let values = options.symmetrise(k, grid.values(wi, &rays, &measure), &grid, &measure);
+        let values = options.symmetrise(k, grid.values_from(&partials, &measure), &grid, &measure);
         slices.push(Slice::from_channels(&[values]));
         progress(k + 1, incidences.len());
     }

@@ -9,8 +9,10 @@
 //! 8 × 8 cells jumps to the edge of the block (a two-level maximum map). A ray that rises above the highest point of the map, or
 //! leaves the map's footprint while rising, escapes; a ray that leaves the footprint while
 //! descending is lost (it would meet the continuation of the surface). Points the instrument did
-//! not measure (NaN heights) never block a ray.
+//! not measure (NaN heights) never block a ray. A rising ray from a grid point along a grid
+//! axis is not marched: its line's horizon map decides exactly (see `horizon`).
 
+use super::horizon::{Axis, Horizons};
 use glam::DVec3;
 
 /// What happens to a ray followed over the height field.
@@ -25,7 +27,7 @@ pub(crate) enum Fate {
 }
 
 /// Heights on a regular grid, with what marching needs precomputed.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub(crate) struct HeightField {
     /// Row-major heights, `h[iy * nx + ix]`, metres; NaN where not measured.
     heights: Vec<f64>,
@@ -43,6 +45,8 @@ pub(crate) struct HeightField {
     by: usize,
     /// Horizontal step of the march, metres.
     step: f64,
+    /// Horizon maps toward the grid axes, made when a ray along that axis first needs one.
+    horizons: Horizons,
 }
 
 /// Bisection steps used to locate a hit between two march samples.
@@ -85,6 +89,30 @@ impl HeightField {
             bx,
             by,
             step: 0.5 * dx.min(dy),
+            horizons: Horizons::default(),
+        }
+    }
+
+    /// The horizon map for rays in direction `d`, if `d` rises along a grid axis (made now if
+    /// it was not yet: call this before a parallel loop that will need it).
+    pub(crate) fn horizon(&self, d: DVec3) -> Option<&[f64]> {
+        if d.z <= 0.0 {
+            return None;
+        }
+        let axis = Axis::of(d.x, d.y)?;
+        Some(
+            self.horizons
+                .get(axis, &self.heights, (self.nx, self.ny), (self.dx, self.dy)),
+        )
+    }
+
+    /// Whether a ray in direction `d` from the grid point of row-major index `index` (at
+    /// `origin`) leaves the surface: exactly from the horizon map when `d` rises along a grid
+    /// axis, else by marching.
+    pub(crate) fn escapes(&self, index: usize, origin: DVec3, d: DVec3) -> bool {
+        match self.horizon(d) {
+            Some(horizon) => d.z / (d.x * d.x + d.y * d.y).sqrt() >= horizon[index],
+            None => self.march(origin, d) == Fate::Escapes,
         }
     }
 

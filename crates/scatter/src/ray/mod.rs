@@ -26,6 +26,7 @@
 //! ```
 
 mod hemisphere;
+mod horizon;
 mod index;
 mod march;
 mod trace;
@@ -163,6 +164,7 @@ impl RayEngine {
             .map(|((iy, ix), &n)| Facet {
                 pos: field.point(ix, iy),
                 n,
+                index: iy * nx + ix,
             })
             .collect();
         if facets.is_empty() {
@@ -240,6 +242,12 @@ impl RayEngine {
     fn tracer<'a>(&'a self, wi: DVec3, k: usize, wanted: Option<&'a BinMask>) -> Tracer<'a> {
         let phi = std::f64::consts::TAU * k as f64 / self.options.azimuths as f64;
         let (sin, cos) = phi.sin_cos();
+        let wi_map = DVec3::new(cos * wi.x - sin * wi.y, sin * wi.x + cos * wi.y, wi.z);
+        if self.options.shadowing {
+            // Make the horizon map the shadowing test will read (if any) before the parallel
+            // loops, so that no worker waits for another to make it.
+            self.field.horizon(wi_map);
+        }
         Tracer {
             field: &self.field,
             normals: &self.normals,
@@ -247,7 +255,7 @@ impl RayEngine {
             polarised: self.options.polarised,
             shadowing: self.options.shadowing,
             second_bounce: self.options.second_bounce,
-            wi: DVec3::new(cos * wi.x - sin * wi.y, sin * wi.x + cos * wi.y, wi.z),
+            wi: wi_map,
             to_detector: (cos, -sin),
             scale: 1.0 / (self.facets.len() as f64 * wi.z),
             wanted,
@@ -281,6 +289,54 @@ impl RayEngine {
             );
         }
         Ok(out)
+    }
+
+    /// Fold every ray that leaves the surface for a source in direction `wi` (unit, `z > 0`)
+    /// into partial results without storing the rays: each fixed chunk of facets (per azimuth
+    /// of incidence) folds its rays, in facet order, as `(direction, reflectance carried)` into
+    /// a value of its own made by `init`, and the partials come back in chunk order (azimuth
+    /// slowest). The chunks are the same on any number of threads, so adding the partials in
+    /// order gives the same result on any number of threads. Directions and shares are those
+    /// of [`RayEngine::reflected_rays`].
+    pub fn fold_rays<T: Send>(
+        &self,
+        wi: DVec3,
+        init: impl Fn() -> T + Sync,
+        fold: impl Fn(&mut T, DVec3, f64) + Sync,
+    ) -> Result<Vec<T>> {
+        let wi = check_incidence(wi)?;
+        let per_azimuth = 1.0 / self.options.azimuths as f64;
+        Ok(self.fold_chunks(wi, FOLD_CHUNK, init, |part, ray| {
+            fold(part, ray.d, ray.w * per_azimuth)
+        }))
+    }
+
+    /// The rays of each fixed chunk of `chunk` facets (per azimuth step) folded into a partial
+    /// result, in chunk order.
+    fn fold_chunks<T: Send>(
+        &self,
+        wi: DVec3,
+        chunk: usize,
+        init: impl Fn() -> T + Sync,
+        fold: impl Fn(&mut T, &Ray) + Sync,
+    ) -> Vec<T> {
+        let mut out = Vec::new();
+        for k in 0..self.options.azimuths {
+            let tracer = self.tracer(wi, k, None);
+            let partials: Vec<T> = self
+                .facets
+                .par_chunks(chunk)
+                .map(|chunk| {
+                    let mut part = init();
+                    for ray in chunk.iter().filter_map(|f| tracer.trace(f)) {
+                        fold(&mut part, &ray);
+                    }
+                    part
+                })
+                .collect();
+            out.extend(partials);
+        }
+        out
     }
 
     /// Read a set of cone detectors for a source in direction `wi` (unit, `z > 0`).
@@ -331,24 +387,16 @@ impl RayEngine {
     pub fn detect_hemisphere(&self, wi: DVec3, grid: &HemisphereGrid) -> Result<HemisphereTable> {
         let wi = check_incidence(wi)?;
         let locator = CellLocator::new(*grid);
+        let partials = self.fold_chunks(
+            wi,
+            HEMISPHERE_CHUNK,
+            || vec![Sums::default(); grid.len()],
+            |part, ray| part[locator.cell(ray.d)].add_ray(ray),
+        );
         let mut sums = vec![Sums::default(); grid.len()];
-        for k in 0..self.options.azimuths {
-            let tracer = self.tracer(wi, k, None);
-            let partials: Vec<Vec<Sums>> = self
-                .facets
-                .par_chunks(HEMISPHERE_CHUNK)
-                .map(|chunk| {
-                    let mut part = vec![Sums::default(); grid.len()];
-                    for ray in chunk.iter().filter_map(|f| tracer.trace(f)) {
-                        part[locator.cell(ray.d)].add_ray(&ray);
-                    }
-                    part
-                })
-                .collect();
-            for part in &partials {
-                for (s, p) in sums.iter_mut().zip(part) {
-                    s.add(p);
-                }
+        for part in &partials {
+            for (s, p) in sums.iter_mut().zip(part) {
+                s.add(p);
             }
         }
         let per_azimuth = 1.0 / self.options.azimuths as f64;
@@ -426,8 +474,13 @@ fn check_detectors(detectors: &[Detector]) -> Result<Option<f64>> {
     Ok(detectors.iter().map(|d| d.half_angle).reduce(f64::min))
 }
 
-/// Facets per chunk of a hemisphere run: each chunk fills one partial table.
+/// Facets per chunk of a hemisphere run: each chunk fills one partial table (of up to a few
+/// MB, so not too many of them).
 const HEMISPHERE_CHUNK: usize = 1 << 16;
+
+/// Facets per chunk of [`RayEngine::fold_rays`], whose partial results are small (a table's
+/// slice): 2¹⁴ facets keep the tail of a parallel run short (64 chunks for a 1024² map).
+const FOLD_CHUNK: usize = 1 << 14;
 
 /// Bins per axis of the direction index: about one smallest half-angle wide, so that a
 /// detector visits a few bins, but no more bins than rays.

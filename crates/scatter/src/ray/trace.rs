@@ -21,6 +21,8 @@ pub(crate) struct Facet {
     pub pos: DVec3,
     /// Unit normal, `n_z > 0`.
     pub n: DVec3,
+    /// Row-major index of its grid point, `iy · nx + ix`.
+    pub index: usize,
 }
 
 /// A reflected ray leaving the surface, with its share of the reflectance (unpolarised, and
@@ -84,7 +86,7 @@ impl Tracer<'_> {
         if !self.second_bounce && (wr.z <= 0.0 || unwanted(wr)) {
             return None;
         }
-        if self.shadowing && self.field.march(facet.pos, self.wi) != Fate::Escapes {
+        if self.shadowing && !self.field.escapes(facet.index, facet.pos, self.wi) {
             return None;
         }
         let (r, rs, rp) = self.fresnel(c);
@@ -95,12 +97,14 @@ impl Tracer<'_> {
             ws: rs * power,
             wp: rp * power,
         };
-        if self.shadowing {
+        if self.second_bounce {
             match self.field.march(facet.pos, wr) {
                 Fate::Escapes => {}
-                Fate::Hits(p) if self.second_bounce => ray = self.bounce(ray, p)?,
-                _ => return None,
+                Fate::Hits(p) => ray = self.bounce(ray, p)?,
+                Fate::Lost => return None,
             }
+        } else if self.shadowing && !self.field.escapes(facet.index, facet.pos, wr) {
+            return None;
         }
         ray.d = self.to_detector_frame(ray.d);
         Some(ray)
