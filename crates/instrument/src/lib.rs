@@ -1,10 +1,12 @@
 //! Virtual instruments for gonio: gloss meters (ISO 2813 / ASTM D523), reflection haze and
-//! distinctness of image (ASTM E430), and the comparison of measured and computed in-plane curves.
+//! distinctness of image (ASTM E430), the comparison of measured and computed in-plane curves, and
+//! the isotropy check (the curves of a map and of the map turned about its normal).
 
 pub mod compare;
 pub mod curves;
 pub mod error;
 pub mod gloss;
+pub mod isotropy;
 mod quadrature;
 pub mod specimens;
 pub mod study;
