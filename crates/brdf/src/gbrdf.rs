@@ -108,34 +108,22 @@ pub fn write(table: &BrdfTable, path: &Path) -> Result<()> {
     })
 }
 
-/// Write a file through a temporary file in the same directory and a rename, so that the
-/// target is either the old file or the complete new one.
+/// Write a file atomically: `body` writes into a temporary file beside `path`, which is renamed
+/// over `path` only when `body` and the flush succeed (the `atomic-write-file` crate). The target
+/// is therefore either the old file or the complete new one, never half a file, and on an error
+/// the temporary file is removed. A new file gets the ordinary permissions (0666 less the umask),
+/// a replaced file keeps its own.
 pub fn write_atomic(
     path: &Path,
     body: impl FnOnce(&mut std::io::BufWriter<&mut std::fs::File>) -> std::io::Result<()>,
 ) -> Result<()> {
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(|e| BrdfError::io(path, e))?;
-    // Temporary files are private (0600); the result is an ordinary file.
-    #[cfg(unix)]
+    let io = |e| BrdfError::io(path, e);
+    let mut file = atomic_write_file::AtomicWriteFile::open(path).map_err(io)?;
     {
-        use std::os::unix::fs::PermissionsExt;
-        tmp.as_file()
-            .set_permissions(std::fs::Permissions::from_mode(0o644))
-            .map_err(|e| BrdfError::io(path, e))?;
+        let mut w = std::io::BufWriter::new(file.as_file_mut());
+        body(&mut w).and_then(|()| w.flush()).map_err(io)?;
     }
-    {
-        let mut w = std::io::BufWriter::new(tmp.as_file_mut());
-        body(&mut w)
-            .and_then(|_| w.flush())
-            .map_err(|e| BrdfError::io(path, e))?;
-    }
-    tmp.persist(path)
-        .map_err(|e| BrdfError::io(path, e.error))?;
-    Ok(())
+    file.commit().map_err(io)
 }
 
 /// Parse and check the header of a file's bytes; returns the header.

@@ -8,6 +8,7 @@ mod compare;
 mod demo;
 mod gloss;
 mod inplane;
+mod output;
 mod plot;
 mod render;
 mod report;

@@ -204,21 +204,11 @@ pub fn render_png(
     save_image_atomic(path, &image::DynamicImage::ImageRgb8(img))
 }
 
-/// Write an image (format from the extension) through a temporary file and a rename.
+/// Write an image (format from the extension) atomically ([`crate::output::write_atomic`]).
 pub fn save_image_atomic(path: &Path, img: &image::DynamicImage) -> Result<()> {
     let format = image::ImageFormat::from_path(path)
         .with_context(|| format!("{}: unknown image extension (use .png)", path.display()))?;
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)
-        .with_context(|| format!("{}: cannot create file", path.display()))?;
-    img.write_to(&mut std::io::BufWriter::new(tmp.as_file_mut()), format)
-        .with_context(|| format!("{}: cannot encode image", path.display()))?;
-    tmp.persist(path)
-        .with_context(|| format!("{}: cannot write", path.display()))?;
-    Ok(())
+    crate::output::write_atomic(path, |w| Ok(img.write_to(w, format)?))
 }
 
 /// A false-colour image of a grid of values (heights, BRDF maps, ...) with a colour bar.

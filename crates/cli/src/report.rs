@@ -122,11 +122,7 @@ impl Report {
             .unwrap_or(Path::new("."));
         std::fs::create_dir_all(dir)
             .with_context(|| format!("{}: cannot create", dir.display()))?;
-        let mut tmp = tempfile::NamedTempFile::new_in(dir)?;
-        std::io::Write::write_all(&mut tmp, html.as_bytes())?;
-        tmp.persist(path)
-            .with_context(|| format!("{}: cannot write", path.display()))?;
-        Ok(())
+        crate::output::write_atomic(path, |w| Ok(std::io::Write::write_all(w, html.as_bytes())?))
     }
 }
 

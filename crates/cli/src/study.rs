@@ -3,6 +3,7 @@
 //! STARR geometry, statistics, gloss, and plots of how the specular peak changes with roughness.
 //! Results go to a directory as CSV, JSON and PNG.
 
+use crate::output::write_atomic;
 use crate::plot::{self, LinePlot, Series};
 use anyhow::{Context, Result, ensure};
 use clap::Args;
@@ -12,6 +13,7 @@ use gonio_instrument::study::{self, PeakRow, Sample, SampleResult, StudyConfig};
 use gonio_scatter::InplaneCurve;
 use gonio_surface::synth::{Acf, GaussianSurface};
 use indicatif::{ProgressBar, ProgressStyle};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 #[derive(Args)]
@@ -202,10 +204,9 @@ pub fn execute(samples: &[Sample], config: &StudyConfig, dir: &Path) -> Result<S
         files,
     };
     let json = dir.join("study.json");
-    write_atomic(
-        &json,
-        serde_json::to_string_pretty(&summary_json(&outputs))?.as_bytes(),
-    )?;
+    write_atomic(&json, |w| {
+        Ok(serde_json::to_writer_pretty(w, &summary_json(&outputs))?)
+    })?;
     let mut outputs = outputs;
     outputs.files.push(json);
     Ok(outputs)
@@ -370,7 +371,7 @@ fn write_gloss_csv(path: &Path, results: &[SampleResult]) -> Result<()> {
             ));
         }
     }
-    write_atomic(path, s.as_bytes())
+    write_atomic(path, |w| Ok(w.write_all(s.as_bytes())?))
 }
 
 fn write_peaks_csv(path: &Path, peaks: &[PeakRow]) -> Result<()> {
@@ -390,7 +391,7 @@ fn write_peaks_csv(path: &Path, peaks: &[PeakRow]) -> Result<()> {
             p.peak.fwhm_deg.map_or(String::new(), |w| format!("{w:.4}")),
         ));
     }
-    write_atomic(path, s.as_bytes())
+    write_atomic(path, |w| Ok(w.write_all(s.as_bytes())?))
 }
 
 fn summary_json(out: &StudyOutputs) -> serde_json::Value {
@@ -411,10 +412,4 @@ fn summary_json(out: &StudyOutputs) -> serde_json::Value {
         })
         .collect();
     serde_json::json!({ "samples": samples, "peaks": out.peaks })
-}
-
-/// Write bytes through a temporary file and a rename.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    gonio_surface::io::write_atomic(path, bytes)?;
-    Ok(())
 }

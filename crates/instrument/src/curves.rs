@@ -18,24 +18,20 @@ const COLUMNS: [&str; 7] = [
     "rel_uncertainty",
 ];
 
-/// Write curves as CSV to `path` atomically (temporary file, then rename).
+/// Write curves as CSV to `path` atomically (temporary file, then rename; a new file gets the
+/// ordinary permissions, 0666 less the umask).
 pub fn write_csv(path: &Path, curves: &[InplaneCurve]) -> Result<(), InstrumentError> {
     let io_err = |source| InstrumentError::Io {
         path: path.display().to_string(),
         source,
     };
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(io_err)?;
+    let mut file = atomic_write_file::AtomicWriteFile::open(path).map_err(io_err)?;
     {
-        let mut w = std::io::BufWriter::new(tmp.as_file_mut());
+        let mut w = std::io::BufWriter::new(file.as_file_mut());
         write_csv_to(&mut w, curves).map_err(io_err)?;
         w.flush().map_err(io_err)?;
     }
-    tmp.persist(path).map_err(|e| io_err(e.error))?;
-    Ok(())
+    file.commit().map_err(io_err)
 }
 
 /// Write curves as CSV to any writer.

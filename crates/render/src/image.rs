@@ -138,23 +138,18 @@ impl Image {
                 ));
             }
         };
-        let dir = path
-            .parent()
-            .filter(|p| !p.as_os_str().is_empty())
-            .unwrap_or(Path::new("."));
         let io = |e: std::io::Error| RenderError::Io {
             path: path.to_path_buf(),
             error: e,
         };
-        let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(io)?;
+        let mut file = atomic_write_file::AtomicWriteFile::open(path).map_err(io)?;
         {
-            let mut out = std::io::BufWriter::new(tmp.as_file_mut());
+            let mut out = std::io::BufWriter::new(file.as_file_mut());
             img.write_to(&mut out, format)
                 .map_err(|e| RenderError::image(path, format!("cannot encode: {e}")))?;
             std::io::Write::flush(&mut out).map_err(io)?;
         }
-        tmp.persist(path).map_err(|e| io(e.error))?;
-        Ok(())
+        file.commit().map_err(io)
     }
 
     /// Read a linear image (`.exr`, `.hdr`; PNG and other 8-bit formats are decoded from sRGB).

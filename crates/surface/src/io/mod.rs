@@ -16,7 +16,9 @@ mod zygo;
 
 use crate::error::{Result, SurfaceError};
 use crate::heightmap::HeightMap;
-use std::io::Write;
+use atomic_write_file::AtomicWriteFile;
+use std::fs::File;
+use std::io::{BufWriter, Write};
 use std::path::Path;
 
 /// A height-map file format that gonio reads.
@@ -168,39 +170,23 @@ pub fn write(map: &HeightMap, path: &Path) -> Result<()> {
             ));
         }
     };
-    write_atomic(path, &bytes)
+    write_atomic(path, |w| w.write_all(&bytes))
 }
 
-/// Write `bytes` to `path` through a temporary file in the same directory and a rename.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let mut tmp = tempfile_in(dir).map_err(|e| SurfaceError::io(path, e))?;
-    tmp.1
-        .write_all(bytes)
-        .and_then(|_| tmp.1.sync_all())
-        .map_err(|e| SurfaceError::io(path, e))?;
-    std::fs::rename(&tmp.0, path).map_err(|e| {
-        let _ = std::fs::remove_file(&tmp.0);
-        SurfaceError::io(path, e)
-    })
-}
-
-fn tempfile_in(dir: &Path) -> std::io::Result<(std::path::PathBuf, std::fs::File)> {
-    let pid = std::process::id();
-    for n in 0..1000u32 {
-        let candidate = dir.join(format!(".gonio-tmp-{pid}-{n}"));
-        match std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&candidate)
-        {
-            Ok(f) => return Ok((candidate, f)),
-            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
-            Err(e) => return Err(e),
-        }
+/// Write a file atomically: `body` writes into a temporary file beside `path`, which is renamed
+/// over `path` only when `body` and the flush succeed (the `atomic-write-file` crate). The target
+/// is therefore either the old file or the complete new one, never half a file, and on an error
+/// the temporary file is removed. A new file gets the ordinary permissions (0666 less the umask),
+/// a replaced file keeps its own.
+pub fn write_atomic(
+    path: &Path,
+    body: impl FnOnce(&mut BufWriter<&mut File>) -> std::io::Result<()>,
+) -> Result<()> {
+    let io = |e| SurfaceError::io(path, e);
+    let mut file = AtomicWriteFile::open(path).map_err(io)?;
+    {
+        let mut w = BufWriter::new(file.as_file_mut());
+        body(&mut w).and_then(|()| w.flush()).map_err(io)?;
     }
-    Err(std::io::Error::other("could not create a temporary file"))
+    file.commit().map_err(io)
 }

@@ -1,0 +1,87 @@
+//! Writing output files: every file the `gonio` command writes goes through [`write_atomic`], so
+//! that a failure never leaves half a file and outputs have ordinary permissions.
+
+use anyhow::{Context, Result};
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+/// Write a file atomically: `body` writes into a temporary file beside `path`, which is renamed
+/// over `path` only when `body` and the flush succeed (the `atomic-write-file` crate). The target
+/// is therefore either the old file or the complete new one, and on an error the temporary file
+/// is removed. A new file gets the ordinary permissions (0666 less the umask), a replaced file
+/// keeps its own. Errors name the file.
+pub fn write_atomic(
+    path: &Path,
+    body: impl FnOnce(&mut BufWriter<&mut File>) -> Result<()>,
+) -> Result<()> {
+    let mut file = atomic_write_file::AtomicWriteFile::open(path)
+        .with_context(|| format!("{}: cannot create the file", path.display()))?;
+    {
+        let mut w = BufWriter::new(file.as_file_mut());
+        body(&mut w)
+            .and_then(|()| Ok(w.flush()?))
+            .with_context(|| format!("{}: cannot write", path.display()))?;
+    }
+    file.commit()
+        .with_context(|| format!("{}: cannot write", path.display()))
+}
+
+#[cfg(all(test, unix))]
+mod tests {
+    use super::*;
+    use std::os::unix::fs::PermissionsExt;
+
+    fn mode(path: &Path) -> u32 {
+        std::fs::metadata(path).unwrap().permissions().mode() & 0o7777
+    }
+
+    fn names(dir: &Path) -> Vec<String> {
+        let mut names: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        names
+    }
+
+    #[test]
+    fn outputs_get_the_permissions_of_an_ordinary_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let plain = dir.path().join("plain.txt");
+        File::create(&plain).unwrap();
+        let html = dir.path().join("report.html");
+        write_atomic(&html, |w| Ok(w.write_all(b"<html></html>")?)).unwrap();
+        assert_eq!(std::fs::read(&html).unwrap(), b"<html></html>");
+        // 0666 less the umask, like `File::create` (a bare temporary file would be 0600).
+        assert_eq!(mode(&html), mode(&plain));
+        assert_eq!(names(dir.path()), ["plain.txt", "report.html"]);
+    }
+
+    #[test]
+    fn failed_write_keeps_the_old_file_and_leaves_no_temporary_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let csv = dir.path().join("peaks.csv");
+        std::fs::write(&csv, "old,file\n").unwrap();
+        let err = write_atomic(&csv, |w| {
+            w.write_all(&[b'x'; 200_000])?;
+            anyhow::bail!("the encoder failed")
+        })
+        .unwrap_err();
+        let text = format!("{err:#}");
+        assert!(
+            text.contains("peaks.csv") && text.contains("the encoder failed"),
+            "{text}"
+        );
+        assert_eq!(std::fs::read_to_string(&csv).unwrap(), "old,file\n");
+        assert_eq!(names(dir.path()), ["peaks.csv"]);
+    }
+
+    #[test]
+    fn a_missing_directory_is_an_error_naming_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("no/such/out.png");
+        let err = write_atomic(&path, |w| Ok(w.write_all(b"x")?)).unwrap_err();
+        assert!(format!("{err:#}").contains("out.png"), "{err:#}");
+    }
+}
