@@ -158,28 +158,15 @@ pub(crate) fn latin1(bytes: &[u8]) -> String {
         .to_string()
 }
 
-/// A Unix time (seconds since 1970-01-01 UTC) as `YYYY-MM-DDThh:mm:ssZ`.
-///
-/// The civil date follows H. Hinnant's `civil_from_days` algorithm
-/// (<https://howardhinnant.github.io/date_algorithms.html>).
-pub(crate) fn unix_time_iso(seconds: i64) -> String {
-    let days = seconds.div_euclid(86_400);
-    let secs = seconds.rem_euclid(86_400);
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z.rem_euclid(146_097);
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let day = doy - (153 * mp + 2) / 5 + 1;
-    let month = if mp < 10 { mp + 3 } else { mp - 9 };
-    let year = yoe + era * 400 + i64::from(month <= 2);
-    format!(
-        "{year:04}-{month:02}-{day:02}T{:02}:{:02}:{:02}Z",
-        secs / 3600,
-        secs / 60 % 60,
-        secs % 60
-    )
+/// A time as `YYYY-MM-DDThh:mm:ssZ` (UTC, whole seconds; the civil date comes from `jiff`).
+pub(crate) fn iso_utc(time: jiff::Timestamp) -> String {
+    time.strftime("%Y-%m-%dT%H:%M:%SZ").to_string()
+}
+
+/// A Unix time (seconds since 1970-01-01 UTC) as `YYYY-MM-DDThh:mm:ssZ`, or `None` outside the
+/// years -9999 to 9999.
+pub(crate) fn unix_time_iso(seconds: i64) -> Option<String> {
+    jiff::Timestamp::from_second(seconds).ok().map(iso_utc)
 }
 
 #[cfg(test)]
@@ -188,10 +175,14 @@ mod tests {
 
     #[test]
     fn unix_times_match_known_dates() {
-        assert_eq!(unix_time_iso(0), "1970-01-01T00:00:00Z");
+        let iso = |s| unix_time_iso(s).unwrap();
+        assert_eq!(iso(0), "1970-01-01T00:00:00Z");
         // 2000-02-29 12:34:56 UTC (leap day), from `date -u -d @951827696`.
-        assert_eq!(unix_time_iso(951_827_696), "2000-02-29T12:34:56Z");
-        assert_eq!(unix_time_iso(-1), "1969-12-31T23:59:59Z");
+        assert_eq!(iso(951_827_696), "2000-02-29T12:34:56Z");
+        assert_eq!(iso(-1), "1969-12-31T23:59:59Z");
+        // The largest u32 time stamp a Zygo or Sensofar header can hold (`date -u -d @4294967295`).
+        assert_eq!(iso(i64::from(u32::MAX)), "2106-02-07T06:28:15Z");
+        assert_eq!(unix_time_iso(i64::MAX), None);
     }
 
     #[test]

@@ -89,11 +89,11 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
     let meta = &mut map.meta;
     let date = b.text(0, DATE_SIZE, "date")?;
     let time = b.u32::<Le>(DATE_SIZE, "time")?;
-    meta.date = Some(if date.is_empty() {
+    meta.date = if date.is_empty() {
         unix_time_iso(i64::from(time))
     } else {
-        date
-    });
+        Some(date)
+    };
     let hardware = b.u8(CONFIGURATION + 63, "hardware configuration")?;
     meta.instrument = Some(format!("Sensofar (hardware configuration {hardware})"));
     let comment = b.text(COMMENT_OFFSET, COMMENT_SIZE, "comment")?;

@@ -726,10 +726,7 @@ fn is_xsd_datetime(d: &str) -> bool {
 
 /// The current time as an XML Schema dateTime in UTC.
 fn now_utc() -> String {
-    let secs = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.as_secs());
-    super::binary::unix_time_iso(i64::try_from(secs).unwrap_or(i64::MAX))
+    super::binary::iso_utc(jiff::Timestamp::now())
 }
 
 #[cfg(test)]

@@ -134,7 +134,7 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
 
     let meta = &mut map.meta;
     let time_stamp = b.i32::<Be>(76, "time stamp")?;
-    meta.date = Some(unix_time_iso(i64::from(time_stamp)));
+    meta.date = unix_time_iso(i64::from(time_stamp));
     let system_type = b.i16::<Be>(238, "system type")?;
     let serial = b.u16::<Be>(242, "system serial number")?;
     meta.instrument = Some(format!("Zygo (system type {system_type}, serial {serial})"));
