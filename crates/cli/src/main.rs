@@ -58,6 +58,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    die_quietly_on_closed_stdout();
     let cli = Cli::parse();
     let result: anyhow::Result<()> = match cli.command {
         Command::Surface(cmd) => surface::run(cmd),
@@ -76,5 +77,18 @@ fn main() -> ExitCode {
             eprintln!("error: {err:#}");
             ExitCode::from(2)
         }
+    }
+}
+
+/// When the reader of stdout goes away (`gonio inplane ... --json | head -c 10`), end the process
+/// silently by SIGPIPE, as `cat` and other Unix tools do: the shell reports status 141 (128 + 13)
+/// and prints nothing. Rust ignores SIGPIPE by default, which turns the failed write into a panic
+/// ("failed printing to stdout"); restoring the default action fixes every command at once.
+fn die_quietly_on_closed_stdout() {
+    #[cfg(unix)]
+    // SAFETY: `signal` with `SIG_DFL` installs no handler code; this runs first in `main`, before
+    // any other thread exists.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
 }
