@@ -2,10 +2,13 @@
 //! "Renderer"): the rough plastic sphere on a plane (256 × 256 pixels) and the epoxy panels
 //! (384 × 256 pixels, BRDF tables by the ray method, computed once and cached beside the scene),
 //! both at 64 samples per pixel. Each iteration renders the whole image; rays per second = rays
-//! of one render / time.
+//! of one render / time. The colour-mode group renders the metallic-paint scene (Cornell Cayman
+//! and Garnet Red spectral tables) at 96 × 64 pixels, 16 samples per pixel, with the tristimulus
+//! shortcut and spectrally (hero wavelengths).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use gonio_render::{RenderOptions, Scene, render};
+use gonio_render::scene::SceneDesc;
+use gonio_render::{ColourMode, RenderOptions, Scene, render};
 use std::path::Path;
 
 fn scene(name: &str) -> Scene {
@@ -38,5 +41,38 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench);
+/// The metallic-paint scene at 96 × 64 pixels.
+fn small_metallic() -> Scene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/metallic.toml");
+    let mut desc: SceneDesc = toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    (desc.camera.width, desc.camera.height) = (96, 64);
+    Scene::build(&desc, &path).unwrap()
+}
+
+fn bench_colour_modes(c: &mut Criterion) {
+    let s = small_metallic();
+    let mut group = c.benchmark_group("render_colour_mode");
+    group.sample_size(10);
+    for (name, colour) in [
+        ("metallic_96x64_tristimulus", ColourMode::Tristimulus),
+        ("metallic_96x64_spectral", ColourMode::Spectral),
+    ] {
+        let opts = RenderOptions {
+            spp: Some(16),
+            colour,
+            ..RenderOptions::default()
+        };
+        let (_, stats) = render(&s, &opts).unwrap();
+        println!(
+            "{name}, 16 spp: {} rays in {:.2} s = {:.3e} rays/s",
+            stats.rays,
+            stats.seconds,
+            stats.rays_per_second()
+        );
+        group.bench_function(name, |b| b.iter(|| render(&s, &opts).unwrap()));
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench, bench_colour_modes);
 criterion_main!(benches);

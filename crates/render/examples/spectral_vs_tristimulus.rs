@@ -1,0 +1,289 @@
+//! Spectral rendering against the tristimulus shortcut on one scene (issue 7): render it in both
+//! colour modes with the same seed, and compare the displayed pictures pixel by pixel with
+//! CIEDE2000.
+//!
+//! ```text
+//! cargo run --release -p gonio-render --example spectral_vs_tristimulus -- \
+//!     examples/metallic.toml --spp 256 --width 192 --out target/spectral-vs-tri [--json]
+//! ```
+//!
+//! The colour compared is the colour shown: each linear sRGB pixel times the scene's exposure,
+//! through its tone curve (what `gonio render -o x.png` writes, before 8-bit rounding), taken as
+//! display-referred linear sRGB, turned into XYZ (IEC 61966-2-1) and CIELAB relative to the
+//! display white (D65). The program prints the median, 95th percentile and maximum ΔE00 over
+//! the image and per surface (the material and shape kind the pixel's centre ray meets first),
+//! the pixel of the maximum, and, as a noise reference, the same statistics between two
+//! tristimulus renders of different seeds. It writes `tristimulus.png`, `spectral.png` and
+//! `delta_e00.png` (ΔE00 0 → black, 10 or more → white) into `--out`.
+
+use glam::DVec2;
+use gonio_color::srgb::srgb_white;
+use gonio_color::{LinearSrgb, ciede2000};
+use gonio_render::geometry::Shape;
+use gonio_render::scene::{PrimKind, SceneDesc};
+use gonio_render::{ColourMode, Display, Image, RenderOptions, Scene, render};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+struct Args {
+    scene: PathBuf,
+    spp: u32,
+    seed: u32,
+    width: Option<usize>,
+    out: PathBuf,
+    json: bool,
+}
+
+fn parse_args() -> Result<Args, String> {
+    let mut it = std::env::args().skip(1);
+    let mut args = Args {
+        scene: PathBuf::new(),
+        spp: 256,
+        seed: 0,
+        width: None,
+        out: PathBuf::from("spectral-vs-tristimulus"),
+        json: false,
+    };
+    let value = |it: &mut dyn Iterator<Item = String>, flag: &str| {
+        it.next().ok_or(format!("{flag} needs a value"))
+    };
+    while let Some(a) = it.next() {
+        match a.as_str() {
+            "--spp" => {
+                args.spp = value(&mut it, "--spp")?
+                    .parse()
+                    .map_err(|e| format!("--spp: {e}"))?
+            }
+            "--seed" => {
+                args.seed = value(&mut it, "--seed")?
+                    .parse()
+                    .map_err(|e| format!("--seed: {e}"))?
+            }
+            "--width" => {
+                args.width = Some(
+                    value(&mut it, "--width")?
+                        .parse()
+                        .map_err(|e| format!("--width (pixels): {e}"))?,
+                )
+            }
+            "--out" => args.out = PathBuf::from(value(&mut it, "--out")?),
+            "--json" => args.json = true,
+            s if s.starts_with('-') => return Err(format!("unknown flag {s}")),
+            s => args.scene = PathBuf::from(s),
+        }
+    }
+    if args.scene.as_os_str().is_empty() {
+        return Err(
+            "usage: spectral_vs_tristimulus SCENE.toml [--spp N] [--seed S] [--width PX] \
+             [--out DIR] [--json]"
+                .into(),
+        );
+    }
+    Ok(args)
+}
+
+/// The scene, its camera resized to `width` pixels (height in proportion) when given.
+fn load(path: &Path, width: Option<usize>) -> Result<Scene, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut desc: SceneDesc =
+        toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    if let Some(w) = width {
+        let c = &mut desc.camera;
+        c.height = (c.height * w).div_ceil(c.width).max(1);
+        c.width = w;
+    }
+    Scene::build(&desc, path).map_err(|e| e.to_string())
+}
+
+/// CIELAB of every pixel as displayed.
+fn displayed_lab(img: &Image, display: Display) -> Vec<gonio_color::Lab> {
+    let scale = display.exposure.exp2();
+    let white = srgb_white();
+    img.pixels
+        .iter()
+        .map(|p| {
+            let [r, g, b] = p.map(|c| display.tone.apply(f64::from(c) * scale));
+            LinearSrgb { r, g, b }.to_xyz().to_lab(white)
+        })
+        .collect()
+}
+
+/// Median, 95th percentile and maximum.
+fn stats(values: &[f64]) -> [f64; 3] {
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    let q = |p: f64| v[((p * (v.len() - 1) as f64).round() as usize).min(v.len() - 1)];
+    [q(0.5), q(0.95), v[v.len() - 1]]
+}
+
+/// What the centre ray of each pixel meets first: "MATERIAL SHAPE", "light" or "background".
+fn surfaces(scene: &Scene) -> Vec<String> {
+    let cam = &scene.camera;
+    (0..cam.width * cam.height)
+        .map(|i| {
+            let ray = cam.ray(DVec2::new(
+                (i % cam.width) as f64 + 0.5,
+                (i / cam.width) as f64 + 0.5,
+            ));
+            let Some(hit) = scene.accel.intersect(&ray, 0.0, f64::INFINITY) else {
+                return "background".into();
+            };
+            match scene.prims[hit.prim] {
+                PrimKind::Emitter(_) => "light".into(),
+                PrimKind::Surface(m) => {
+                    let kind = match scene.accel.shapes()[hit.prim] {
+                        Shape::Sphere { .. } => "sphere",
+                        Shape::Planar { .. } => "plane",
+                        Shape::Triangle { .. } => "mesh",
+                    };
+                    format!("{} {kind}", scene.materials[m].name)
+                }
+            }
+        })
+        .collect()
+}
+
+fn heat_map(delta_e: &[f64], width: usize, height: usize) -> Image {
+    let mut img = Image::new(width, height);
+    for (p, d) in img.pixels.iter_mut().zip(delta_e) {
+        *p = [(d / 10.0).min(1.0) as f32; 3];
+    }
+    img
+}
+
+fn run() -> Result<(), String> {
+    let args = parse_args()?;
+    let scene = load(&args.scene, args.width)?;
+    let display = scene.display;
+    let opts = |colour, seed| RenderOptions {
+        spp: Some(args.spp),
+        seed: Some(seed),
+        colour,
+        progress: true,
+        ..RenderOptions::default()
+    };
+    let go = |o: RenderOptions| render(&scene, &o).map_err(|e| e.to_string());
+    let (tri, tri_stats) = go(opts(ColourMode::Tristimulus, args.seed))?;
+    let (spec, spec_stats) = go(opts(ColourMode::Spectral, args.seed))?;
+    let (other, _) = go(opts(ColourMode::Tristimulus, args.seed.wrapping_add(1)))?;
+    let (lab_t, lab_s, lab_o) = (
+        displayed_lab(&tri, display),
+        displayed_lab(&spec, display),
+        displayed_lab(&other, display),
+    );
+    let de: Vec<f64> = lab_t
+        .iter()
+        .zip(&lab_s)
+        .map(|(a, b)| ciede2000(*a, *b))
+        .collect();
+    let noise: Vec<f64> = lab_t
+        .iter()
+        .zip(&lab_o)
+        .map(|(a, b)| ciede2000(*a, *b))
+        .collect();
+    let labels = surfaces(&scene);
+    let mut by_surface: BTreeMap<&str, (Vec<f64>, Vec<f64>)> = BTreeMap::new();
+    for ((l, d), n) in labels.iter().zip(&de).zip(&noise) {
+        let e = by_surface.entry(l.as_str()).or_default();
+        e.0.push(*d);
+        e.1.push(*n);
+    }
+    let (imax, _) = de
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.total_cmp(b.1))
+        .expect("an image has pixels");
+    let (w, h) = (tri.width, tri.height);
+    std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
+    let write = |img: &Image, name: &str, d: Display| {
+        img.write(&args.out.join(name), d)
+            .map_err(|e| e.to_string())
+    };
+    write(&tri, "tristimulus.png", display)?;
+    write(&spec, "spectral.png", display)?;
+    let linear = Display {
+        exposure: 0.0,
+        tone: gonio_render::ToneCurve::Clamp,
+    };
+    write(&heat_map(&de, w, h), "delta_e00.png", linear)?;
+
+    let [med, p95, max] = stats(&de);
+    let [n_med, n_p95, n_max] = stats(&noise);
+    if args.json {
+        let surfaces: serde_json::Map<String, serde_json::Value> = by_surface
+            .iter()
+            .map(|(k, (d, n))| {
+                let [a, b, c] = stats(d);
+                let [x, y, z] = stats(n);
+                (
+                    k.to_string(),
+                    serde_json::json!({
+                        "pixels": d.len(),
+                        "delta_e00": {"median": a, "p95": b, "max": c},
+                        "noise_delta_e00": {"median": x, "p95": y, "max": z},
+                    }),
+                )
+            })
+            .collect();
+        let out = serde_json::json!({
+            "scene": args.scene,
+            "width_px": w,
+            "height_px": h,
+            "spp": args.spp,
+            "seed": args.seed,
+            "delta_e00": {"median": med, "p95": p95, "max": max},
+            "noise_delta_e00": {"median": n_med, "p95": n_p95, "max": n_max},
+            "max_pixel": {"x": imax % w, "y": imax / w, "surface": labels[imax]},
+            "surfaces": surfaces,
+            "tristimulus_rays_per_second": tri_stats.rays_per_second(),
+            "spectral_rays_per_second": spec_stats.rays_per_second(),
+        });
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?
+        );
+    } else {
+        println!(
+            "{}: {w} × {h} px, {} spp, seed {}",
+            args.scene.display(),
+            args.spp,
+            args.seed
+        );
+        println!(
+            "spectral vs tristimulus (same seed): ΔE00 median {med:.2}, 95th pct {p95:.2}, \
+             max {max:.2} at pixel ({}, {}) on {}",
+            imax % w,
+            imax / w,
+            labels[imax]
+        );
+        println!(
+            "noise (tristimulus, seed {} vs {}): ΔE00 median {n_med:.2}, 95th pct {n_p95:.2}, \
+             max {n_max:.2}",
+            args.seed,
+            args.seed.wrapping_add(1)
+        );
+        for (k, (d, n)) in &by_surface {
+            let [a, b, c] = stats(d);
+            let [x, y, _] = stats(n);
+            println!(
+                "  {k:<16} {:>6} px: ΔE00 median {a:.2}, 95th {b:.2}, max {c:.2}   \
+                 (noise median {x:.2}, 95th {y:.2})",
+                d.len()
+            );
+        }
+        println!(
+            "rays/s: tristimulus {:.3e}, spectral {:.3e}; pictures in {}",
+            tri_stats.rays_per_second(),
+            spec_stats.rays_per_second(),
+            args.out.display()
+        );
+    }
+    Ok(())
+}
+
+fn main() {
+    if let Err(e) = run() {
+        eprintln!("error: {e}");
+        std::process::exit(2);
+    }
+}
