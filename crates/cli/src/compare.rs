@@ -8,7 +8,7 @@ use gonio_instrument::compare::{Comparison, compare};
 use gonio_instrument::curves::read_csv;
 use gonio_scatter::InplaneCurve;
 use gonio_scatter::geometry::cone_solid_angle;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Args)]
 pub struct CompareArgs {
@@ -86,45 +86,55 @@ pub fn run(args: CompareArgs) -> Result<()> {
     if args.json {
         println!("{}", serde_json::to_string_pretty(&comparisons)?);
     } else {
-        print_table(&comparisons);
+        print_table(&comparisons, "measured", "computed");
     }
     if let Some(out) = &args.output {
-        let mut series = Vec::new();
-        for (i, (m, c)) in pairs.iter().enumerate() {
-            let colour = plot::palette(i);
-            let pts = |curve: &InplaneCurve| {
-                curve
-                    .points
-                    .iter()
-                    .map(|p| (p.scatter_deg, p.reflectance))
-                    .collect()
-            };
-            series.push(Series {
-                label: format!("{} {}°", m.method, m.incidence_deg),
-                points: pts(m),
-                colour,
-                markers: true,
-            });
-            series.push(Series {
-                label: format!("{} {}°", c.method, c.incidence_deg),
-                points: pts(c),
-                colour,
-                markers: false,
-            });
-        }
-        let spec = LinePlot {
-            title: "In-plane reflectance: measured (dots) and computed (lines)",
-            x_label: "scatter angle (deg)",
-            y_label: "reflectance per detector",
-            log_y: true,
-        };
-        plot::line_plot_png(out, (1000, 650), &spec, &series)?;
+        plot_pairs(
+            out,
+            "In-plane reflectance: measured (dots) and computed (lines)",
+            &pairs,
+            |c, _| format!("{} {}°", c.method, c.incidence_deg),
+        )?;
         eprintln!("wrote {}", out.display());
     }
     Ok(())
 }
 
-fn print_table(rows: &[Comparison]) {
+/// Pairs of curves on a log axis of reflectance, one colour per pair: the first curve of each
+/// pair as dots, the second as a line; `label(curve, first)` names each in the legend.
+pub fn plot_pairs(
+    path: &Path,
+    title: &str,
+    pairs: &[(&InplaneCurve, &InplaneCurve)],
+    label: impl Fn(&InplaneCurve, bool) -> String,
+) -> Result<()> {
+    let mut series = Vec::new();
+    for (i, (a, b)) in pairs.iter().enumerate() {
+        let colour = plot::palette(i);
+        for (curve, first) in [(a, true), (b, false)] {
+            series.push(Series {
+                label: label(curve, first),
+                points: curve
+                    .points
+                    .iter()
+                    .map(|p| (p.scatter_deg, p.reflectance))
+                    .collect(),
+                colour,
+                markers: first,
+            });
+        }
+    }
+    let spec = LinePlot {
+        title,
+        x_label: "scatter angle (deg)",
+        y_label: "reflectance per detector",
+        log_y: true,
+    };
+    plot::line_plot_png(path, (1000, 650), &spec, &series)
+}
+
+/// The comparisons as a table, curve `a` (called `left`) on the left, `b` on the right.
+pub fn print_table(rows: &[Comparison], left: &str, right: &str) {
     println!(
         "{:>9} {:>10} {:>6} | {:>8} {:>11} {:>8} | {:>8} {:>11} {:>8}",
         "incid_deg",
@@ -152,5 +162,5 @@ fn print_table(rows: &[Comparison]) {
             fwhm(c.peak_b.fwhm_deg),
         );
     }
-    println!("(left: measured, right: computed)");
+    println!("(left: {left}, right: {right})");
 }

@@ -8,6 +8,7 @@ mod compare;
 mod demo;
 mod gloss;
 mod inplane;
+mod isotropy;
 mod output;
 mod plot;
 mod render;
@@ -55,6 +56,9 @@ enum Command {
     Render(render::RenderArgs),
     /// Gloss (ISO 2813, 20/60/85°), haze and DOI (ASTM E430) of a height map or BRDF table.
     Gloss(gloss::GlossArgs),
+    /// Isotropy check: in-plane curves of a height map and of the map turned by 90° (or any
+    /// angle), with their differences: `gonio isotropy SURFACE --angle-deg 90,45 -o PLOT.png`.
+    Isotropy(isotropy::IsotropyArgs),
 }
 
 fn main() -> ExitCode {
@@ -70,6 +74,7 @@ fn main() -> ExitCode {
         Command::Inplane(args) => inplane::run(args),
         Command::Color(args) => color::run(args),
         Command::Render(args) => render::run(args),
+        Command::Isotropy(args) => isotropy::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

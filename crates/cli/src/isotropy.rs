@@ -1,0 +1,257 @@
+//! `gonio isotropy`: is this surface isotropic? The in-plane curves of a height map and of the
+//! same map turned about its normal (by 90° exactly, or by any angle), their differences per
+//! incidence (RMS of log10 reflectance, peak, FWHM), the rms slopes along and across the plane of
+//! incidence of both, a plot and a CSV of the curves.
+
+use crate::inplane::Method;
+use anyhow::{Result, ensure};
+use clap::Args;
+use gonio_instrument::isotropy::{self, IsotropyConfig, Orientation, RotationCheck};
+use gonio_scatter::InplaneCurve;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+#[derive(Args)]
+pub struct IsotropyArgs {
+    /// Height map file (any format `gonio surface` reads); heights and spacings in metres.
+    surface: PathBuf,
+    /// Angles to turn the map by, degrees counter-clockwise (from +x toward +y), comma-separated.
+    /// Multiples of 90° are exact (no interpolation, whole map); other angles interpolate with the
+    /// bicubic spline and compare both maps over the largest centred square inside the turned
+    /// one.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "90",
+        allow_hyphen_values = true
+    )]
+    angle_deg: Vec<f64>,
+    /// ray: geometric optics on the map's facets; kirchhoff: the scalar Kirchhoff integral at
+    /// --wavelength-nm over the largest spot that fits the map.
+    #[arg(long, value_enum, default_value_t = Method::Ray)]
+    method: Method,
+    /// Wavelength for --method kirchhoff, nm.
+    #[arg(long, default_value_t = 550.0)]
+    wavelength_nm: f64,
+    /// Incidence angles in degrees from the normal, comma-separated (NIST STARR: 20,45,60,70).
+    /// Scatter angles are -75..75° in 1° steps.
+    #[arg(long, value_delimiter = ',', default_value = "20,45,60,70")]
+    incidence_deg: Vec<f64>,
+    /// Detector half-angle in degrees.
+    #[arg(long, default_value_t = 1.4)]
+    aperture_deg: f64,
+    /// Refractive index of the coating.
+    #[arg(long, default_value_t = 1.55)]
+    index: f64,
+    /// Plot the reflectance curves of the original (lines) and turned (dots) map on a log axis
+    /// into this PNG; with several angles, one PNG per angle named PLOT_rot<angle>.png.
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Write the curves to this CSV: rotation_deg,orientation (original|rotated) followed by the
+    /// columns of `gonio inplane`.
+    #[arg(long)]
+    csv: Option<PathBuf>,
+    /// Print the differences and slopes as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run(args: IsotropyArgs) -> Result<()> {
+    check_args(&args)?;
+    let map = crate::surface::read(&args.surface)?;
+    let config = IsotropyConfig {
+        angles_deg: args.angle_deg.clone(),
+        ior: args.index,
+        incidences_deg: args.incidence_deg.clone(),
+        half_angle: args.aperture_deg.to_radians(),
+        method: match args.method {
+            Method::Ray => isotropy::Method::Ray,
+            Method::Kirchhoff => isotropy::Method::Kirchhoff {
+                wavelength: args.wavelength_nm * 1e-9,
+            },
+        },
+        ..IsotropyConfig::starr(isotropy::Method::Ray)
+    };
+    let bar = ProgressBar::new_spinner();
+    if let Ok(style) = ProgressStyle::with_template("{spinner} {msg} {elapsed}") {
+        bar.set_style(style);
+    }
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    let checks = isotropy::check(&map, &config, &|m| bar.set_message(m.to_string()));
+    bar.finish_and_clear();
+    let checks = checks.map_err(|e| anyhow::anyhow!("{}: {e}", args.surface.display()))?;
+    if let Some(csv) = &args.csv {
+        write_csv(csv, &checks)?;
+    }
+    if let Some(png) = &args.output {
+        for c in &checks {
+            let path = if checks.len() == 1 {
+                png.clone()
+            } else {
+                plot_path(png, c.angle_deg)
+            };
+            plot_check(&path, c)?;
+            eprintln!("wrote {}", path.display());
+        }
+    }
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&to_json(&args, &checks))?
+        );
+    } else {
+        print_text(&checks);
+    }
+    Ok(())
+}
+
+fn check_args(args: &IsotropyArgs) -> Result<()> {
+    for &a in &args.angle_deg {
+        ensure!(a.is_finite(), "--angle-deg {a}: must be a finite angle");
+    }
+    for &ti in &args.incidence_deg {
+        ensure!(
+            ti.is_finite() && (0.0..90.0).contains(&ti),
+            "--incidence-deg {ti}: incidence must be in [0, 90) degrees"
+        );
+    }
+    ensure!(
+        args.aperture_deg > 0.0 && args.aperture_deg < 90.0,
+        "--aperture-deg {}: the detector half-angle must be in (0, 90) degrees",
+        args.aperture_deg
+    );
+    ensure!(
+        args.index.is_finite() && args.index > 0.0,
+        "--index {}: the refractive index must be positive",
+        args.index
+    );
+    ensure!(
+        args.wavelength_nm.is_finite() && args.wavelength_nm > 0.0,
+        "--wavelength-nm {}: must be positive",
+        args.wavelength_nm
+    );
+    Ok(())
+}
+
+/// `plot.png` → `plot_rot45.png` for the turn by 45°.
+fn plot_path(png: &Path, angle_deg: f64) -> PathBuf {
+    let stem = png
+        .file_stem()
+        .map_or("isotropy".into(), |s| s.to_string_lossy());
+    png.with_file_name(format!("{stem}_rot{angle_deg}.png"))
+}
+
+/// Both orientations' reflectance curves on a log axis: original as lines, turned as dots, one
+/// colour per incidence.
+pub fn plot_check(path: &Path, c: &RotationCheck) -> Result<()> {
+    let pairs: Vec<(&InplaneCurve, &InplaneCurve)> =
+        c.rotated.curves.iter().zip(&c.original.curves).collect();
+    let title = format!(
+        "In-plane reflectance: original (lines) and turned by {}° (dots)",
+        c.angle_deg
+    );
+    crate::compare::plot_pairs(path, &title, &pairs, |curve, turned| {
+        if turned {
+            format!("turned {}°, {}°", c.angle_deg, curve.incidence_deg)
+        } else {
+            format!("original, {}°", curve.incidence_deg)
+        }
+    })
+}
+
+fn write_csv(path: &Path, checks: &[RotationCheck]) -> Result<()> {
+    crate::output::write_atomic(path, |w| {
+        writeln!(
+            w,
+            "rotation_deg,orientation,method,wavelength_nm,incidence_deg,scatter_deg,\
+             brdf_per_sr,reflectance,rel_uncertainty"
+        )?;
+        for c in checks {
+            for (name, o) in [("original", &c.original), ("rotated", &c.rotated)] {
+                for curve in &o.curves {
+                    let wl = curve.wavelength_nm.map_or(String::new(), |v| v.to_string());
+                    for p in &curve.points {
+                        let unc = p
+                            .rel_uncertainty
+                            .filter(|u| u.is_finite())
+                            .map_or(String::new(), |u| format!("{u:.6e}"));
+                        writeln!(
+                            w,
+                            "{},{name},{},{wl},{},{},{:.8e},{:.8e},{unc}",
+                            c.angle_deg,
+                            curve.method,
+                            curve.incidence_deg,
+                            p.scatter_deg,
+                            p.brdf_per_sr,
+                            p.reflectance
+                        )?;
+                    }
+                }
+            }
+        }
+        Ok(())
+    })
+}
+
+fn orientation_json(o: &Orientation) -> serde_json::Value {
+    serde_json::json!({
+        "nx": o.nx,
+        "ny": o.ny,
+        "rms_slope_x": o.rms_slope_x,
+        "rms_slope_y": o.rms_slope_y,
+        "str": o.str,
+    })
+}
+
+fn to_json(args: &IsotropyArgs, checks: &[RotationCheck]) -> serde_json::Value {
+    let checks: Vec<serde_json::Value> = checks
+        .iter()
+        .map(|c| {
+            serde_json::json!({
+                "angle_deg": c.angle_deg,
+                "exact": c.exact,
+                "original": orientation_json(&c.original),
+                "rotated": orientation_json(&c.rotated),
+                "comparisons": c.comparisons,
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "surface": args.surface.display().to_string(),
+        "method": match args.method {
+            Method::Ray => "ray",
+            Method::Kirchhoff => "kirchhoff",
+        },
+        "wavelength_nm": (args.method == Method::Kirchhoff).then_some(args.wavelength_nm),
+        "checks": checks,
+    })
+}
+
+fn print_text(checks: &[RotationCheck]) {
+    for c in checks {
+        let (o, r) = (&c.original, &c.rotated);
+        println!(
+            "turned by {}° ({}; {} × {} points)",
+            c.angle_deg,
+            if c.exact {
+                "exact quarter turns"
+            } else {
+                "spline rotation, both cropped to the inscribed square"
+            },
+            r.nx,
+            r.ny
+        );
+        println!(
+            "  rms slope along / across the plane of incidence: original {:.4} / {:.4}, \
+             turned {:.4} / {:.4}; Str {} / {}",
+            o.rms_slope_x,
+            o.rms_slope_y,
+            r.rms_slope_x,
+            r.rms_slope_y,
+            o.str.map_or("-".into(), |s| format!("{s:.3}")),
+            r.str.map_or("-".into(), |s| format!("{s:.3}")),
+        );
+        crate::compare::print_table(&c.comparisons, "original", "turned");
+    }
+}
