@@ -117,6 +117,11 @@ pub struct ExportArgs {
     /// pabopto: incidence angles in degrees, one file each.
     #[arg(long, value_delimiter = ',', default_values_t = pabopto::DEFAULT_THETA_I_DEG)]
     incidence_deg: Vec<f64>,
+    /// mitsuba: nodes per axis of each incidence's value grid. 64 keeps smooth lobes within
+    /// about 1%; 128 (4× the file size) holds a sharply peaked measured paint's albedo to 3%
+    /// instead of 7% (docs/brdf-tables.md).
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u16).range(8..=512))]
+    value_grid: u16,
 }
 
 #[derive(Args)]
@@ -361,7 +366,13 @@ fn export(a: ExportArgs) -> Result<()> {
     let pb = spinner("exporting");
     match a.format {
         ExportFormat::Merl => merl::write(&t, &a.output)?,
-        ExportFormat::Mitsuba => mitsuba::write(&t, &a.output, mitsuba::MitsubaOptions::default())?,
+        ExportFormat::Mitsuba => {
+            let opts = mitsuba::MitsubaOptions {
+                values: usize::from(a.value_grid),
+                ..Default::default()
+            };
+            mitsuba::write(&t, &a.output, opts)?
+        }
         ExportFormat::Csv => csv::write(&t, &a.output, a.step_deg)?,
         ExportFormat::Pabopto => {
             let name = a

@@ -83,7 +83,12 @@ pub fn write(table: &BrdfTable, path: &Path, opts: MitsubaOptions) -> Result<()>
     let iso = table.resolution().is_isotropic();
     let n_t = opts.theta_i.max(2);
     let n_p = if iso { 1 } else { opts.phi_i.max(2) };
+    // The ndf and sigma of an isotropic table do not depend on phi: two phi nodes hold them.
+    // The vndf does, through the visibility m·v (phi_m is relative to phi_v), so its grid keeps
+    // the full phi resolution: with two nodes Mitsuba's sampler would miss every direction
+    // off the plane of incidence at oblique viewing.
     let (nx, ny) = (opts.ndf.max(4), if iso { 2 } else { opts.ndf.max(4) });
+    let n_vndf_phi = opts.ndf.max(4);
     let nv = opts.values.max(4);
     let theta_i: Vec<f64> = (0..n_t)
         .map(|k| THETA_I_MAX * k as f64 / (n_t - 1) as f64)
@@ -162,12 +167,12 @@ pub fn write(table: &BrdfTable, path: &Path, opts: MitsubaOptions) -> Result<()>
                 phi_i[p],
                 theta_i[t],
                 iso,
-                (nx, ny, nv),
+                (nx, n_vndf_phi, nv),
                 out_channels,
             )
         })
         .collect::<Result<_>>()?;
-    let mut vndf = Vec::with_capacity(n_p * n_t * nx * ny);
+    let mut vndf = Vec::with_capacity(n_p * n_t * nx * n_vndf_phi);
     let mut lum = Vec::with_capacity(n_p * n_t * nv * nv);
     let mut values = Vec::with_capacity(n_p * n_t * out_channels * nv * nv);
     for (v, l, s) in slices {
@@ -189,7 +194,10 @@ pub fn write(table: &BrdfTable, path: &Path, opts: MitsubaOptions) -> Result<()>
     fields.insert("phi_i".into(), Field::f32(&[n_p], &f32s(&phi_i)));
     fields.insert("ndf".into(), Field::f32(&[ny, nx], &ndf));
     fields.insert("sigma".into(), Field::f32(&[ny, nx], &sigma));
-    fields.insert("vndf".into(), Field::f32(&[n_p, n_t, ny, nx], &vndf));
+    fields.insert(
+        "vndf".into(),
+        Field::f32(&[n_p, n_t, n_vndf_phi, nx], &vndf),
+    );
     fields.insert("luminance".into(), Field::f32(&[n_p, n_t, nv, nv], &lum));
     let shape = [n_p, n_t, out_channels, nv, nv];
     match table.channels() {
@@ -442,7 +450,11 @@ impl Brdf for TensorBrdf {
             .fold(Rgb::ZERO, |a, (w, v)| a + Rgb::from_array(*w) * *v)
     }
 
-    /// Mitsuba's sampling: luminance warp, then the visible-normal warp, then reflection.
+    /// Mitsuba's sampling: luminance warp, then the visible-normal warp, then reflection. The
+    /// returned pdf is that of [`Brdf::pdf`] at the sampled direction: the density the warps
+    /// give along the way differs from it by the warps' near-linear shortcut (relative 1e-4
+    /// where neighbouring nodes differ by less than that), and a sampler must be exactly
+    /// consistent with its pdf for multiple importance sampling.
     fn sample(&self, wo: DVec3, u: DVec2) -> Option<BrdfSample> {
         if wo.z <= 0.0 {
             return None;
@@ -455,8 +467,12 @@ impl Brdf for TensorBrdf {
         let m = dir(theta_m, phi_m);
         let jac = (2.0 * PI * PI * um[0] * theta_m.sin()).max(1e-6) * 4.0 * wo.dot(m);
         let wi = 2.0 * wo.dot(m) * m - wo;
-        let pdf = ndf_pdf * lum_pdf / jac;
-        (wi.z > 0.0 && pdf > 0.0 && pdf.is_finite()).then(|| BrdfSample {
+        let path_pdf = ndf_pdf * lum_pdf / jac;
+        if !(wi.z > 0.0 && path_pdf > 0.0 && path_pdf.is_finite()) {
+            return None;
+        }
+        let pdf = self.pdf(wo, wi);
+        (pdf > 0.0).then(|| BrdfSample {
             wi,
             f: self.eval(wo, wi),
             pdf,
