@@ -31,7 +31,7 @@ pub struct RenderArgs {
     /// every material (to compare the noise of the two).
     #[arg(long, value_enum, default_value_t = Sampling::Importance)]
     sampling: Sampling,
-    /// Render spectrally: four hero wavelengths per path (380–780 nm), spectral BRDF tables
+    /// Render spectrally: four hero wavelengths per path (360–830 nm), spectral BRDF tables
     /// evaluated at them, RGB lights and materials turned into spectra, colour formed at the film
     /// (D65, CIE 1931 2°). Default: the tristimulus shortcut (everything in linear sRGB).
     #[arg(long)]

@@ -1,11 +1,18 @@
 //! Spectral rendering ([`crate::ColourMode::Spectral`]): hero-wavelength spectral sampling
 //! (A. Wilkie, S. Nawaz, M. Droske, A. Weidlich, J. Hanika, "Hero Wavelength Spectral Sampling",
-//! Computer Graphics Forum 33(4), EGSR 2014, section 4; as in pbrt-v4 §4.6.6). Each camera path
-//! draws a hero wavelength uniformly over 380–780 nm and carries it with its three rotations by
-//! 100 nm ([`gonio_color::HeroSampler`]); the directions are sampled as in the tristimulus mode
-//! and every BRDF value, weighted by `cos θ / pdf`, is taken at the four wavelengths. The film
-//! ([`gonio_color::SpectralFilm`]) turns the four values into linear sRGB with the weights
-//! `W(λ_j) / (4 p(λ_j))` of illuminant D65 and the CIE 1931 2° observer.
+//! Computer Graphics Forum 33(4), EGSR 2014, section 4). Each camera path draws a uniform number
+//! u and carries four wavelengths, `λ_j = P⁻¹((u + j/4) mod 1)`: the hero and its three
+//! rotations, taken in the variable of the cumulative distribution P of the wavelength pdf, so
+//! that each λ_j is distributed by the pdf and the four are stratified (pbrt-v4 does the same,
+//! `SampledWavelengths::SampleVisible`). The pdf is pbrt-v4's `VisibleWavelengthsPDF`,
+//! `p(λ) = 0.0039398042 / cosh²(0.0072 (λ − 538 nm))` over 360–830 nm, which follows the
+//! visual response and gives less colour noise than uniform wavelengths (the film weights W below
+//! span the whole CIE range). The directions are sampled as in the tristimulus mode and every
+//! BRDF value, weighted by `cos θ / pdf`, is taken at the four wavelengths. The film turns the
+//! four values into linear sRGB as `Σ_j W(λ_j) v(λ_j) / (4 p(λ_j))`, W the weighting factors of
+//! illuminant D65 and the CIE 1931 2° observer through the sRGB display matrix
+//! ([`gonio_color::SpectralFilm`], whose weights for uniform wavelengths over 360–830 nm are
+//! rescaled by `(1/470 nm) / p(λ)`).
 //!
 //! What a path carries at λ is radiance relative to D65: the film weights contain D65's spectral
 //! power, normalised so that the value 1 at every wavelength displays as linear sRGB (1, 1, 1).
@@ -157,16 +164,51 @@ fn band_value(bands: &[f64], values: &[f64], wavelength_nm: f64) -> f64 {
     values[i] + t * (values[i + 1] - values[i])
 }
 
-/// What every spectral path of a render shares: the wavelength sampler and the film.
+/// The wavelength pdf of pbrt-v4 (`VisibleWavelengthsPDF`), per nm, over 360–830 nm.
+pub fn visible_pdf(wavelength_nm: f64) -> f64 {
+    if !(360.0..=830.0).contains(&wavelength_nm) {
+        return 0.0;
+    }
+    0.003_939_804_2 / (0.0072 * (wavelength_nm - 538.0)).cosh().powi(2)
+}
+
+/// The inverse of the cumulative distribution of [`visible_pdf`] (pbrt-v4
+/// `SampleVisibleWavelengths`): `538 − 138.888889 atanh(0.85691062 − 1.82750197 u)` nm.
+pub fn sample_visible(u: f64) -> f64 {
+    (538.0 - 138.888_889 * (0.856_910_62 - 1.827_501_97 * u).atanh()).clamp(360.0, 830.0)
+}
+
+/// The four wavelengths of a path for the uniform number `u`: `P⁻¹((u + j/4) mod 1)`.
+pub fn path_wavelengths(u: f64) -> [f64; HERO_COUNT] {
+    std::array::from_fn(|j| sample_visible((u + j as f64 / HERO_COUNT as f64).fract()))
+}
+
+/// What every spectral path of a render shares: the film.
 pub(crate) struct SpectralFilmSetup {
+    /// The film for uniform wavelengths over 360–830 nm, whose weights are rescaled to the
+    /// visible pdf.
     film: SpectralFilm,
+    /// The uniform density of that film, 1/470 per nm.
+    uniform_pdf: f64,
 }
 
 impl SpectralFilmSetup {
     pub(crate) fn new() -> SpectralFilmSetup {
+        let sampler = HeroSampler::new(360.0, 830.0).expect("the CIE range is valid");
         SpectralFilmSetup {
-            film: SpectralFilm::new(HeroSampler::visible(), ILLUMINANT, OBSERVER),
+            film: SpectralFilm::new(sampler, ILLUMINANT, OBSERVER),
+            uniform_pdf: sampler.pdf_per_nm(),
         }
+    }
+
+    /// Per wavelength, the linear sRGB weights `W(λ_j) / (4 p(λ_j))` of the visible pdf.
+    fn rgb_weights(&self, wavelengths_nm: &[f64; HERO_COUNT]) -> [[f64; 3]; HERO_COUNT] {
+        let mut weights = self.film.rgb_weights(wavelengths_nm);
+        for (w, &l) in weights.iter_mut().zip(wavelengths_nm) {
+            let ratio = self.uniform_pdf / visible_pdf(l);
+            w.iter_mut().for_each(|c| *c *= ratio);
+        }
+        weights
     }
 }
 
@@ -192,12 +234,12 @@ impl SpectralPath {
             0,
             mix(seed ^ WAVELENGTH_STREAM),
         ));
-        let wavelengths_nm = setup.film.sampler().sample(u);
+        let wavelengths_nm = path_wavelengths(u);
         let up = RgbUpsampling::get();
         SpectralPath {
             wavelengths_nm,
             upsample: wavelengths_nm.map(|w| up.weights(w)),
-            film: setup.film.rgb_weights(&wavelengths_nm),
+            film: setup.rgb_weights(&wavelengths_nm),
         }
     }
 
@@ -281,6 +323,44 @@ mod tests {
             let b = basis(w);
             assert!(b.iter().all(|v| (0.0..=1.0).contains(v)));
             assert!((b.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+        }
+    }
+
+    /// The pdf integrates to 1 over 360–830 nm (midpoint rule), the sampler inverts its
+    /// cumulative distribution (the fraction of stratified samples below λ is ∫ p up to λ), and
+    /// the film of a flat spectrum averages to white over stratified paths.
+    #[test]
+    fn visible_wavelengths_follow_their_pdf_and_the_film_is_unbiased() {
+        let n = 47_000;
+        let total: f64 = (0..n)
+            .map(|i| visible_pdf(360.0 + 470.0 * (i as f64 + 0.5) / n as f64) * 470.0 / n as f64)
+            .sum();
+        assert!((total - 1.0).abs() < 1e-6, "{total}");
+        let paths = 4000;
+        let lambdas: Vec<f64> = (0..paths)
+            .flat_map(|i| path_wavelengths((i as f64 + 0.5) / paths as f64))
+            .collect();
+        for edge in [400.0, 480.0, 538.0, 600.0, 700.0] {
+            let below = lambdas.iter().filter(|&&l| l < edge).count() as f64;
+            let steps = 10_000;
+            let cdf: f64 = (0..steps)
+                .map(|i| {
+                    let l = 360.0 + (edge - 360.0) * (i as f64 + 0.5) / steps as f64;
+                    visible_pdf(l) * (edge - 360.0) / steps as f64
+                })
+                .sum();
+            assert!((below / lambdas.len() as f64 - cdf).abs() < 1e-3, "{edge}");
+        }
+        let setup = SpectralFilmSetup::new();
+        let mut rgb = [0.0; 3];
+        for i in 0..paths {
+            let ws = path_wavelengths((i as f64 + 0.5) / paths as f64);
+            for w in setup.rgb_weights(&ws) {
+                (0..3).for_each(|c| rgb[c] += w[c] / paths as f64);
+            }
+        }
+        for v in rgb {
+            assert!((v - 1.0).abs() < 1e-3, "{rgb:?}");
         }
     }
 
