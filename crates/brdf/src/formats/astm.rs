@@ -7,7 +7,7 @@
 //! measured from the normal; the mirror direction of the light is at phi_i + 180° (the files'
 //! peaks sit at phi_s = 180° for phi_i = 0).
 
-use super::scattered::{FitResidual, Sample, ScatteredFit};
+use super::scattered::{FitResidual, Sample, import_samples};
 use crate::error::{BrdfError, Result};
 use crate::table::coords::dir;
 use crate::table::{BrdfTable, Channels, Provenance, Resolution};
@@ -126,29 +126,12 @@ fn parse_vars(vars: &str) -> std::result::Result<Vec<f64>, String> {
 /// table's provenance as `fit_median_relative_residual` and `fit_rms_relative_residual`).
 pub fn import(path: &Path, res: Resolution) -> Result<(BrdfTable, FitResidual)> {
     let file = read(path)?;
-    let fit = ScatteredFit::new(&file.samples, None)
-        .map_err(|e| BrdfError::format(path, e.to_string()))?;
-    let residual = fit.residual(&file.samples);
     let mut prov = Provenance::new(path.display().to_string(), "import:astm");
     prov.description = file.header.get("SAMPLE_NAME").cloned();
-    prov.extra.insert(
-        "fit_median_relative_residual".into(),
-        residual.median_relative.into(),
-    );
-    prov.extra.insert(
-        "fit_rms_relative_residual".into(),
-        residual.rms_relative.into(),
-    );
-    prov.extra.insert(
-        "fit_bandwidths_u_t_p".into(),
-        fit.bandwidths().to_vec().into(),
-    );
-    prov.extra
-        .insert("samples".into(), file.samples.len().into());
     let channels = Channels::Spectral {
         wavelengths_nm: file.wavelengths_nm,
     };
-    Ok((fit.to_table(res, channels, prov)?, residual))
+    import_samples(path, &file.samples, channels, res, prov)
 }
 
 /// Resolution of imported tables: the measurements are 10° apart, so 45 × 45 × 48 cells resolve

@@ -7,7 +7,7 @@
 //! Export writes the table on a regular angular grid; import treats the rows as scattered
 //! samples and builds a table with the smoothing interpolation of [`super::scattered`].
 
-use super::scattered::{FitResidual, Sample, ScatteredFit};
+use super::scattered::{FitResidual, Sample, import_samples};
 use crate::error::{BrdfError, Result};
 use crate::gbrdf::write_atomic;
 use crate::table::coords::dir;
@@ -130,20 +130,8 @@ pub fn read_samples(path: &Path) -> Result<(Channels, Vec<Sample>)> {
 /// Import: the rows as scattered samples, smoothed and resampled on an isotropic table.
 pub fn import(path: &Path, res: Resolution) -> Result<(BrdfTable, FitResidual)> {
     let (channels, samples) = read_samples(path)?;
-    let fit =
-        ScatteredFit::new(&samples, None).map_err(|e| BrdfError::format(path, e.to_string()))?;
-    let residual = fit.residual(&samples);
-    let mut prov = Provenance::new(path.display().to_string(), "import:csv");
-    prov.extra.insert(
-        "fit_median_relative_residual".into(),
-        residual.median_relative.into(),
-    );
-    prov.extra.insert(
-        "fit_rms_relative_residual".into(),
-        residual.rms_relative.into(),
-    );
-    prov.extra.insert("samples".into(), samples.len().into());
-    Ok((fit.to_table(res, channels, prov)?, residual))
+    let prov = Provenance::new(path.display().to_string(), "import:csv");
+    import_samples(path, &samples, channels, res, prov)
 }
 
 #[cfg(test)]

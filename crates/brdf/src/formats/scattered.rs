@@ -23,6 +23,7 @@ use crate::table::{BrdfTable, Channels, HalfDiff, Provenance, Resolution, TableB
 use glam::DVec3;
 use rayon::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
+use std::path::Path;
 
 /// One measured geometry.
 #[derive(Debug, Clone, PartialEq)]
@@ -333,6 +334,35 @@ impl ScatteredFit {
         b.fill(|cell, out| self.predict_at(&coordinates_of(&cell.angles), out));
         b.build()
     }
+}
+
+/// Import measured samples read from `path`: smooth them with a [`ScatteredFit`] and resample it
+/// on an isotropic table. The table's `provenance` gains the fit's residual at the measured
+/// points (`fit_median_relative_residual`, `fit_rms_relative_residual`), its bandwidths
+/// (`fit_bandwidths_u_t_p`) and the sample count (`samples`); the residual is also returned.
+pub fn import_samples(
+    path: &Path,
+    samples: &[Sample],
+    channels: Channels,
+    res: Resolution,
+    mut provenance: Provenance,
+) -> Result<(BrdfTable, FitResidual)> {
+    let fit =
+        ScatteredFit::new(samples, None).map_err(|e| BrdfError::format(path, e.to_string()))?;
+    let residual = fit.residual(samples);
+    let extra: [(&str, serde_json::Value); 4] = [
+        (
+            "fit_median_relative_residual",
+            residual.median_relative.into(),
+        ),
+        ("fit_rms_relative_residual", residual.rms_relative.into()),
+        ("fit_bandwidths_u_t_p", fit.bandwidths().to_vec().into()),
+        ("samples", samples.len().into()),
+    ];
+    provenance
+        .extra
+        .extend(extra.map(|(key, value)| (key.to_string(), value)));
+    Ok((fit.to_table(res, channels, provenance)?, residual))
 }
 
 /// Relative residuals of any prediction against samples, over the (sample, channel) values of
