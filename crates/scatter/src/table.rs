@@ -15,7 +15,10 @@
 //!
 //! - Ray method: every ray the engine reflects is deposited as it is traced
 //!   ([`RayEngine::fold_rays`]: fixed chunks of facets fill partial slices, added in order, so
-//!   no ray is stored and the table is the same on any number of threads). Isotropic tables
+//!   no ray is stored and the table is the same on any number of threads). A single specular
+//!   reflection's half vector is its facet's normal (`wi + wo = 2 (wi·n) n`), so the
+//!   half-vector coordinates of each facet are found once and serve every incidence; rays of a
+//!   second bounce or of a turned source are binned from `wi + wo`. Isotropic tables
 //!   take one source azimuth and fold the slice about the plane of incidence; to average over
 //!   more facet orientations use the engine's `azimuths` option.
 //! - Kirchhoff: the full-hemisphere map [`Kirchhoff::hemisphere`] of each source and wavelength
@@ -35,6 +38,7 @@ use crate::ray::{HemisphereGrid, HemisphereTable, RayEngine};
 use glam::DVec3;
 use gonio_brdf::table::coords::{dir, theta_of};
 use gonio_brdf::table::{BrdfTable, Channels, Provenance, Resolution, TableBuilder};
+use rayon::prelude::*;
 use slice::{Slice, SliceGrid};
 use std::f64::consts::{FRAC_PI_2, TAU};
 
@@ -199,11 +203,26 @@ pub fn ray_table(
     let grid = options.slice_grid();
     let incidences = options.incidences();
     let mut slices = Vec::with_capacity(incidences.len());
+    // A single reflection's half vector is its facet's normal: its coordinates, found once,
+    // serve every incidence.
+    let normals: Option<Vec<(f64, f64)>> = engine.half_vectors_are_normals().then(|| {
+        (0..engine.facet_count())
+            .into_par_iter()
+            .map(|i| grid.coords(engine.facet_normal(i)))
+            .collect()
+    });
     for (k, &wi) in incidences.iter().enumerate() {
         let partials = engine.fold_rays(
             wi,
             || vec![0.0; grid.len()],
-            |part, wo, w| grid.deposit(part, wi, wo, w),
+            |part, rays| match &normals {
+                Some(coords) => grid.deposit(part, rays.iter().map(|r| (coords[r.facet], r.share))),
+                None => grid.deposit(
+                    part,
+                    rays.iter()
+                        .map(|r| (grid.coords(wi + r.direction), r.share)),
+                ),
+            },
         )?;
         let measure = grid.measures(wi);
         let values = options.symmetrise(k, grid.values_from(&partials, &measure), &grid, &measure);

@@ -45,6 +45,11 @@ pub(crate) struct HeightField {
     by: usize,
     /// Horizontal step of the march, metres.
     step: f64,
+    /// `1/dx`, `1/dy`, and the largest grid coordinates inside the footprint.
+    inv_dx: f64,
+    inv_dy: f64,
+    fx_max: f64,
+    fy_max: f64,
     /// Horizon maps toward the grid axes, made when a ray along that axis first needs one.
     horizons: Horizons,
 }
@@ -89,6 +94,10 @@ impl HeightField {
             bx,
             by,
             step: 0.5 * dx.min(dy),
+            inv_dx: 1.0 / dx,
+            inv_dy: 1.0 / dy,
+            fx_max: (nx - 1) as f64,
+            fy_max: (ny - 1) as f64,
             horizons: Horizons::default(),
         }
     }
@@ -132,12 +141,9 @@ impl HeightField {
         (ix, iy)
     }
 
-    /// Grid coordinates `(x/dx, y/dy)` of a position, or `None` outside the footprint.
-    fn grid_coords(&self, x: f64, y: f64) -> Option<(f64, f64)> {
-        let (fx, fy) = (x / self.dx, y / self.dy);
-        let inside =
-            fx >= 0.0 && fy >= 0.0 && fx <= (self.nx - 1) as f64 && fy <= (self.ny - 1) as f64;
-        inside.then_some((fx, fy))
+    /// Whether grid coordinates `(fx, fy)` lie inside the footprint.
+    fn inside(&self, fx: f64, fy: f64) -> bool {
+        fx >= 0.0 && fy >= 0.0 && fx <= self.fx_max && fy <= self.fy_max
     }
 
     /// Bilinear height at grid coordinates inside the footprint: NaN next to a non-measured
@@ -155,26 +161,26 @@ impl HeightField {
         lower + ty * (upper - lower)
     }
 
-    /// Distance along unit `d` from `q` (grid coordinates `fx`, `fy`) to the edge of the block
-    /// holding `q`, if `q` lies above that block's highest point.
-    fn clear_of_block(&self, q: DVec3, fx: f64, fy: f64, d: DVec3) -> Option<f64> {
+    /// Distance along the ray from the point at grid coordinates `(fx, fy)` and height `z` to
+    /// the edge of the block holding it, if it lies above that block's highest point; `(gx, gy)`
+    /// are the ray's grid coordinates per unit distance.
+    fn clear_of_block(&self, z: f64, fx: f64, fy: f64, (gx, gy): (f64, f64)) -> Option<f64> {
         let (i, j) = ((fx as usize) / BLOCK, (fy as usize) / BLOCK);
         let (i, j) = (i.min(self.bx - 1), j.min(self.by - 1));
-        if q.z <= self.block_max[j * self.bx + i] {
+        if z <= self.block_max[j * self.bx + i] {
             return None;
         }
-        let exit = |pos: f64, dir: f64, b: usize, spacing: f64| {
-            let lo = (b * BLOCK) as f64 * spacing;
-            let hi = ((b + 1) * BLOCK) as f64 * spacing;
-            if dir > 0.0 {
-                (hi - pos) / dir
-            } else if dir < 0.0 {
-                (lo - pos) / dir
+        let exit = |f: f64, g: f64, b: usize| {
+            let lo = (b * BLOCK) as f64;
+            if g > 0.0 {
+                (lo + BLOCK as f64 - f) / g
+            } else if g < 0.0 {
+                (lo - f) / g
             } else {
                 f64::INFINITY
             }
         };
-        Some(exit(q.x, d.x, i, self.dx).min(exit(q.y, d.y, j, self.dy)))
+        Some(exit(fx, gx, i).min(exit(fy, gy, j)))
     }
 
     /// Follow the unit direction `d` from the surface point `origin`.
@@ -183,10 +189,12 @@ impl HeightField {
         if horizontal < 1e-12 {
             return if d.z > 0.0 { Fate::Escapes } else { Fate::Lost };
         }
+        let rising = d.z > 0.0;
+        let ray = GridRay::new(self, origin, d);
         // Distance along the ray per horizontal step.
         let dt = self.step / horizontal;
         // Rising rays escape once above the highest point: no need to march past it.
-        let t_clear = if d.z > 0.0 {
+        let t_clear = if rising {
             (self.h_max - origin.z) / d.z
         } else {
             f64::INFINITY
@@ -197,21 +205,19 @@ impl HeightField {
             if t > t_clear {
                 return Fate::Escapes;
             }
-            let q = origin + t * d;
-            let Some((fx, fy)) = self.grid_coords(q.x, q.y) else {
-                return if d.z > 0.0 { Fate::Escapes } else { Fate::Lost };
-            };
-            if d.z > 0.0
-                && let Some(skip) = self.clear_of_block(q, fx, fy, d)
-            {
+            let (fx, fy, z) = ray.at(t);
+            if !self.inside(fx, fy) {
+                return if rising { Fate::Escapes } else { Fate::Lost };
+            }
+            if rising && let Some(skip) = self.clear_of_block(z, fx, fy, ray.g) {
                 // At least one ordinary step, so that a ray grazing a block's edge (exit
                 // distance 0) still advances.
                 t_above = t;
                 t += (skip + 1e-3 * dt).max(dt);
                 continue;
             }
-            if q.z < self.height_at(fx, fy) {
-                return Fate::Hits(self.refine(origin, d, t_above, t));
+            if z < self.height_at(fx, fy) {
+                return Fate::Hits(self.refine(&ray, origin, d, t_above, t));
             }
             t_above = t;
             t += dt;
@@ -219,16 +225,54 @@ impl HeightField {
     }
 
     /// Bisect between `t_above` (ray above the surface) and `t_below` for the crossing point.
-    fn refine(&self, origin: DVec3, d: DVec3, mut t_above: f64, mut t_below: f64) -> DVec3 {
+    fn refine(
+        &self,
+        ray: &GridRay,
+        origin: DVec3,
+        d: DVec3,
+        mut t_above: f64,
+        mut t_below: f64,
+    ) -> DVec3 {
         for _ in 0..REFINE_STEPS {
             let t = 0.5 * (t_above + t_below);
-            let q = origin + t * d;
-            match self.grid_coords(q.x, q.y) {
-                Some((fx, fy)) if q.z < self.height_at(fx, fy) => t_below = t,
-                _ => t_above = t,
+            let (fx, fy, z) = ray.at(t);
+            if self.inside(fx, fy) && z < self.height_at(fx, fy) {
+                t_below = t;
+            } else {
+                t_above = t;
             }
         }
         origin + t_below * d
+    }
+}
+
+/// A ray in grid coordinates: `(x/dx, y/dy)` and height at distance `t` along it, without a
+/// division per step.
+struct GridRay {
+    /// Grid coordinates of the origin.
+    o: (f64, f64),
+    /// Grid coordinates per unit distance.
+    g: (f64, f64),
+    z0: f64,
+    dz: f64,
+}
+
+impl GridRay {
+    fn new(field: &HeightField, origin: DVec3, d: DVec3) -> GridRay {
+        GridRay {
+            o: (origin.x * field.inv_dx, origin.y * field.inv_dy),
+            g: (d.x * field.inv_dx, d.y * field.inv_dy),
+            z0: origin.z,
+            dz: d.z,
+        }
+    }
+
+    fn at(&self, t: f64) -> (f64, f64, f64) {
+        (
+            self.o.0 + t * self.g.0,
+            self.o.1 + t * self.g.1,
+            self.z0 + t * self.dz,
+        )
     }
 }
 

@@ -88,6 +88,17 @@ impl Default for RayOptions {
     }
 }
 
+/// A ray leaving the surface, as [`RayEngine::fold_rays`] hands it out.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Reflected {
+    /// Index of the facet that reflected it (see [`RayEngine::facet_normal`]).
+    pub facet: usize,
+    /// Unit direction (`z > 0`) in the frame of the source direction.
+    pub direction: DVec3,
+    /// Share of the directional-hemispherical reflectance it carries.
+    pub share: f64,
+}
+
 /// What one cone detector read.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Reading {
@@ -201,6 +212,19 @@ impl RayEngine {
         self.facets.len()
     }
 
+    /// Unit normal of facet `i` (`0 <= i < facet_count()`, the order of [`Reflected::facet`]).
+    pub fn facet_normal(&self, i: usize) -> DVec3 {
+        self.facets[i].n
+    }
+
+    /// Whether every ray [`RayEngine::fold_rays`] hands out is one specular reflection at its
+    /// facet, in the frame of the source: then its half vector with the source direction,
+    /// `(wi + wo) / |wi + wo| = n` since `wi + wo = 2 (wi·n) n`, is the facet's normal, for
+    /// every incidence. True with one azimuth of incidence and no second bounce.
+    pub fn half_vectors_are_normals(&self) -> bool {
+        self.options.azimuths == 1 && !self.options.second_bounce
+    }
+
     /// Measured rms slopes `(sx, sy)` of the facets along x and y, `-n_x/n_z` and `-n_y/n_z`
     /// about their means: the per-axis rms slopes a facet model of this map should use.
     pub fn rms_slopes(&self) -> (f64, f64) {
@@ -243,11 +267,19 @@ impl RayEngine {
         let phi = std::f64::consts::TAU * k as f64 / self.options.azimuths as f64;
         let (sin, cos) = phi.sin_cos();
         let wi_map = DVec3::new(cos * wi.x - sin * wi.y, sin * wi.x + cos * wi.y, wi.z);
-        if self.options.shadowing {
-            // Make the horizon map the shadowing test will read (if any) before the parallel
-            // loops, so that no worker waits for another to make it.
-            self.field.horizon(wi_map);
-        }
+        // The horizon map the shadowing test reads, if the source lies along a grid axis (made
+        // here, before the parallel loops, so that no worker waits for another to make it).
+        let source_horizon = self
+            .options
+            .shadowing
+            .then(|| self.field.horizon(wi_map))
+            .flatten()
+            .map(|h| {
+                (
+                    h,
+                    wi_map.z / (wi_map.x * wi_map.x + wi_map.y * wi_map.y).sqrt(),
+                )
+            });
         Tracer {
             field: &self.field,
             normals: &self.normals,
@@ -256,6 +288,7 @@ impl RayEngine {
             shadowing: self.options.shadowing,
             second_bounce: self.options.second_bounce,
             wi: wi_map,
+            source_horizon,
             to_detector: (cos, -sin),
             scale: 1.0 / (self.facets.len() as f64 * wi.z),
             wanted,
@@ -293,47 +326,65 @@ impl RayEngine {
 
     /// Fold every ray that leaves the surface for a source in direction `wi` (unit, `z > 0`)
     /// into partial results without storing the rays: each fixed chunk of facets (per azimuth
-    /// of incidence) folds its rays, in facet order, as `(direction, reflectance carried)` into
-    /// a value of its own made by `init`, and the partials come back in chunk order (azimuth
-    /// slowest). The chunks are the same on any number of threads, so adding the partials in
-    /// order gives the same result on any number of threads. Directions and shares are those
-    /// of [`RayEngine::reflected_rays`].
+    /// of incidence) hands its rays, in facet order and in batches of up to [`RAY_BATCH`] facets'
+    /// rays, to `fold` with a value of its own made by `init`, and the partials come back in chunk order (azimuth slowest). The chunks and
+    /// batches are the same on any number of threads, so adding the partials in order gives the
+    /// same result on any number of threads. Directions and shares are those of
+    /// [`RayEngine::reflected_rays`]. (Batches let the caller's binning run over many
+    /// independent rays at once instead of one ray between two traces.)
     pub fn fold_rays<T: Send>(
         &self,
         wi: DVec3,
         init: impl Fn() -> T + Sync,
-        fold: impl Fn(&mut T, DVec3, f64) + Sync,
+        fold: impl Fn(&mut T, &[Reflected]) + Sync,
     ) -> Result<Vec<T>> {
         let wi = check_incidence(wi)?;
         let per_azimuth = 1.0 / self.options.azimuths as f64;
-        Ok(self.fold_chunks(wi, FOLD_CHUNK, init, |part, ray| {
-            fold(part, ray.d, ray.w * per_azimuth)
-        }))
+        Ok(self.fold_chunks(
+            wi,
+            FOLD_CHUNK,
+            init,
+            |facet, ray| Reflected {
+                facet,
+                direction: ray.d,
+                share: ray.w * per_azimuth,
+            },
+            fold,
+        ))
     }
 
-    /// The rays of each fixed chunk of `chunk` facets (per azimuth step) folded into a partial
-    /// result, in chunk order.
-    fn fold_chunks<T: Send>(
+    /// The rays of each fixed chunk of `chunk` facets (per azimuth step), turned into `E` by
+    /// `map` (with the index of their facet) and handed to `fold` in batches of up to [`RAY_BATCH`] facets' rays, folded into
+    /// one partial result per chunk, in chunk order.
+    fn fold_chunks<T: Send, E>(
         &self,
         wi: DVec3,
         chunk: usize,
         init: impl Fn() -> T + Sync,
-        fold: impl Fn(&mut T, &Ray) + Sync,
+        map: impl Fn(usize, Ray) -> E + Sync,
+        fold: impl Fn(&mut T, &[E]) + Sync,
     ) -> Vec<T> {
         let mut out = Vec::new();
         for k in 0..self.options.azimuths {
             let tracer = self.tracer(wi, k, None);
-            let partials: Vec<T> = self
-                .facets
-                .par_chunks(chunk)
-                .map(|chunk| {
-                    let mut part = init();
-                    for ray in chunk.iter().filter_map(|f| tracer.trace(f)) {
-                        fold(&mut part, &ray);
-                    }
-                    part
-                })
-                .collect();
+            let partials: Vec<T> =
+                self.facets
+                    .par_chunks(chunk)
+                    .enumerate()
+                    .map(|(c, facets)| {
+                        let mut part = init();
+                        let mut rays = Vec::with_capacity(RAY_BATCH);
+                        for (b, batch) in facets.chunks(RAY_BATCH).enumerate() {
+                            let first = c * chunk + b * RAY_BATCH;
+                            rays.clear();
+                            rays.extend(batch.iter().enumerate().filter_map(|(i, f)| {
+                                tracer.trace(f).map(|ray| map(first + i, ray))
+                            }));
+                            fold(&mut part, &rays);
+                        }
+                        part
+                    })
+                    .collect();
             out.extend(partials);
         }
         out
@@ -391,7 +442,12 @@ impl RayEngine {
             wi,
             HEMISPHERE_CHUNK,
             || vec![Sums::default(); grid.len()],
-            |part, ray| part[locator.cell(ray.d)].add_ray(ray),
+            |_, ray| ray,
+            |part, rays| {
+                for ray in rays {
+                    part[locator.cell(ray.d)].add_ray(ray);
+                }
+            },
         );
         let mut sums = vec![Sums::default(); grid.len()];
         for part in &partials {
@@ -477,6 +533,9 @@ fn check_detectors(detectors: &[Detector]) -> Result<Option<f64>> {
 /// Facets per chunk of a hemisphere run: each chunk fills one partial table (of up to a few
 /// MB, so not too many of them).
 const HEMISPHERE_CHUNK: usize = 1 << 16;
+
+/// Facets traced before their rays are handed on together by [`RayEngine::fold_rays`].
+pub const RAY_BATCH: usize = 256;
 
 /// Facets per chunk of [`RayEngine::fold_rays`], whose partial results are small (a table's
 /// slice): 2¹⁴ facets keep the tail of a parallel run short (64 chunks for a 1024² map).

@@ -50,6 +50,9 @@ pub(crate) struct Tracer<'a> {
     pub second_bounce: bool,
     /// Source direction in the map's frame.
     pub wi: DVec3,
+    /// When the source lies along a grid axis: the horizon map toward it and the slope
+    /// `wi_z / |wi_xy|` of the rays toward it (shadowing is then one comparison per facet).
+    pub source_horizon: Option<(&'a [f64], f64)>,
     /// Rotation about z that takes map-frame directions into the detectors' frame, as
     /// `(cos, sin)` of the angle.
     pub to_detector: (f64, f64),
@@ -86,8 +89,14 @@ impl Tracer<'_> {
         if !self.second_bounce && (wr.z <= 0.0 || unwanted(wr)) {
             return None;
         }
-        if self.shadowing && !self.field.escapes(facet.index, facet.pos, self.wi) {
-            return None;
+        if self.shadowing {
+            let lit = match self.source_horizon {
+                Some((horizon, slope)) => slope >= horizon[facet.index],
+                None => self.field.march(facet.pos, self.wi) == Fate::Escapes,
+            };
+            if !lit {
+                return None;
+            }
         }
         let (r, rs, rp) = self.fresnel(c);
         let power = c / facet.n.z * self.scale;

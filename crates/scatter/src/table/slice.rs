@@ -19,7 +19,7 @@
 
 use glam::DVec3;
 use rayon::prelude::*;
-use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
+use std::f64::consts::{FRAC_1_PI, FRAC_2_PI, FRAC_PI_2, FRAC_PI_4, PI, TAU};
 
 /// Quadrature steps per ring interval in `u` for the node measures.
 const MEASURE_U_STEPS: usize = 16;
@@ -112,25 +112,23 @@ impl SliceGrid {
         }
         if self.folded {
             // Nodes at k π / (n - 1), both ends included.
-            let y = (phi / PI * (n - 1) as f64).clamp(0.0, (n - 1) as f64);
+            let y = (phi * FRAC_1_PI * (n - 1) as f64).clamp(0.0, (n - 1) as f64);
             let k = (y as usize).min(n - 2);
             let t = y - k as f64;
             [(start + k, 1.0 - t), (start + k + 1, t)]
         } else {
-            let y = (phi / TAU * n as f64).rem_euclid(n as f64);
+            let y = (phi * (0.5 * FRAC_1_PI) * n as f64).rem_euclid(n as f64);
             let k = (y as usize).min(n - 1);
             let t = y - k as f64;
             [(start + k, 1.0 - t), (start + (k + 1) % n, t)]
         }
     }
 
-    /// Stencil of the half vector of `wi` and `wo` (both above the surface, so that their sum
-    /// has `z > 0`): its polar angle is that of the unnormalised sum, `atan2(|s_xy|, s_z)`.
-    fn stencil_of(&self, wi: DVec3, wo: DVec3) -> Stencil {
-        let s = wi + wo;
-        let theta_h = atan2_upper((s.x * s.x + s.y * s.y).sqrt(), s.z);
-        let u = (theta_h / FRAC_PI_2).sqrt();
-        self.stencil(u, self.azimuth_of(s.x, s.y))
+    /// Coordinates `(u, relative azimuth)` of the half vector along `h` (any length, `h_z > 0`,
+    /// e.g. `wi + wo` unnormalised): its polar angle is `atan2(|h_xy|, h_z)`.
+    pub fn coords(&self, h: DVec3) -> (f64, f64) {
+        let theta_h = atan2_upper((h.x * h.x + h.y * h.y).sqrt(), h.z);
+        ((theta_h * FRAC_2_PI).sqrt(), self.azimuth_of(h.x, h.y))
     }
 
     /// Tent integrals `M = ∫ tent cos(theta_o) dwo` of every node for light from `wi`, by
@@ -175,11 +173,26 @@ impl SliceGrid {
         add_in_order(self.len, &partials)
     }
 
-    /// Add one sample, light leaving in direction `wo` with reflectance `w` for a source in
-    /// `wi`, to the deposits `part` (one per node) with its tent weights.
-    pub fn deposit(&self, part: &mut [f64], wi: DVec3, wo: DVec3, w: f64) {
-        for (node, t) in self.stencil_of(wi, wo) {
-            part[node] += t * w;
+    /// Add samples, each the half-vector coordinates ([`SliceGrid::coords`]) of some reflected
+    /// light and the reflectance it carries, to the deposits `part` (one per node) with their
+    /// tent weights. The stencils of a batch are found first, then added in sample order: the
+    /// stencils are independent of each other and run side by side, the additions are a short
+    /// loop over memory.
+    pub fn deposit(&self, part: &mut [f64], samples: impl Iterator<Item = ((f64, f64), f64)>) {
+        const BATCH: usize = 64;
+        let mut stencils = [([(0usize, 0.0f64); 4], 0.0f64); BATCH];
+        let mut samples = samples.peekable();
+        while samples.peek().is_some() {
+            let mut n = 0;
+            for (slot, ((u, phi), w)) in stencils.iter_mut().zip(samples.by_ref()) {
+                *slot = (self.stencil(u, phi), w);
+                n += 1;
+            }
+            for (st, w) in &stencils[..n] {
+                for &(node, t) in st {
+                    part[node] += t * w;
+                }
+            }
         }
     }
 
@@ -202,9 +215,8 @@ impl SliceGrid {
             .par_chunks(CHUNK)
             .map(|chunk| {
                 let mut part = vec![0.0; self.len];
-                for &(wo, w) in chunk {
-                    self.deposit(&mut part, wi, wo, w);
-                }
+                let coords = chunk.iter().map(|&(wo, w)| (self.coords(wi + wo), w));
+                self.deposit(&mut part, coords);
                 part
             })
             .collect();
