@@ -26,12 +26,13 @@ fn quick_demo_writes_a_complete_report() {
     for title in [
         "Surfaces: the epoxy roughness series",
         "A real instrument file: x3p-2.x3p",
+        "Isotropy of x3p-2.x3p",
         "The roughness study",
     ] {
         assert!(html.contains(title), "section '{title}' missing");
     }
     let images = html.matches("<img src=\"data:image/png;base64,").count();
-    assert!(images >= 6, "only {images} images");
+    assert!(images >= 8, "only {images} images");
     assert!(!text_of(&html).contains("NaN"), "a NaN reached the report");
     if let Some(chromium) = find_chromium() {
         check_in_browser(&chromium, &out.join("report.html"), images);
