@@ -11,7 +11,7 @@
 use crate::bxdf::{Brdf, BrdfSample, Rgb};
 use crate::fresnel::Ior;
 use crate::microfacet::Microfacet;
-use crate::models::{half_vector, incident_from_half};
+use crate::models::{half_vector, incident_from_half, pdf_through_half};
 use glam::{DVec2, DVec3};
 
 /// A Cook-Torrance specular lobe.
@@ -65,9 +65,6 @@ impl Brdf for CookTorrance {
     }
 
     fn pdf(&self, wo: DVec3, wi: DVec3) -> f64 {
-        match half_vector(wo, wi) {
-            Some(h) => self.microfacet.pdf_visible(wo, h) / (4.0 * wo.dot(h)),
-            None => 0.0,
-        }
+        pdf_through_half(wo, wi, |h| self.microfacet.pdf_visible(wo, h))
     }
 }

@@ -39,6 +39,28 @@ pub(crate) fn incident_from_half(wo: DVec3, h: DVec3) -> Option<DVec3> {
     (wi.z > 0.0).then_some(wi)
 }
 
+/// Sample a model through a half vector `h` drawn from its half-vector distribution: the
+/// incident direction mirrors `wo` about `h`, with the model's value and pdf. `None` when `wo`
+/// is below the surface or the mirrored direction is (see [`incident_from_half`]).
+pub(crate) fn sample_through_half(brdf: &impl Brdf, wo: DVec3, h: DVec3) -> Option<BrdfSample> {
+    if wo.z <= 0.0 {
+        return None;
+    }
+    let wi = incident_from_half(wo, h)?;
+    Some(BrdfSample {
+        wi,
+        f: brdf.eval(wo, wi),
+        pdf: brdf.pdf(wo, wi),
+    })
+}
+
+/// The pdf of `wi` sampled through half vectors of density `pdf_h` (per steradian of `h`):
+/// `pdf_h(h) / (4 wo·h)` (Walter et al. 2007, eq. 14); zero when either direction is below the
+/// surface.
+pub(crate) fn pdf_through_half(wo: DVec3, wi: DVec3, pdf_h: impl FnOnce(DVec3) -> f64) -> f64 {
+    half_vector(wo, wi).map_or(0.0, |h| pdf_h(h) / (4.0 * wo.dot(h)))
+}
+
 /// Any analytic model.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Model {

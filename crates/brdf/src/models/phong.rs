@@ -12,7 +12,7 @@
 //!   Sampled through the half vector with pdf `(n + 1)/(2π) cos^n θh / (4 wo·h)`.
 
 use crate::bxdf::{Brdf, BrdfSample, Rgb};
-use crate::models::{half_vector, incident_from_half};
+use crate::models::{half_vector, pdf_through_half, sample_through_half};
 use crate::sampling::{Frame, power_cosine, power_cosine_pdf};
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
@@ -106,21 +106,10 @@ impl Brdf for BlinnPhong {
     }
 
     fn sample(&self, wo: DVec3, u: DVec2) -> Option<BrdfSample> {
-        if wo.z <= 0.0 {
-            return None;
-        }
-        let wi = incident_from_half(wo, power_cosine(u, self.exponent))?;
-        Some(BrdfSample {
-            wi,
-            f: self.eval(wo, wi),
-            pdf: self.pdf(wo, wi),
-        })
+        sample_through_half(self, wo, power_cosine(u, self.exponent))
     }
 
     fn pdf(&self, wo: DVec3, wi: DVec3) -> f64 {
-        match half_vector(wo, wi) {
-            Some(h) => power_cosine_pdf(h.z, self.exponent) / (4.0 * wo.dot(h)),
-            None => 0.0,
-        }
+        pdf_through_half(wo, wi, |h| power_cosine_pdf(h.z, self.exponent))
     }
 }
