@@ -27,36 +27,9 @@ pub fn write_atomic(
         .with_context(|| format!("{}: cannot write", path.display()))
 }
 
-#[cfg(all(test, unix))]
+#[cfg(test)]
 mod tests {
     use super::*;
-    use std::os::unix::fs::PermissionsExt;
-
-    fn mode(path: &Path) -> u32 {
-        std::fs::metadata(path).unwrap().permissions().mode() & 0o7777
-    }
-
-    fn names(dir: &Path) -> Vec<String> {
-        let mut names: Vec<String> = std::fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        names.sort();
-        names
-    }
-
-    #[test]
-    fn outputs_get_the_permissions_of_an_ordinary_file() {
-        let dir = tempfile::tempdir().unwrap();
-        let plain = dir.path().join("plain.txt");
-        File::create(&plain).unwrap();
-        let html = dir.path().join("report.html");
-        write_atomic(&html, |w| Ok(w.write_all(b"<html></html>")?)).unwrap();
-        assert_eq!(std::fs::read(&html).unwrap(), b"<html></html>");
-        // 0666 less the umask, like `File::create` (a bare temporary file would be 0600).
-        assert_eq!(mode(&html), mode(&plain));
-        assert_eq!(names(dir.path()), ["plain.txt", "report.html"]);
-    }
 
     #[test]
     fn failed_write_keeps_the_old_file_and_leaves_no_temporary_file() {
@@ -74,7 +47,7 @@ mod tests {
             "{text}"
         );
         assert_eq!(std::fs::read_to_string(&csv).unwrap(), "old,file\n");
-        assert_eq!(names(dir.path()), ["peaks.csv"]);
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
     }
 
     #[test]
