@@ -3,7 +3,8 @@
 //!
 //! ```text
 //! cargo run --release -p gonio-render --example spectral_vs_tristimulus -- \
-//!     examples/metallic.toml --spp 1024 --width 96 --out target/spectral-vs-tri [--json]
+//!     examples/metallic.toml --spp 1024 --width 96 --out target/spectral-vs-tri \
+//!     [--seed S] [--max-bounces N] [--json]
 //! ```
 //!
 //! Each mode is rendered twice, with seeds S and S + 1 (`--spp` samples each). With the same seed
@@ -36,6 +37,7 @@ struct Args {
     spp: u32,
     seed: u32,
     width: Option<usize>,
+    max_bounces: Option<u32>,
     out: PathBuf,
     json: bool,
 }
@@ -47,6 +49,7 @@ fn parse_args() -> Result<Args, String> {
         spp: 256,
         seed: 0,
         width: None,
+        max_bounces: None,
         out: PathBuf::from("spectral-vs-tristimulus"),
         json: false,
     };
@@ -72,6 +75,13 @@ fn parse_args() -> Result<Args, String> {
                         .map_err(|e| format!("--width (pixels): {e}"))?,
                 )
             }
+            "--max-bounces" => {
+                args.max_bounces = Some(
+                    value(&mut it, "--max-bounces")?
+                        .parse()
+                        .map_err(|e| format!("--max-bounces: {e}"))?,
+                )
+            }
             "--out" => args.out = PathBuf::from(value(&mut it, "--out")?),
             "--json" => args.json = true,
             s if s.starts_with('-') => return Err(format!("unknown flag {s}")),
@@ -81,7 +91,7 @@ fn parse_args() -> Result<Args, String> {
     if args.scene.as_os_str().is_empty() {
         return Err(
             "usage: spectral_vs_tristimulus SCENE.toml [--spp N] [--seed S] [--width PX] \
-             [--out DIR] [--json]"
+             [--max-bounces N] [--out DIR] [--json]"
                 .into(),
         );
     }
@@ -164,6 +174,7 @@ fn run() -> Result<(), String> {
     let opts = |colour, seed| RenderOptions {
         spp: Some(args.spp),
         seed: Some(seed),
+        max_bounces: args.max_bounces,
         colour,
         progress: true,
         ..RenderOptions::default()
@@ -257,6 +268,7 @@ fn run() -> Result<(), String> {
             "height_px": h,
             "spp_per_render": args.spp,
             "seeds": [args.seed, seed_b],
+            "max_bounces": args.max_bounces,
             "delta_e00": {"median": med, "p95": p95, "max": max},
             "noise_reference_delta_e00": {"median": n_med, "p95": n_p95, "max": n_max},
             "max_pixel": {"x": imax % w, "y": imax / w, "surface": labels[imax]},
