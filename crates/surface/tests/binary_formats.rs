@@ -13,7 +13,7 @@
 
 mod fixture_tools;
 
-use fixture_tools::{fixture, rel, rms_about_mean, sq_plane};
+use fixture_tools::{fixture, rel, rms_about_mean, sq_plane, valid_heights};
 use gonio_surface::io::{self, Format};
 use gonio_surface::{HeightMap, ops, stats};
 use std::io::Write;
@@ -177,12 +177,7 @@ fn digital_surf_listed_sq_does_not_follow_the_header() {
     let map = read("sur-2.sur");
     assert_eq!(map.nx() * map.ny() - map.valid_count(), outside.len());
     // The valid heights then span exactly (zmax − zmin)·dz, as the header states.
-    let valid: Vec<f64> = map
-        .heights()
-        .iter()
-        .copied()
-        .filter(|h| !h.is_nan())
-        .collect();
+    let valid = valid_heights(&map);
     let span = valid.iter().cloned().fold(f64::MIN, f64::max)
         - valid.iter().cloned().fold(f64::MAX, f64::min);
     assert!(rel(span, f64::from(zmax - zmin) * 1.0000000116860974e-10) < 1e-9);

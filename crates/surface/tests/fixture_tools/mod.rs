@@ -21,14 +21,18 @@ pub fn sq_plane(map: &HeightMap) -> f64 {
     gonio_surface::stats::height_parameters(&levelled).0
 }
 
-/// Root-mean-square deviation from the mean height over the valid points, without levelling.
-pub fn rms_about_mean(map: &HeightMap) -> f64 {
-    let valid: Vec<f64> = map
-        .heights()
+/// The heights of the valid (measured, not NaN) points.
+pub fn valid_heights(map: &HeightMap) -> Vec<f64> {
+    map.heights()
         .iter()
         .copied()
         .filter(|h| !h.is_nan())
-        .collect();
+        .collect()
+}
+
+/// Root-mean-square deviation from the mean height over the valid points, without levelling.
+pub fn rms_about_mean(map: &HeightMap) -> f64 {
+    let valid = valid_heights(map);
     let n = valid.len() as f64;
     let mean = valid.iter().sum::<f64>() / n;
     (valid.iter().map(|h| (h - mean).powi(2)).sum::<f64>() / n).sqrt()
