@@ -11,22 +11,13 @@ use gonio_scatter::Detector;
 use gonio_scatter::geometry::{incidence_direction, inplane_direction};
 use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions};
 use gonio_scatter::ray::HemisphereGrid;
-use gonio_surface::synth::{Acf, GaussianSurface};
+use gonio_surface::synth::GaussianSurface;
 use std::hint::black_box;
 
 fn coating() -> Kirchhoff {
-    let map = GaussianSurface {
-        sq: 20e-9,
-        corr_length: 5e-6,
-        acf: Acf::Gaussian,
-        nx: 1024,
-        ny: 1024,
-        dx: 0.5e-6,
-        dy: 0.5e-6,
-        seed: 1,
-    }
-    .generate()
-    .unwrap();
+    let map = GaussianSurface::square(20e-9, 5e-6, 1024, 0.5e-6, 1)
+        .generate()
+        .unwrap();
     Kirchhoff::new(&map, KirchhoffOptions::new(Ior::Dielectric(1.55))).unwrap()
 }
 

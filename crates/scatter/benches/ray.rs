@@ -7,23 +7,14 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use gonio_scatter::geometry::incidence_direction;
 use gonio_scatter::ray::{HemisphereGrid, RayEngine, RayOptions};
 use gonio_surface::HeightMap;
-use gonio_surface::synth::{Acf, GaussianSurface};
+use gonio_surface::synth::GaussianSurface;
 use std::hint::black_box;
 use std::time::Duration;
 
 fn surface() -> HeightMap {
-    GaussianSurface {
-        sq: 0.3e-6,
-        corr_length: 6e-6,
-        acf: Acf::Gaussian,
-        nx: 1024,
-        ny: 1024,
-        dx: 0.5e-6,
-        dy: 0.5e-6,
-        seed: 1,
-    }
-    .generate()
-    .expect("synthetic surface")
+    GaussianSurface::square(0.3e-6, 6e-6, 1024, 0.5e-6, 1)
+        .generate()
+        .expect("synthetic surface")
 }
 
 fn inplane(c: &mut Criterion) {

@@ -24,24 +24,15 @@ use gonio_scatter::ray::{RayEngine, RayOptions};
 use gonio_surface::HeightMap;
 use gonio_surface::normals::NormalMethod;
 use gonio_surface::spline::BicubicSpline;
-use gonio_surface::synth::{Acf, GaussianSurface};
+use gonio_surface::synth::GaussianSurface;
 
 const N: f64 = 1.55;
 const WAVELENGTH: f64 = 500e-9;
 
 fn surface(sigma: f64, t: f64, seed: u64) -> HeightMap {
-    GaussianSurface {
-        sq: sigma,
-        corr_length: t,
-        acf: Acf::Gaussian,
-        nx: 257,
-        ny: 257,
-        dx: 0.5e-6,
-        dy: 0.5e-6,
-        seed,
-    }
-    .generate()
-    .unwrap()
+    GaussianSurface::square(sigma, t, 257, 0.5e-6, seed)
+        .generate()
+        .unwrap()
 }
 
 fn scatter() -> Vec<f64> {

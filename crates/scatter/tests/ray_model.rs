@@ -18,7 +18,7 @@ use gonio_scatter::Detector;
 use gonio_scatter::analytic::cone_reflectance;
 use gonio_scatter::geometry::{incidence_direction, inplane_direction};
 use gonio_scatter::ray::{RayEngine, RayOptions};
-use gonio_surface::synth::{Acf, GaussianSurface};
+use gonio_surface::synth::GaussianSurface;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 
@@ -77,18 +77,9 @@ fn gaussian_surfaces_match_facet_model() {
     let mut ray = vec![vec![0.0; detectors.len()]; INCIDENCE_DEG.len()];
     let mut model = ray.clone();
     for seed in SEEDS {
-        let map = GaussianSurface {
-            sq: 0.3e-6,
-            corr_length: 6e-6,
-            acf: Acf::Gaussian,
-            nx: 1024,
-            ny: 1024,
-            dx: 0.5e-6,
-            dy: 0.5e-6,
-            seed,
-        }
-        .generate()
-        .unwrap();
+        let map = GaussianSurface::square(0.3e-6, 6e-6, 1024, 0.5e-6, seed)
+            .generate()
+            .unwrap();
         let options = RayOptions {
             ior,
             azimuths: AZIMUTHS,

@@ -4,7 +4,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use gonio_surface::normals::{NormalMethod, facet_normals};
-use gonio_surface::synth::{Acf, GaussianSurface};
+use gonio_surface::synth::GaussianSurface;
 use gonio_surface::{io, ops, stats};
 use std::hint::black_box;
 use std::time::Duration;
@@ -12,16 +12,7 @@ use std::time::Duration;
 const N: usize = 4096;
 
 fn request() -> GaussianSurface {
-    GaussianSurface {
-        sq: 201e-9,
-        corr_length: 6e-6,
-        acf: Acf::Gaussian,
-        nx: N,
-        ny: N,
-        dx: 0.5e-6,
-        dy: 0.5e-6,
-        seed: 1,
-    }
+    GaussianSurface::square(201e-9, 6e-6, N, 0.5e-6, 1)
 }
 
 fn bench(c: &mut Criterion) {

@@ -64,6 +64,21 @@ pub struct GaussianSurface {
 }
 
 impl GaussianSurface {
+    /// The request for a surface with a Gaussian ACF on a square `n × n` grid of spacing `dx`
+    /// (`sq`, `corr_length` and `dx` in metres).
+    pub fn square(sq: f64, corr_length: f64, n: usize, dx: f64, seed: u64) -> GaussianSurface {
+        GaussianSurface {
+            sq,
+            corr_length,
+            acf: Acf::Gaussian,
+            nx: n,
+            ny: n,
+            dx,
+            dy: dx,
+            seed,
+        }
+    }
+
     /// Synthesise the surface. Fails if a length is not positive and finite or the grid has
     /// fewer than 2 points along an axis.
     pub fn generate(&self) -> Result<HeightMap> {
@@ -186,16 +201,7 @@ pub const EPOXY_SPACING_M: f64 = 0.5e-6;
 /// The request for the epoxy sample of rms height `sq` metres with the default correlation
 /// length, grid and a Gaussian ACF.
 pub fn epoxy_surface(sq: f64, seed: u64) -> GaussianSurface {
-    GaussianSurface {
-        sq,
-        corr_length: EPOXY_CORR_LENGTH_M,
-        acf: Acf::Gaussian,
-        nx: EPOXY_N,
-        ny: EPOXY_N,
-        dx: EPOXY_SPACING_M,
-        dy: EPOXY_SPACING_M,
-        seed,
-    }
+    GaussianSurface::square(sq, EPOXY_CORR_LENGTH_M, EPOXY_N, EPOXY_SPACING_M, seed)
 }
 
 /// The whole epoxy series ([`EPOXY_SQ_M`]), synthesised with the same seed (so the samples

@@ -1,7 +1,7 @@
 use super::*;
 use crate::analytic::GaussianModel;
 use crate::geometry::spherical_direction;
-use gonio_surface::synth::{Acf, GaussianSurface};
+use gonio_surface::synth::GaussianSurface;
 use ndarray::Array2;
 use num_complex::Complex64;
 use rustfft::FftPlanner;
@@ -13,18 +13,9 @@ fn flat(n: usize, dx: f64) -> HeightMap {
 }
 
 fn gaussian(sq: f64, t: f64, n: usize, dx: f64, seed: u64) -> HeightMap {
-    GaussianSurface {
-        sq,
-        corr_length: t,
-        acf: Acf::Gaussian,
-        nx: n,
-        ny: n,
-        dx,
-        dy: dx,
-        seed,
-    }
-    .generate()
-    .unwrap()
+    GaussianSurface::square(sq, t, n, dx, seed)
+        .generate()
+        .unwrap()
 }
 
 fn engine(map: &HeightMap) -> Kirchhoff {
