@@ -3,32 +3,21 @@
 //! reproduces held-out measurements: every tenth geometry is left out of the fit, and the table
 //! is evaluated there. Numbers are quoted in docs/brdf-tables.md.
 
-use gonio_brdf::formats::astm;
-use gonio_brdf::formats::scattered::{NOISE_FLOOR_PER_SR, Sample, ScatteredFit, residual_of};
-use gonio_brdf::table::Channels;
-use std::path::Path;
+mod common;
+use common::{HeldOut, cayman_held_out};
+use gonio_brdf::formats::scattered::{NOISE_FLOOR_PER_SR, residual_of};
 
 #[test]
 fn held_out_geometries_are_reproduced() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cayman.astm");
-    let file = astm::read(&path).unwrap();
+    let HeldOut {
+        file,
+        held,
+        fit,
+        table,
+    } = cayman_held_out();
     assert_eq!(file.samples.len(), 1439);
     assert_eq!(file.wavelengths_nm.len(), 31);
-    let held: Vec<Sample> = file.samples.iter().step_by(10).cloned().collect();
-    let train: Vec<Sample> = file
-        .samples
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| i % 10 != 0)
-        .map(|(_, s)| s.clone())
-        .collect();
-    let fit = ScatteredFit::new(&train, None).unwrap();
-    let channels = Channels::Spectral {
-        wavelengths_nm: file.wavelengths_nm.clone(),
-    };
-    let table = fit
-        .to_table(astm::default_resolution(), channels, Default::default())
-        .unwrap();
+    assert_eq!(held.len(), 144);
 
     // Per band, every value above the noise floor.
     let per_band = residual_of(&held, NOISE_FLOOR_PER_SR, |s, out| {

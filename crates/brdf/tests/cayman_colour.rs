@@ -14,18 +14,19 @@
 //! A second test bins the geometries by aspecular angle and checks that the table keeps the
 //! paint's colour travel. The figures are quoted in docs/color.md.
 
+mod common;
+use common::{HeldOut, cayman_held_out, cayman_path};
 use glam::DVec3;
 use gonio_brdf::formats::astm;
-use gonio_brdf::formats::scattered::{Sample, ScatteredFit};
+use gonio_brdf::formats::scattered::Sample;
+use gonio_brdf::table::BrdfTable;
 use gonio_brdf::table::colour::{ColourSpace, reduce};
-use gonio_brdf::table::{BrdfTable, Channels};
 use gonio_color::{Illuminant, Lab, Observer, SpectralToXyz, Xyz, ciede2000, white};
 use std::f64::consts::PI;
-use std::path::Path;
 
 #[test]
 fn measured_and_tabulated_cayman_colours_agree() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cayman.astm");
+    let path = cayman_path();
     let file = astm::read(&path).unwrap();
     let (spectral, _) = astm::import(&path, astm::default_resolution()).unwrap();
     let all: Vec<&Sample> = file.samples.iter().collect();
@@ -41,23 +42,10 @@ fn measured_and_tabulated_cayman_colours_agree() {
         assert!(de.median < 2.0, "median CIEDE2000 {}", de.median);
     }
 
-    let train: Vec<Sample> = file
-        .samples
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| i % 10 != 0)
-        .map(|(_, s)| s.clone())
-        .collect();
-    let held: Vec<&Sample> = file.samples.iter().step_by(10).collect();
-    let channels = Channels::Spectral {
-        wavelengths_nm: file.wavelengths_nm.clone(),
-    };
-    let fit = ScatteredFit::new(&train, None).unwrap();
-    let spectral = fit
-        .to_table(astm::default_resolution(), channels, Default::default())
-        .unwrap();
+    let HeldOut { held, table, .. } = cayman_held_out();
+    let held: Vec<&Sample> = held.iter().collect();
     let (illuminant, observer) = (Illuminant::D65, Observer::Cie1931TwoDegree);
-    let de = quantiles(&spectral, &held, &file.wavelengths_nm, illuminant, observer);
+    let de = quantiles(&table, &held, &file.wavelengths_nm, illuminant, observer);
     println!(
         "{illuminant} {observer}, {} held-out geometries: {de}",
         held.len()
@@ -122,7 +110,7 @@ fn quantiles(
 /// colour within 1 ΔE00 and the hue travel within 3°.
 #[test]
 fn colour_travel_is_kept() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cayman.astm");
+    let path = cayman_path();
     let file = astm::read(&path).unwrap();
     let (spectral, _) = astm::import(&path, astm::default_resolution()).unwrap();
     let (illuminant, observer) = (Illuminant::D65, Observer::Cie1931TwoDegree);
@@ -189,7 +177,7 @@ fn colour_travel_is_kept() {
 /// is exact (the reduction is linear), and so is a second bounce on a grey surface.
 #[test]
 fn tristimulus_shortcut_error_on_two_bounces() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cayman.astm");
+    let path = cayman_path();
     let file = astm::read(&path).unwrap();
     let bands = SpectralToXyz::new(
         &file.wavelengths_nm,
