@@ -185,33 +185,18 @@ impl ModelSpec {
             }
             ModelSpec::Phong {
                 specular, exponent, ..
-            } => {
-                check(
-                    name,
-                    "exponent",
-                    *exponent,
-                    *exponent >= 0.0,
-                    "non-negative",
-                )?;
-                Model::Phong(Phong {
-                    specular: reflectance("specular", specular)?,
-                    exponent: *exponent,
-                })
             }
-            ModelSpec::BlinnPhong {
+            | ModelSpec::BlinnPhong {
                 specular, exponent, ..
             } => {
-                check(
-                    name,
-                    "exponent",
-                    *exponent,
-                    *exponent >= 0.0,
-                    "non-negative",
-                )?;
-                Model::BlinnPhong(BlinnPhong {
-                    specular: reflectance("specular", specular)?,
-                    exponent: *exponent,
-                })
+                let exponent = *exponent;
+                check(name, "exponent", exponent, exponent >= 0.0, "non-negative")?;
+                let specular = reflectance("specular", specular)?;
+                if matches!(self, ModelSpec::Phong { .. }) {
+                    Model::Phong(Phong { specular, exponent })
+                } else {
+                    Model::BlinnPhong(BlinnPhong { specular, exponent })
+                }
             }
             ModelSpec::Ward {
                 specular,
