@@ -14,6 +14,7 @@
 
 use super::horizon::{Axis, Horizons};
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// What happens to a ray followed over the height field.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,6 +51,9 @@ pub(crate) struct HeightField {
     inv_dy: f64,
     fx_max: f64,
     fy_max: f64,
+    /// Per grid point, the highest valid height within `2^k + 1` grid points along each axis
+    /// (`k = 1 ..= WINDOW_LEVELS`), rounded up to f32.
+    windows: Vec<[f32; WINDOW_LEVELS]>,
     /// Horizon maps toward the grid axes, made when a ray along that axis first needs one.
     horizons: Horizons,
 }
@@ -83,7 +87,9 @@ impl HeightField {
                 block_max[j * bx + i] = m;
             }
         }
+        let windows = window_maxima(&heights, nx, ny);
         HeightField {
+            windows,
             heights,
             nx,
             ny,
@@ -117,12 +123,37 @@ impl HeightField {
 
     /// Whether a ray in direction `d` from the grid point of row-major index `index` (at
     /// `origin`) leaves the surface: exactly from the horizon map when `d` rises along a grid
-    /// axis, else by marching.
+    /// axis; else, for a rising ray, at once if it clears the window maxima around its origin;
+    /// else by marching.
     pub(crate) fn escapes(&self, index: usize, origin: DVec3, d: DVec3) -> bool {
+        let slope = d.z / (d.x * d.x + d.y * d.y).sqrt();
         match self.horizon(d) {
-            Some(horizon) => d.z / (d.x * d.x + d.y * d.y).sqrt() >= horizon[index],
-            None => self.march(origin, d) == Fate::Escapes,
+            Some(horizon) => slope >= horizon[index],
+            None => {
+                (d.z > 0.0 && self.clears_windows(index, origin.z, slope))
+                    || self.march(origin, d) == Fate::Escapes
+            }
         }
+    }
+
+    /// Whether a ray rising at `slope` (height per horizontal distance) from height `z0` at
+    /// grid point `index` stays above the surface, judged from the window maxima: a point of
+    /// the ray at most `2^(k+2) - 1` grid spacings from its origin lies over a cell whose
+    /// corners are within window `k` (half-width `2^(k+2)` points), and from where the march
+    /// starts (one spacing `m`, the smaller one) to there the ray is at least
+    /// `z0 + slope (2^(k+1) - 1) m` high; if that clears window `k`'s maximum for every `k`, and
+    /// the map's maximum beyond the last window, the ray cannot meet the surface. A sufficient
+    /// test: `false` means "march to find out".
+    fn clears_windows(&self, index: usize, z0: f64, slope: f64) -> bool {
+        let m = 2.0 * self.step;
+        let mut from = 1.0;
+        for &w in &self.windows[index] {
+            if z0 + slope * from * m < f64::from(w) {
+                return false;
+            }
+            from = 2.0 * from + 1.0;
+        }
+        z0 + slope * from * m >= self.h_max
     }
 
     /// Position in metres of grid point `(ix, iy)`, with its height.
@@ -246,6 +277,54 @@ impl HeightField {
     }
 }
 
+/// Levels of window maxima per grid point (half-widths 4, 8, ..., 128 points).
+const WINDOW_LEVELS: usize = 6;
+
+/// For every grid point of the row-major `heights` (`nx × ny`), the highest valid height in
+/// the square of half-width `2^(k+2)` points about it (clipped to the map), for
+/// `k = 0 .. WINDOW_LEVELS`, rounded up to f32. Starting from the 3 × 3 maximum (half-width 1),
+/// each doubling takes the maximum of the previous level at the four points `(±a, ±a)` away,
+/// `a` = the previous half-width, which covers the square of twice that half-width.
+fn window_maxima(heights: &[f64], nx: usize, ny: usize) -> Vec<[f32; WINDOW_LEVELS]> {
+    let valid_max = |a: f64, b: f64| if b.is_nan() { a } else { a.max(b) };
+    // One level from the previous: the maximum over the points `(±a, ±a)` away (clipped).
+    let double = |previous: &[f64], a: usize| {
+        let mut next = vec![f64::NEG_INFINITY; nx * ny];
+        next.par_chunks_mut(nx).enumerate().for_each(|(iy, row)| {
+            let (y0, y1) = (iy.saturating_sub(a), (iy + a).min(ny - 1));
+            let (r0, r1) = (&previous[y0 * nx..][..nx], &previous[y1 * nx..][..nx]);
+            for (ix, out) in row.iter_mut().enumerate() {
+                let (x0, x1) = (ix.saturating_sub(a), (ix + a).min(nx - 1));
+                *out = valid_max(valid_max(valid_max(r0[x0], r0[x1]), r1[x0]), r1[x1]);
+            }
+        });
+        next
+    };
+    // The 3 × 3 maximum (half-width 1), from which the doublings start.
+    let mut level = vec![f64::NEG_INFINITY; nx * ny];
+    level.par_chunks_mut(nx).enumerate().for_each(|(iy, row)| {
+        for (ix, out) in row.iter_mut().enumerate() {
+            for y in iy.saturating_sub(1)..=(iy + 1).min(ny - 1) {
+                for x in ix.saturating_sub(1)..=(ix + 1).min(nx - 1) {
+                    *out = valid_max(*out, heights[y * nx + x]);
+                }
+            }
+        }
+    });
+    let mut out = vec![[f32::NEG_INFINITY; WINDOW_LEVELS]; nx * ny];
+    // Half-widths 2, 4, 8, ...: the first doubling is not kept.
+    for doubling in 0..=WINDOW_LEVELS {
+        level = double(&level, 1 << doubling);
+        if doubling > 0 {
+            out.par_iter_mut().zip(&level).for_each(|(o, &m)| {
+                let f = m as f32;
+                o[doubling - 1] = if f64::from(f) < m { f.next_up() } else { f };
+            });
+        }
+    }
+    out
+}
+
 /// A ray in grid coordinates: `(x/dx, y/dy)` and height at distance `t` along it, without a
 /// division per step.
 struct GridRay {
@@ -288,6 +367,60 @@ mod tests {
             }
         }
         HeightField::new(h, n, n, d, d)
+    }
+
+    fn rough(n: usize) -> HeightField {
+        field(
+            |x, y| (0.9 * x).sin() * (0.4 * y).cos() + 0.3 * (2.1 * x + 1.7 * y).sin(),
+            n,
+            0.5,
+        )
+    }
+
+    /// The window maxima hold the plain maximum over each square (rounded up to f32).
+    #[test]
+    fn window_maxima_are_the_plain_maxima() {
+        let (n, f) = (70, rough(70));
+        for (iy, ix) in [(0usize, 0usize), (3, 5), (35, 35), (69, 12), (50, 69)] {
+            for k in 0..WINDOW_LEVELS {
+                let hw = 4usize << k;
+                let mut want = f64::NEG_INFINITY;
+                for y in iy.saturating_sub(hw)..=(iy + hw).min(n - 1) {
+                    for x in ix.saturating_sub(hw)..=(ix + hw).min(n - 1) {
+                        want = want.max(f.heights[y * n + x]);
+                    }
+                }
+                let got = f64::from(f.windows[iy * n + ix][k]);
+                assert!(
+                    got >= want && got - want < 1e-6,
+                    "({ix}, {iy}) {k}: {got} {want}"
+                );
+            }
+        }
+    }
+
+    /// A ray that clears the windows escapes the march too, and many do.
+    #[test]
+    fn clearing_the_windows_is_escaping() {
+        let f = rough(96);
+        let mut cleared = 0;
+        for iy in (2..94).step_by(7) {
+            for ix in (2..94).step_by(5) {
+                let o = f.point(ix, iy);
+                for a in 0..24 {
+                    for e in [0.05f64, 0.2, 0.5, 1.0, 1.4] {
+                        let phi = a as f64 * 0.2618 + 0.1;
+                        let d = DVec3::new(e.cos() * phi.cos(), e.cos() * phi.sin(), e.sin());
+                        let slope = d.z / d.x.hypot(d.y);
+                        if f.clears_windows(iy * 96 + ix, o.z, slope) {
+                            cleared += 1;
+                            assert_eq!(f.march(o, d), Fate::Escapes, "({ix}, {iy}) {d}");
+                        }
+                    }
+                }
+            }
+        }
+        assert!(cleared > 5000, "{cleared}");
     }
 
     /// A flat plane never blocks a rising ray, and every descending ray meets it (lost at the

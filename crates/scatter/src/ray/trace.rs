@@ -92,7 +92,7 @@ impl Tracer<'_> {
         if self.shadowing {
             let lit = match self.source_horizon {
                 Some((horizon, slope)) => slope >= horizon[facet.index],
-                None => self.field.march(facet.pos, self.wi) == Fate::Escapes,
+                None => self.field.escapes(facet.index, facet.pos, self.wi),
             };
             if !lit {
                 return None;

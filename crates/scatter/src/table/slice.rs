@@ -39,6 +39,11 @@ pub(crate) struct SliceGrid {
     ring_len: Vec<usize>,
     /// Index of each ring's first node.
     ring_start: Vec<usize>,
+    /// Per ring, `(nodes per radian of azimuth, node coordinate of the end of the range)`:
+    /// `((n - 1)/π, n - 1)` when folded, `(n/2π, n)` when periodic.
+    ring_scale: Vec<(f64, f64)>,
+    /// `n_u` and `n_u - 1` as floats.
+    n_u_f: (f64, f64),
     len: usize,
 }
 
@@ -55,11 +60,23 @@ impl SliceGrid {
             ring_start.push(len);
             len += n;
         }
+        let ring_scale = ring_len
+            .iter()
+            .map(|&n| {
+                if folded {
+                    ((n - 1) as f64 * FRAC_1_PI, (n - 1) as f64)
+                } else {
+                    (n as f64 * (0.5 * FRAC_1_PI), n as f64)
+                }
+            })
+            .collect();
         SliceGrid {
             n_u,
             folded,
             ring_len,
             ring_start,
+            ring_scale,
+            n_u_f: (n_u as f64, (n_u - 1) as f64),
             len,
         }
     }
@@ -83,44 +100,55 @@ impl SliceGrid {
 
     /// The nodes around `(u, phi)` (phi relative, already folded) with their tent weights.
     fn stencil(&self, u: f64, phi: f64) -> Stencil {
-        let x = u * self.n_u as f64;
+        let x = u * self.n_u_f.0;
         let last = self.n_u - 1;
-        let (j0, t) = if x.is_nan() || x >= last as f64 {
+        let (j0, t) = if x.is_nan() || x >= self.n_u_f.1 {
             (last, 0.0)
         } else {
-            // x >= 0: truncation is the floor (and no call to libm's floor).
-            let j = x as usize;
-            (j, x - j as f64)
+            // 0 <= x < n_u: truncation is the floor (and no call to libm's floor).
+            let j = x as u32;
+            (j as usize, x - f64::from(j))
         };
-        let mut out = [(0usize, 0.0f64); 4];
-        for (r, (j, wr)) in [(j0, 1.0 - t), ((j0 + 1).min(last), t)]
-            .into_iter()
-            .enumerate()
-        {
-            let [a, b] = self.ring_weights(j, phi);
-            out[2 * r] = (a.0, a.1 * wr);
-            out[2 * r + 1] = (b.0, b.1 * wr);
-        }
-        out
+        let [a, b] = self.ring_weights(j0, phi);
+        let [c, d] = self.ring_weights((j0 + 1).min(last), phi);
+        [
+            (a.0, a.1 * (1.0 - t)),
+            (b.0, b.1 * (1.0 - t)),
+            (c.0, c.1 * t),
+            (d.0, d.1 * t),
+        ]
     }
 
-    /// The two azimuth nodes of ring `j` around `phi` and their weights.
+    /// The two azimuth nodes of ring `j` around `phi` (relative: `[0, π]` folded, `[0, 2π]`
+    /// periodic) and their weights.
     fn ring_weights(&self, j: usize, phi: f64) -> [(usize, f64); 2] {
         let (start, n) = (self.ring_start[j], self.ring_len[j]);
         if n == 1 {
             return [(start, 1.0), (start, 0.0)];
         }
+        let (scale, end) = self.ring_scale[j];
         if self.folded {
             // Nodes at k π / (n - 1), both ends included.
-            let y = (phi * FRAC_1_PI * (n - 1) as f64).clamp(0.0, (n - 1) as f64);
-            let k = (y as usize).min(n - 2);
-            let t = y - k as f64;
+            let y = (phi * scale).clamp(0.0, end);
+            let k = (y as u32).min(n as u32 - 2);
+            let t = y - f64::from(k);
+            let k = k as usize;
             [(start + k, 1.0 - t), (start + k + 1, t)]
         } else {
-            let y = (phi * (0.5 * FRAC_1_PI) * n as f64).rem_euclid(n as f64);
-            let k = (y as usize).min(n - 1);
-            let t = y - k as f64;
-            [(start + k, 1.0 - t), (start + (k + 1) % n, t)]
+            // phi in [0, 2π] (2π itself wraps to node 0).
+            let y = (phi * scale).clamp(0.0, end);
+            let y = if y >= end { y - end } else { y };
+            let k = (y as u32).min(n as u32 - 1);
+            let t = y - f64::from(k);
+            let (k, k1) = (
+                k as usize,
+                if k as usize + 1 == n {
+                    0
+                } else {
+                    k as usize + 1
+                },
+            );
+            [(start + k, 1.0 - t), (start + k1, t)]
         }
     }
 
