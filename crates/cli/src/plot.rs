@@ -3,6 +3,7 @@
 
 use anyhow::{Context, Result};
 use plotters::coord::Shift;
+use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
 use std::path::Path;
 use std::sync::Once;
@@ -87,54 +88,65 @@ where
         x0 -= 0.5;
         x1 += 0.5;
     }
-    let series_iter = series.iter();
     if plot.log_y {
         y0 = y0.max(y1 * 1e-12);
         if y1 <= y0 {
             y1 = y0 * 10.0;
         }
-        let mut chart = ChartBuilder::on(root)
-            .caption(plot.title, ("sans-serif", 20))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(70)
-            .build_cartesian_2d(x0..x1, (y0 / 1.5..y1 * 1.5).log_scale())?;
-        chart
-            .configure_mesh()
-            .x_desc(plot.x_label)
-            .y_desc(plot.y_label)
-            .y_label_formatter(&|v| format!("{v:.0e}"))
-            .label_style(("sans-serif", 13))
-            .draw()?;
-        for s in series_iter {
-            let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(finite).collect();
-            draw_series(&mut chart, s, pts)?;
-        }
-        finish_legend(&mut chart)?;
+        draw_chart(
+            root,
+            plot,
+            x0..x1,
+            (y0 / 1.5..y1 * 1.5).log_scale(),
+            series,
+            finite,
+        )
     } else {
         if y1 <= y0 {
             y0 -= 0.5;
             y1 += 0.5;
         }
         let pad = 0.05 * (y1 - y0);
-        let mut chart = ChartBuilder::on(root)
-            .caption(plot.title, ("sans-serif", 20))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(70)
-            .build_cartesian_2d(x0..x1, y0 - pad..y1 + pad)?;
-        chart
-            .configure_mesh()
-            .x_desc(plot.x_label)
-            .y_desc(plot.y_label)
-            .label_style(("sans-serif", 13))
-            .draw()?;
-        for s in series_iter {
-            let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(finite).collect();
-            draw_series(&mut chart, s, pts)?;
-        }
-        finish_legend(&mut chart)?;
+        draw_chart(root, plot, x0..x1, y0 - pad..y1 + pad, series, finite)
     }
+}
+
+/// The chart of [`draw_line_plot`] on the y axis `y` (linear or logarithmic): caption, mesh
+/// with the axis labels (powers of ten on a log axis), the series and the legend.
+fn draw_chart<DB, Y>(
+    root: &DrawingArea<DB, Shift>,
+    plot: &LinePlot,
+    x: std::ops::Range<f64>,
+    y: Y,
+    series: &[Series],
+    finite: impl Fn(&(f64, f64)) -> bool,
+) -> Result<()>
+where
+    DB: DrawingBackend,
+    DB::ErrorType: 'static,
+    Y: AsRangedCoord<Value = f64>,
+    Y::CoordDescType: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let mut chart = ChartBuilder::on(root)
+        .caption(plot.title, ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x, y)?;
+    let power_of_ten = |v: &f64| format!("{v:.0e}");
+    let mut mesh = chart.configure_mesh();
+    mesh.x_desc(plot.x_label)
+        .y_desc(plot.y_label)
+        .label_style(("sans-serif", 13));
+    if plot.log_y {
+        mesh.y_label_formatter(&power_of_ten);
+    }
+    mesh.draw()?;
+    for s in series {
+        let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(&finite).collect();
+        draw_series(&mut chart, s, pts)?;
+    }
+    finish_legend(&mut chart)?;
     Ok(())
 }
 
