@@ -10,14 +10,14 @@
 
 use glam::{DVec2, DVec3};
 use gonio_brdf::Brdf;
-use gonio_brdf::formats::astm;
 use gonio_brdf::formats::mitsuba::{self, MitsubaOptions, TensorBrdf};
-use gonio_brdf::formats::scattered::ScatteredFit;
 use gonio_brdf::models::{Model, Ward};
-use gonio_brdf::table::{BrdfTable, Channels, Provenance, Resolution};
+use gonio_brdf::table::{BrdfTable, Provenance, Resolution};
 use gonio_brdf::validate::{SamplerCheck, check_sampler};
 use rand::{RngExt, SeedableRng};
 use std::path::Path;
+
+mod common;
 
 /// The Ward model of these tests, with a Lambertian part so that both the lobe and the wide
 /// diffuse reflection must come through the file.
@@ -299,15 +299,7 @@ fn mitsuba3_loads_evaluates_samples_and_renders_an_rgb_file() {
 
 #[test]
 fn mitsuba3_loads_and_renders_the_spectral_cayman_file() {
-    let astm_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cayman.astm");
-    let file = astm::read(&astm_path).unwrap();
-    let channels = Channels::Spectral {
-        wavelengths_nm: file.wavelengths_nm.clone(),
-    };
-    let table = ScatteredFit::new(&file.samples, None)
-        .unwrap()
-        .to_table(astm::default_resolution(), channels, Default::default())
-        .unwrap();
+    let (file, table) = common::cayman_table();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("cayman.bsdf");
     // 128² value grids: the default 64² holds this peaked paint's albedo at 60° to 7%, 128² to

@@ -22,6 +22,25 @@ pub fn cayman_path() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cayman.astm")
 }
 
+/// The fit of `samples` and its spectral table at the import resolution.
+fn fit_and_table(file: &AstmFile, samples: &[Sample]) -> (ScatteredFit, BrdfTable) {
+    let fit = ScatteredFit::new(samples, None).unwrap();
+    let channels = Channels::Spectral {
+        wavelengths_nm: file.wavelengths_nm.clone(),
+    };
+    let table = fit
+        .to_table(astm::default_resolution(), channels, Default::default())
+        .unwrap();
+    (fit, table)
+}
+
+/// The Cayman file and the spectral table of the fit of all its geometries.
+pub fn cayman_table() -> (AstmFile, BrdfTable) {
+    let file = astm::read(&cayman_path()).unwrap();
+    let (_, table) = fit_and_table(&file, &file.samples);
+    (file, table)
+}
+
 /// Fit every geometry of the Cayman file but each tenth, which is held out.
 pub fn cayman_held_out() -> HeldOut {
     let file = astm::read(&cayman_path()).unwrap();
@@ -30,13 +49,7 @@ pub fn cayman_held_out() -> HeldOut {
         let part = if i % 10 == 0 { &mut held } else { &mut train };
         part.push(sample.clone());
     }
-    let fit = ScatteredFit::new(&train, None).unwrap();
-    let channels = Channels::Spectral {
-        wavelengths_nm: file.wavelengths_nm.clone(),
-    };
-    let table = fit
-        .to_table(astm::default_resolution(), channels, Default::default())
-        .unwrap();
+    let (fit, table) = fit_and_table(&file, &train);
     HeldOut {
         file,
         held,
