@@ -21,7 +21,9 @@
 //! display white (D65). The program prints the median, 95th percentile and maximum ΔE00 over
 //! the image and per surface (the material and shape kind the pixel's centre ray meets first)
 //! and the pixel of the maximum. It writes `tristimulus.png`, `spectral.png` (the means of the
-//! two seeds) and `delta_e00.png` (ΔE00 0 → black, 10 or more → white) into `--out`.
+//! two seeds) and `delta_e00.png` (ΔE00 0 → black, 2 or more → white) into `--out`, with `delta_e00.csv`
+//! (one line per pixel: `x_px, y_px, surface, cos_view` (cosine between the view direction and
+//! the shading normal at the centre hit), `delta_e00`, `noise_reference_delta_e00`).
 
 use glam::DVec2;
 use gonio_color::srgb::srgb_white;
@@ -132,8 +134,9 @@ fn stats(values: &[f64]) -> [f64; 3] {
     [q(0.5), q(0.95), v[v.len() - 1]]
 }
 
-/// What the centre ray of each pixel meets first: "MATERIAL SHAPE", "light" or "background".
-fn surfaces(scene: &Scene) -> Vec<String> {
+/// What the centre ray of each pixel meets first: "MATERIAL SHAPE", "light" or "background",
+/// and the cosine between the view direction and the shading normal there (NaN when nothing).
+fn surfaces(scene: &Scene) -> Vec<(String, f64)> {
     let cam = &scene.camera;
     (0..cam.width * cam.height)
         .map(|i| {
@@ -142,27 +145,41 @@ fn surfaces(scene: &Scene) -> Vec<String> {
                 (i / cam.width) as f64 + 0.5,
             ));
             let Some(hit) = scene.accel.intersect(&ray, 0.0, f64::INFINITY) else {
-                return "background".into();
+                return ("background".into(), f64::NAN);
             };
+            let cos_view = hit.ns.dot(ray.dir).abs();
             match scene.prims[hit.prim] {
-                PrimKind::Emitter(_) => "light".into(),
+                PrimKind::Emitter(_) => ("light".into(), cos_view),
                 PrimKind::Surface(m) => {
                     let kind = match scene.accel.shapes()[hit.prim] {
                         Shape::Sphere { .. } => "sphere",
                         Shape::Planar { .. } => "plane",
                         Shape::Triangle { .. } => "mesh",
                     };
-                    format!("{} {kind}", scene.materials[m].name)
+                    (format!("{} {kind}", scene.materials[m].name), cos_view)
                 }
             }
         })
         .collect()
 }
 
+/// One line per pixel: `x_px,y_px,surface,cos_view,delta_e00,noise_reference_delta_e00`.
+fn csv(width: usize, labels: &[(String, f64)], de: &[f64], noise: &[f64]) -> String {
+    let mut out = String::from("x_px,y_px,surface,cos_view,delta_e00,noise_reference_delta_e00\n");
+    for (k, ((label, cos_view), (d, n))) in labels.iter().zip(de.iter().zip(noise)).enumerate() {
+        out += &format!(
+            "{},{},{label},{cos_view:.4},{d:.4},{n:.4}\n",
+            k % width,
+            k / width
+        );
+    }
+    out
+}
+
 fn heat_map(delta_e: &[f64], width: usize, height: usize) -> Image {
     let mut img = Image::new(width, height);
     for (p, d) in img.pixels.iter_mut().zip(delta_e) {
-        *p = [(d / 10.0).min(1.0) as f32; 3];
+        *p = [(d / 2.0).min(1.0) as f32; 3];
     }
     img
 }
@@ -220,7 +237,7 @@ fn run() -> Result<(), String> {
         .collect();
     let labels = surfaces(&scene);
     let mut by_surface: BTreeMap<&str, (Vec<f64>, Vec<f64>)> = BTreeMap::new();
-    for ((l, d), n) in labels.iter().zip(&de).zip(&noise) {
+    for (((l, _), d), n) in labels.iter().zip(&de).zip(&noise) {
         let e = by_surface.entry(l.as_str()).or_default();
         e.0.push(*d);
         e.1.push(*n);
@@ -243,6 +260,9 @@ fn run() -> Result<(), String> {
         tone: gonio_render::ToneCurve::Clamp,
     };
     write(&heat_map(&de, w, h), "delta_e00.png", linear)?;
+    let csv_path = args.out.join("delta_e00.csv");
+    std::fs::write(&csv_path, csv(w, &labels, &de, &noise))
+        .map_err(|e| format!("{}: {e}", csv_path.display()))?;
 
     let [med, p95, max] = stats(&de);
     let [n_med, n_p95, n_max] = stats(&noise);
@@ -271,7 +291,7 @@ fn run() -> Result<(), String> {
             "max_bounces": args.max_bounces,
             "delta_e00": {"median": med, "p95": p95, "max": max},
             "noise_reference_delta_e00": {"median": n_med, "p95": n_p95, "max": n_max},
-            "max_pixel": {"x": imax % w, "y": imax / w, "surface": labels[imax]},
+            "max_pixel": {"x": imax % w, "y": imax / w, "surface": labels[imax].0},
             "surfaces": surfaces,
             "tristimulus_rays_per_second": tri_stats.rays_per_second(),
             "spectral_rays_per_second": spec_stats.rays_per_second(),
@@ -292,7 +312,7 @@ fn run() -> Result<(), String> {
              pixel ({}, {}) on {}",
             imax % w,
             imax / w,
-            labels[imax]
+            labels[imax].0
         );
         println!(
             "noise reference (same noise, no systematic part): ΔE00 median {n_med:.2}, \
