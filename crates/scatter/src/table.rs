@@ -272,7 +272,7 @@ pub fn kirchhoff_table(
         let mut per_channel = Vec::with_capacity(wavelengths_nm.len());
         for (c, &nm) in wavelengths_nm.iter().enumerate() {
             let map = engine.hemisphere(nm * 1e-9, wi, &hemisphere)?;
-            let values = grid.values(wi, &hemisphere_rays(&map), &measure);
+            let values = grid.values_from(&hemisphere_deposits(&grid, wi, &map), &measure);
             per_channel.push(options.symmetrise(k, values, &grid, &measure));
             progress(k * wavelengths_nm.len() + c + 1, total);
         }
@@ -281,33 +281,49 @@ pub fn kirchhoff_table(
     fill(options, &grid, &slices, channels, provenance)
 }
 
-/// The cells of a hemisphere map as rays: [`KIRCHHOFF_SPLIT`]² per cell that holds light, at
-/// the centres of its sub-cells (equal steps in theta and phi), sharing its reflectance by the
-/// sub-cells' projected solid angles.
-fn hemisphere_rays(map: &HemisphereTable) -> Vec<(DVec3, f64)> {
+/// The cells of a hemisphere map deposited on the slice's nodes as rays: [`KIRCHHOFF_SPLIT`]²
+/// per cell that holds light, at the centres of its sub-cells (equal steps in theta and phi),
+/// sharing its reflectance by the sub-cells' projected solid angles. Each row of cells is one
+/// parallel work item with its own partial deposit; the partials come back in row order.
+fn hemisphere_deposits(grid: &SliceGrid, wi: DVec3, map: &HemisphereTable) -> Vec<Vec<f64>> {
     let g = map.grid;
-    let (dt, dp) = (FRAC_PI_2 / g.n_theta as f64, TAU / g.n_phi as f64);
     let s = KIRCHHOFF_SPLIT;
-    let mut out = Vec::new();
-    for (cell, &r) in map.reflectance.iter().enumerate() {
-        if r == 0.0 {
-            continue;
-        }
-        let (i, j) = (cell / g.n_phi, cell % g.n_phi);
-        let t0 = i as f64 * dt;
-        // Projected solid angle of sub-ring a ∝ sin²(t_(a+1)) - sin²(t_a).
-        let edge = |a: usize| (t0 + a as f64 * dt / s as f64).sin().powi(2);
-        let whole = edge(s) - edge(0);
-        for a in 0..s {
-            let theta = t0 + (a as f64 + 0.5) * dt / s as f64;
-            let share = r * (edge(a + 1) - edge(a)) / whole / s as f64;
-            for b in 0..s {
-                let phi = (j as f64 + (b as f64 + 0.5) / s as f64) * dp;
-                out.push((dir(theta, phi), share));
-            }
-        }
-    }
-    out
+    let (dt, dp) = (FRAC_PI_2 / g.n_theta as f64, TAU / g.n_phi as f64);
+    // Sub-cell azimuths (j + (b + 1/2)/s) dp, for cell j and sub-column b, as (sin, cos).
+    let azimuths: Vec<(f64, f64)> = (0..g.n_phi * s)
+        .map(|q| ((q as f64 + 0.5) / s as f64 * dp).sin_cos())
+        .collect();
+    map.reflectance
+        .par_chunks(g.n_phi)
+        .enumerate()
+        .map(|(i, row)| {
+            let mut part = vec![0.0; grid.len()];
+            let t0 = i as f64 * dt;
+            // Projected solid angle of sub-ring a ∝ sin²(t_(a+1)) - sin²(t_a).
+            let edge = |a: usize| (t0 + a as f64 * dt / s as f64).sin().powi(2);
+            let whole = edge(s) - edge(0);
+            let rings: Vec<(f64, f64, f64)> = (0..s)
+                .map(|a| {
+                    let (st, ct) = (t0 + (a as f64 + 0.5) * dt / s as f64).sin_cos();
+                    (st, ct, (edge(a + 1) - edge(a)) / whole / s as f64)
+                })
+                .collect();
+            let azimuths = &azimuths;
+            let rays = row
+                .iter()
+                .enumerate()
+                .filter(|&(_, &r)| r != 0.0)
+                .flat_map(|(j, &r)| {
+                    rings.iter().flat_map(move |&(st, ct, share)| {
+                        azimuths[j * s..(j + 1) * s]
+                            .iter()
+                            .map(move |&(sp, cp)| (DVec3::new(st * cp, st * sp, ct), r * share))
+                    })
+                });
+            grid.deposit(&mut part, rays.map(|(wo, w)| (grid.coords(wi + wo), w)));
+            part
+        })
+        .collect()
 }
 
 /// Fill every cell of the table from the slices of the incidences around its own.

@@ -25,8 +25,6 @@ use std::f64::consts::{FRAC_1_PI, FRAC_2_PI, FRAC_PI_2, FRAC_PI_4, PI, TAU};
 const MEASURE_U_STEPS: usize = 16;
 /// Quadrature steps per node interval in azimuth for the node measures.
 const MEASURE_PHI_STEPS: usize = 8;
-/// Samples deposited per parallel chunk (each chunk fills its own partial sums, added in order).
-const CHUNK: usize = 1 << 16;
 
 /// The nodes of a slice.
 #[derive(Debug, Clone)]
@@ -234,23 +232,6 @@ impl SliceGrid {
             .collect()
     }
 
-    /// Deposit weighted outgoing directions (`(wo, reflectance carried)`) for light from `wi`
-    /// and turn the deposits into mean BRDF values (1/sr) per node, dividing by the node
-    /// `measure`s; NaN where a measure vanishes. The sum is taken in fixed chunks, added in
-    /// order, so the result does not depend on the number of threads.
-    pub fn values(&self, wi: DVec3, samples: &[(DVec3, f64)], measure: &[f64]) -> Vec<f64> {
-        let partials: Vec<Vec<f64>> = samples
-            .par_chunks(CHUNK)
-            .map(|chunk| {
-                let mut part = vec![0.0; self.len];
-                let coords = chunk.iter().map(|&(wo, w)| (self.coords(wi + wo), w));
-                self.deposit(&mut part, coords);
-                part
-            })
-            .collect();
-        self.values_from(&partials, measure)
-    }
-
     /// Number of nodes.
     pub fn len(&self) -> usize {
         self.len
@@ -436,7 +417,9 @@ mod tests {
         let wi = dir(40f64.to_radians(), 0.0);
         let mirror = DVec3::new(-wi.x, -wi.y, wi.z);
         let m = g.measures(wi);
-        let s = Slice::from_channels(&[g.values(wi, &[(mirror, 0.04)], &m)]);
+        let mut part = vec![0.0; g.len()];
+        g.deposit(&mut part, std::iter::once((g.coords(wi + mirror), 0.04)));
+        let s = Slice::from_channels(&[g.values_from(&[part], &m)]);
         assert!((s.reflectance(&m)[0] - 0.04).abs() < 1e-12);
         // (Rounding in the half vector leaves at most a trace on the next ring.)
         let rest = s.values[1..]
