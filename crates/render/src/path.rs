@@ -259,7 +259,9 @@ pub(crate) fn radiance<S: Shading>(
                         };
                         if !scene.accel.occluded(&shadow, 0.0, t_max) {
                             let pdf_l = p_select * ls.pdf;
-                            let w = if ls.delta {
+                            // At the last interaction no BRDF sample follows, so the light
+                            // sample is the only strategy there and takes the full weight.
+                            let w = if ls.delta || bounce == opts.max_bounces {
                                 1.0
                             } else {
                                 power(pdf_l, brdf_pdf(brdf, wo, wi, opts.sampling))

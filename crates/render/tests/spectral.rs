@@ -264,3 +264,22 @@ fn spectral_image_does_not_depend_on_the_thread_count() {
     let (c, _) = render(&s, &opts(8, 4, ColourMode::Spectral)).unwrap();
     assert_ne!(a, c, "another seed gives other noise");
 }
+
+/// With a single surface interaction (`max_bounces = 0`) no BRDF sample follows the light
+/// sample, which must then carry the whole direct light: the white furnace still renders as the
+/// sky (within 1%), in both colour modes.
+#[test]
+fn last_interaction_takes_the_whole_light_sample() {
+    let s = scene(FURNACE);
+    let pixels = sphere_pixels(&s);
+    for colour in [ColourMode::Tristimulus, ColourMode::Spectral] {
+        let o = RenderOptions {
+            max_bounces: Some(0),
+            ..opts(64, 5, colour)
+        };
+        let (img, _) = render(&s, &o).unwrap();
+        for (c, v) in mean_rgb(&img, &pixels).into_iter().enumerate() {
+            assert!((v - 1.0).abs() < 0.01, "{colour:?}, channel {c}: {v}");
+        }
+    }
+}
