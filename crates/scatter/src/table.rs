@@ -212,24 +212,41 @@ pub fn ray_table(
             .collect()
     });
     for (k, &wi) in incidences.iter().enumerate() {
-        let partials = engine.fold_rays(
-            wi,
-            || vec![0.0; grid.len()],
-            |part, rays| match &normals {
-                Some(coords) => grid.deposit(part, rays.iter().map(|r| (coords[r.facet], r.share))),
-                None => grid.deposit(
-                    part,
-                    rays.iter()
-                        .map(|r| (grid.coords(wi + r.direction), r.share)),
-                ),
-            },
-        )?;
+        let partials = ray_deposits(engine, &grid, wi, normals.as_deref())?;
         let measure = grid.measures(wi);
         let values = options.symmetrise(k, grid.values_from(&partials, &measure), &grid, &measure);
         slices.push(Slice::from_channels(&[values]));
         progress(k + 1, incidences.len());
     }
     fill(options, &grid, &slices, Channels::Mono, provenance)
+}
+
+/// The partial deposits of every ray the engine reflects for a source in `wi`, one per chunk of
+/// facets in order. `normals`: the half-vector coordinates of every facet's normal, which are
+/// those of each ray's half vector when the engine's rays are single reflections
+/// ([`RayEngine::half_vectors_are_normals`]); without them each ray's half vector `wi + wo` is
+/// located.
+fn ray_deposits(
+    engine: &RayEngine,
+    grid: &SliceGrid,
+    wi: DVec3,
+    normals: Option<&[(f64, f64)]>,
+) -> Result<Vec<Vec<f64>>> {
+    engine.fold_rays(
+        wi,
+        || vec![0.0; grid.len()],
+        |part, rays| match normals {
+            Some(coords) => {
+                grid.deposit(part, rays.iter().map(|r| (coords[r.facet], r.share)));
+            }
+            None => {
+                let coords = rays
+                    .iter()
+                    .map(|r| (grid.coords(wi + r.direction), r.share));
+                grid.deposit(part, coords);
+            }
+        },
+    )
 }
 
 /// The Kirchhoff table of a planned engine at the given wavelengths (nm, strictly increasing):
@@ -358,4 +375,51 @@ fn fill(
         }
     });
     builder.build().map_err(invalid)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ray::RayOptions;
+    use gonio_surface::synth::{Acf, GaussianSurface};
+
+    /// Binning each facet's precomputed normal gives the deposits of binning each ray's half
+    /// vector `wi + wo`, to rounding, at normal, oblique and grazing incidence.
+    #[test]
+    fn facet_normals_are_the_half_vectors() {
+        let map = GaussianSurface {
+            sq: 0.3e-6,
+            corr_length: 6e-6,
+            acf: Acf::Gaussian,
+            nx: 96,
+            ny: 96,
+            dx: 0.5e-6,
+            dy: 0.5e-6,
+            seed: 5,
+        }
+        .generate()
+        .unwrap();
+        let engine = RayEngine::new(&map, RayOptions::default()).unwrap();
+        assert!(engine.half_vectors_are_normals());
+        let grid = TableOptions::isotropic().slice_grid();
+        let normals: Vec<(f64, f64)> = (0..engine.facet_count())
+            .map(|i| grid.coords(engine.facet_normal(i)))
+            .collect();
+        for ti in [0.0f64, 35.0, 80.0] {
+            let wi = dir(ti.to_radians(), 0.0);
+            let add = |parts: Vec<Vec<f64>>| {
+                parts.iter().fold(vec![0.0; grid.len()], |mut a, p| {
+                    a.iter_mut().zip(p).for_each(|(a, p)| *a += p);
+                    a
+                })
+            };
+            let cached = add(ray_deposits(&engine, &grid, wi, Some(&normals)).unwrap());
+            let direct = add(ray_deposits(&engine, &grid, wi, None).unwrap());
+            let total: f64 = direct.iter().sum();
+            assert!(total > 0.0);
+            for (a, b) in cached.iter().zip(&direct) {
+                assert!((a - b).abs() <= 1e-12 * total, "{ti}°: {a} vs {b}");
+            }
+        }
+    }
 }

@@ -326,12 +326,13 @@ impl RayEngine {
 
     /// Fold every ray that leaves the surface for a source in direction `wi` (unit, `z > 0`)
     /// into partial results without storing the rays: each fixed chunk of facets (per azimuth
-    /// of incidence) hands its rays, in facet order and in batches of up to [`RAY_BATCH`] facets'
-    /// rays, to `fold` with a value of its own made by `init`, and the partials come back in chunk order (azimuth slowest). The chunks and
-    /// batches are the same on any number of threads, so adding the partials in order gives the
-    /// same result on any number of threads. Directions and shares are those of
-    /// [`RayEngine::reflected_rays`]. (Batches let the caller's binning run over many
-    /// independent rays at once instead of one ray between two traces.)
+    /// of incidence) hands its rays, in facet order and in batches of up to [`RAY_BATCH`]
+    /// facets' rays, to `fold` with a value of its own made by `init`, and the partials come
+    /// back in chunk order (azimuth slowest). The chunks and batches are the same on any number
+    /// of threads, so adding the partials in order gives the same result on any number of
+    /// threads. Directions and shares are those of [`RayEngine::reflected_rays`]. (Batches let
+    /// the caller's binning run over many independent rays at once instead of one ray between
+    /// two traces.)
     pub fn fold_rays<T: Send>(
         &self,
         wi: DVec3,
@@ -354,8 +355,8 @@ impl RayEngine {
     }
 
     /// The rays of each fixed chunk of `chunk` facets (per azimuth step), turned into `E` by
-    /// `map` (with the index of their facet) and handed to `fold` in batches of up to [`RAY_BATCH`] facets' rays, folded into
-    /// one partial result per chunk, in chunk order.
+    /// `map` (with the index of their facet) and handed to `fold` in batches of up to
+    /// [`RAY_BATCH`] facets' rays, folded into one partial result per chunk, in chunk order.
     fn fold_chunks<T: Send, E>(
         &self,
         wi: DVec3,
