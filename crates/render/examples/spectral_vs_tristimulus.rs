@@ -4,7 +4,7 @@
 //! ```text
 //! cargo run --release -p gonio-render --example spectral_vs_tristimulus -- \
 //!     examples/metallic.toml --spp 1024 --width 96 --out target/spectral-vs-tri \
-//!     [--seed S] [--max-bounces N] [--json]
+//!     [--seed S] [--max-bounces N] [--grey-environment] [--json]
 //! ```
 //!
 //! Each mode is rendered twice, with seeds S and S + 1 (`--spp` samples each). With the same seed
@@ -14,6 +14,11 @@
 //! (= the mean of the two spectral renders). As a noise reference of exactly the same noise and
 //! no systematic part, the program also compares `T` with `T + (d_S − d_S+1)/2`: where the first
 //! exceeds the second, the modes differ beyond noise.
+//!
+//! `--grey-environment` replaces every environment map by its luminance (pixel by pixel), so that
+//! all light has the illuminant's spectrum (D65) in both modes: the modes then agree on paths
+//! with one surface interaction, and what remains comes from light reflected by two or more
+//! coloured surfaces.
 //!
 //! The colour compared is the colour shown: each linear sRGB pixel times the scene's exposure,
 //! through its tone curve (what `gonio render -o x.png` writes, before 8-bit rounding), taken as
@@ -29,7 +34,8 @@ use glam::DVec2;
 use gonio_color::srgb::srgb_white;
 use gonio_color::{LinearSrgb, ciede2000};
 use gonio_render::geometry::Shape;
-use gonio_render::scene::{PrimKind, SceneDesc};
+use gonio_render::light::luminance;
+use gonio_render::scene::{LightDesc, PrimKind, SceneDesc};
 use gonio_render::{ColourMode, Display, Image, RenderOptions, Scene, render};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -40,6 +46,7 @@ struct Args {
     seed: u32,
     width: Option<usize>,
     max_bounces: Option<u32>,
+    grey_environment: bool,
     out: PathBuf,
     json: bool,
 }
@@ -52,6 +59,7 @@ fn parse_args() -> Result<Args, String> {
         seed: 0,
         width: None,
         max_bounces: None,
+        grey_environment: false,
         out: PathBuf::from("spectral-vs-tristimulus"),
         json: false,
     };
@@ -86,6 +94,7 @@ fn parse_args() -> Result<Args, String> {
             }
             "--out" => args.out = PathBuf::from(value(&mut it, "--out")?),
             "--json" => args.json = true,
+            "--grey-environment" => args.grey_environment = true,
             s if s.starts_with('-') => return Err(format!("unknown flag {s}")),
             s => args.scene = PathBuf::from(s),
         }
@@ -93,15 +102,22 @@ fn parse_args() -> Result<Args, String> {
     if args.scene.as_os_str().is_empty() {
         return Err(
             "usage: spectral_vs_tristimulus SCENE.toml [--spp N] [--seed S] [--width PX] \
-             [--max-bounces N] [--out DIR] [--json]"
+             [--max-bounces N] [--grey-environment] [--out DIR] [--json]"
                 .into(),
         );
     }
     Ok(args)
 }
 
-/// The scene, its camera resized to `width` pixels (height in proportion) when given.
-fn load(path: &Path, width: Option<usize>) -> Result<Scene, String> {
+/// The scene, its camera resized to `width` pixels (height in proportion) when given; with
+/// `grey_environment`, every environment map replaced by its luminance (a grey copy written
+/// into `out`), so that the environment's light has the illuminant's spectrum in both modes.
+fn load(
+    path: &Path,
+    width: Option<usize>,
+    grey_environment: bool,
+    out: &Path,
+) -> Result<Scene, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let mut desc: SceneDesc =
         toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -109,6 +125,22 @@ fn load(path: &Path, width: Option<usize>) -> Result<Scene, String> {
         let c = &mut desc.camera;
         c.height = (c.height * w).div_ceil(c.width).max(1);
         c.width = w;
+    }
+    if grey_environment {
+        let dir = path.parent().unwrap_or(Path::new("."));
+        for (k, light) in desc.lights.iter_mut().enumerate() {
+            if let LightDesc::Environment { file, .. } = light {
+                let mut img = Image::read(&dir.join(&*file)).map_err(|e| e.to_string())?;
+                for p in &mut img.pixels {
+                    *p = [luminance(*p) as f32; 3];
+                }
+                let grey = std::path::absolute(out.join(format!("grey_environment_{k}.hdr")))
+                    .map_err(|e| e.to_string())?;
+                img.write(&grey, Display::default())
+                    .map_err(|e| e.to_string())?;
+                *file = grey;
+            }
+        }
     }
     Scene::build(&desc, path).map_err(|e| e.to_string())
 }
@@ -186,7 +218,8 @@ fn heat_map(delta_e: &[f64], width: usize, height: usize) -> Image {
 
 fn run() -> Result<(), String> {
     let args = parse_args()?;
-    let scene = load(&args.scene, args.width)?;
+    std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
+    let scene = load(&args.scene, args.width, args.grey_environment, &args.out)?;
     let display = scene.display;
     let opts = |colour, seed| RenderOptions {
         spp: Some(args.spp),
@@ -248,7 +281,6 @@ fn run() -> Result<(), String> {
         .max_by(|a, b| a.1.total_cmp(b.1))
         .expect("an image has pixels");
     let (w, h) = (tri.width, tri.height);
-    std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
     let write = |img: &Image, name: &str, d: Display| {
         img.write(&args.out.join(name), d)
             .map_err(|e| e.to_string())
@@ -289,6 +321,7 @@ fn run() -> Result<(), String> {
             "spp_per_render": args.spp,
             "seeds": [args.seed, seed_b],
             "max_bounces": args.max_bounces,
+            "grey_environment": args.grey_environment,
             "delta_e00": {"median": med, "p95": p95, "max": max},
             "noise_reference_delta_e00": {"median": n_med, "p95": n_p95, "max": n_max},
             "max_pixel": {"x": imax % w, "y": imax / w, "surface": labels[imax].0},
