@@ -31,8 +31,7 @@
 //! the shading normal at the centre hit), `delta_e00`, `noise_reference_delta_e00`).
 
 use glam::DVec2;
-use gonio_color::srgb::srgb_white;
-use gonio_color::{LinearSrgb, ciede2000};
+use gonio_render::difference::{SeededComparison, Spread, heat_map, linear_display};
 use gonio_render::geometry::Shape;
 use gonio_render::light::luminance;
 use gonio_render::scene::{LightDesc, PrimKind, SceneDesc};
@@ -145,27 +144,6 @@ fn load(
     Scene::build(&desc, path).map_err(|e| e.to_string())
 }
 
-/// CIELAB of every pixel as displayed.
-fn displayed_lab(img: &Image, display: Display) -> Vec<gonio_color::Lab> {
-    let scale = display.exposure.exp2();
-    let white = srgb_white();
-    img.pixels
-        .iter()
-        .map(|p| {
-            let [r, g, b] = p.map(|c| display.tone.apply(f64::from(c) * scale));
-            LinearSrgb { r, g, b }.to_xyz().to_lab(white)
-        })
-        .collect()
-}
-
-/// Median, 95th percentile and maximum.
-fn stats(values: &[f64]) -> [f64; 3] {
-    let mut v = values.to_vec();
-    v.sort_by(f64::total_cmp);
-    let q = |p: f64| v[((p * (v.len() - 1) as f64).round() as usize).min(v.len() - 1)];
-    [q(0.5), q(0.95), v[v.len() - 1]]
-}
-
 /// What the centre ray of each pixel meets first: "MATERIAL SHAPE", "light" or "background",
 /// and the cosine between the view direction and the shading normal there (NaN when nothing).
 fn surfaces(scene: &Scene) -> Vec<(String, f64)> {
@@ -208,14 +186,6 @@ fn csv(width: usize, labels: &[(String, f64)], de: &[f64], noise: &[f64]) -> Str
     out
 }
 
-fn heat_map(delta_e: &[f64], width: usize, height: usize) -> Image {
-    let mut img = Image::new(width, height);
-    for (p, d) in img.pixels.iter_mut().zip(delta_e) {
-        *p = [(d / 2.0).min(1.0) as f32; 3];
-    }
-    img
-}
-
 fn run() -> Result<(), String> {
     let args = parse_args()?;
     std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
@@ -235,39 +205,12 @@ fn run() -> Result<(), String> {
     let (spec_a, spec_stats) = go(opts(ColourMode::Spectral, args.seed))?;
     let (tri_b, _) = go(opts(ColourMode::Tristimulus, seed_b))?;
     let (spec_b, _) = go(opts(ColourMode::Spectral, seed_b))?;
-    // Pixel by pixel: T, T + (d_a + d_b)/2 (the mean spectral image) and T + (d_a − d_b)/2.
-    let combine = |value: &dyn Fn([f32; 4]) -> f32| {
-        let mut img = Image::new(tri_a.width, tri_a.height);
-        for (k, p) in img.pixels.iter_mut().enumerate() {
-            *p = std::array::from_fn(|c| {
-                value([
-                    tri_a.pixels[k][c],
-                    tri_b.pixels[k][c],
-                    spec_a.pixels[k][c],
-                    spec_b.pixels[k][c],
-                ])
-            });
-        }
-        img
-    };
-    let tri = combine(&|[ta, tb, _, _]| 0.5 * (ta + tb));
-    let spec = combine(&|[_, _, sa, sb]| 0.5 * (sa + sb));
-    let reference = combine(&|[ta, tb, sa, sb]| 0.5 * (ta + tb) + 0.5 * ((sa - ta) - (sb - tb)));
-    let (lab_t, lab_s, lab_r) = (
-        displayed_lab(&tri, display),
-        displayed_lab(&spec, display),
-        displayed_lab(&reference, display),
-    );
-    let de: Vec<f64> = lab_t
-        .iter()
-        .zip(&lab_s)
-        .map(|(a, b)| ciede2000(*a, *b))
-        .collect();
-    let noise: Vec<f64> = lab_t
-        .iter()
-        .zip(&lab_r)
-        .map(|(a, b)| ciede2000(*a, *b))
-        .collect();
+    let SeededComparison {
+        first: tri,
+        second: spec,
+        delta_e00: de,
+        noise_reference: noise,
+    } = SeededComparison::new([&tri_a, &tri_b], [&spec_a, &spec_b], display);
     let labels = surfaces(&scene);
     let mut by_surface: BTreeMap<&str, (Vec<f64>, Vec<f64>)> = BTreeMap::new();
     for (((l, _), d), n) in labels.iter().zip(&de).zip(&noise) {
@@ -287,15 +230,15 @@ fn run() -> Result<(), String> {
     };
     write(&tri, "tristimulus.png", display)?;
     write(&spec, "spectral.png", display)?;
-    let linear = Display {
-        exposure: 0.0,
-        tone: gonio_render::ToneCurve::Clamp,
-    };
-    write(&heat_map(&de, w, h), "delta_e00.png", linear)?;
+    write(&heat_map(&de, w, h, 2.0), "delta_e00.png", linear_display())?;
     let csv_path = args.out.join("delta_e00.csv");
     std::fs::write(&csv_path, csv(w, &labels, &de, &noise))
         .map_err(|e| format!("{}: {e}", csv_path.display()))?;
 
+    let stats = |v: &[f64]| {
+        let s = Spread::of(v).expect("an image has pixels");
+        [s.median, s.p95, s.max]
+    };
     let [med, p95, max] = stats(&de);
     let [n_med, n_p95, n_max] = stats(&noise);
     if args.json {

@@ -16,6 +16,7 @@
 //! ```
 
 pub mod camera;
+pub mod difference;
 pub mod error;
 pub mod geometry;
 pub mod image;

@@ -2,6 +2,8 @@
 //! (`out/report.html`): the synthetic epoxy roughness series, a real instrument file and its
 //! isotropy, the roughness study by both scattering methods, and the gloss readings.
 
+mod pictures;
+
 use crate::report::{Block, Report, Section};
 use crate::study::{self, StudyOutputs};
 use crate::surface::plot_height_map;
@@ -18,7 +20,7 @@ use std::time::Instant;
 
 /// A real instrument file shipped in the binary: MountainsMap X3P export of a 650 × 650 map
 /// (see crates/surface/tests/data/README.md for its provenance).
-static REAL_FILE: &[u8] = include_bytes!("../../surface/tests/data/x3p-2.x3p");
+static REAL_FILE: &[u8] = include_bytes!("../../../surface/tests/data/x3p-2.x3p");
 const REAL_FILE_NAME: &str = "x3p-2.x3p";
 
 #[derive(Args)]
@@ -111,7 +113,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
 
     if !args.quick {
         announce("pictures: the NIST figure 6 panels and the metallic paints");
-        let (section, seconds) = timed(|| render_section(dir));
+        let (section, seconds) = timed(|| pictures::render_section(dir));
         let mut section = section?;
         section.seconds = seconds;
         sections.push(section);
@@ -519,55 +521,4 @@ fn study_section(out: &StudyOutputs, config: &StudyConfig, plan: &Plan, seconds:
         blocks,
         seconds,
     }
-}
-
-/// The example scenes of the repository, rendered as the report's pictures.
-const EXAMPLES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples");
-
-fn render_section(dir: &Path) -> Result<Section> {
-    let mut blocks = vec![Block::Text(
-        "Pictures by gonio's path tracer (next-event estimation with multiple importance \
-         sampling; tabulated BRDFs sampled by the alias method). First the NIST figure 6: two \
-         black epoxy panels whose BRDFs the ray method computed from the 201 nm (left) and \
-         805 nm (right) surfaces, under a bright window. Then the metallic paints measured at \
-         Cornell (Cornell University Program of Computer Graphics reflectance data): the Ford \
-         Cayman metallic lacquer, whose colour travels with angle, and Garnet Red."
-            .into(),
-    )];
-    for (scene, caption) in [
-        (
-            "epoxy.toml",
-            "NIST figure 6: 201 nm (left) and 805 nm (right) epoxy panels",
-        ),
-        (
-            "metallic.toml",
-            "Cayman metallic (sphere and panel) and Garnet Red (sphere)",
-        ),
-    ] {
-        let path = Path::new(EXAMPLES).join(scene);
-        let options = gonio_render::RenderOptions {
-            progress: true,
-            ..Default::default()
-        };
-        let (image, display, stats) = gonio_render::render_scene_file(&path, &options)
-            .with_context(|| format!("rendering {}", path.display()))?;
-        let png = dir.join(scene.replace(".toml", ".png"));
-        image.write(&png, display)?;
-        blocks.push(Block::Image {
-            path: png,
-            caption: format!(
-                "{caption} ({} × {} px, {:.2e} rays in {:.0} s)",
-                image.width, image.height, stats.rays as f64, stats.seconds
-            ),
-        });
-        blocks.push(Block::Code(format!(
-            "gonio render examples/{scene} -o {}",
-            scene.replace(".toml", ".png")
-        )));
-    }
-    Ok(Section {
-        title: "Pictures".into(),
-        blocks,
-        seconds: 0.0,
-    })
 }

@@ -1,0 +1,185 @@
+//! The colour difference between two renders of a scene, as a person sees it: CIEDE2000 per
+//! pixel of the displayed pictures, its spread over the image, and a heat map.
+//!
+//! The colour compared is the colour shown: each linear sRGB pixel times the scene's exposure,
+//! through its tone curve (what `gonio render -o x.png` writes, before 8-bit rounding), taken as
+//! display-referred linear sRGB, turned into XYZ (IEC 61966-2-1) and CIELAB relative to the
+//! display white (D65).
+
+use crate::image::{Display, Image, ToneCurve};
+use gonio_color::srgb::srgb_white;
+use gonio_color::{Lab, LinearSrgb, ciede2000};
+
+/// CIELAB of every pixel as displayed.
+pub fn displayed_lab(img: &Image, display: Display) -> Vec<Lab> {
+    let scale = display.exposure.exp2();
+    let white = srgb_white();
+    img.pixels
+        .iter()
+        .map(|p| {
+            let [r, g, b] = p.map(|c| display.tone.apply(f64::from(c) * scale));
+            LinearSrgb { r, g, b }.to_xyz().to_lab(white)
+        })
+        .collect()
+}
+
+/// CIEDE2000 between the displayed colours of `a` and `b`, pixel by pixel (the images have the
+/// same size; a difference in size is a caller's error and yields the common prefix).
+pub fn delta_e00(a: &Image, b: &Image, display: Display) -> Vec<f64> {
+    displayed_lab(a, display)
+        .iter()
+        .zip(&displayed_lab(b, display))
+        .map(|(x, y)| ciede2000(*x, *y))
+        .collect()
+}
+
+/// Two renders of a scene compared when each was rendered twice, with seeds `a` and `b`, and
+/// the same seed traces the same paths in both (as the colour modes do): the difference
+/// `d = second − first` of one seed holds the systematic difference plus the second render's
+/// own extra noise only.
+pub struct SeededComparison {
+    /// The mean of the two first renders.
+    pub first: Image,
+    /// The mean of the two second renders.
+    pub second: Image,
+    /// CIEDE2000 between the displayed `first` and `second`, per pixel.
+    pub delta_e00: Vec<f64>,
+    /// CIEDE2000 between `first` and `first + (d_a − d_b)/2`: exactly the same noise as
+    /// `delta_e00` and no systematic part. Where `delta_e00` exceeds it, the renders differ
+    /// beyond noise.
+    pub noise_reference: Vec<f64>,
+}
+
+impl SeededComparison {
+    /// Compare `[first_a, first_b]` with `[second_a, second_b]` (all the same size).
+    pub fn new(first: [&Image; 2], second: [&Image; 2], display: Display) -> SeededComparison {
+        let combine = |value: &dyn Fn(f32, f32, f32, f32) -> f32| {
+            let mut img = Image::new(first[0].width, first[0].height);
+            for (k, p) in img.pixels.iter_mut().enumerate() {
+                *p = std::array::from_fn(|c| {
+                    value(
+                        first[0].pixels[k][c],
+                        first[1].pixels[k][c],
+                        second[0].pixels[k][c],
+                        second[1].pixels[k][c],
+                    )
+                });
+            }
+            img
+        };
+        let mean_first = combine(&|fa, fb, _, _| 0.5 * (fa + fb));
+        let mean_second = combine(&|_, _, sa, sb| 0.5 * (sa + sb));
+        let reference = combine(&|fa, fb, sa, sb| 0.5 * (fa + fb) + 0.5 * ((sa - fa) - (sb - fb)));
+        SeededComparison {
+            delta_e00: delta_e00(&mean_first, &mean_second, display),
+            noise_reference: delta_e00(&mean_first, &reference, display),
+            first: mean_first,
+            second: mean_second,
+        }
+    }
+}
+
+/// Median, 95th percentile and maximum of a set of colour differences.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Spread {
+    /// The median.
+    pub median: f64,
+    /// The 95th percentile (nearest rank).
+    pub p95: f64,
+    /// The largest value.
+    pub max: f64,
+}
+
+impl Spread {
+    /// The spread of `values` (`None` when empty).
+    pub fn of(values: &[f64]) -> Option<Spread> {
+        let mut v = values.to_vec();
+        v.sort_by(f64::total_cmp);
+        let last = v.len().checked_sub(1)?;
+        let q = |p: f64| v[((p * last as f64).round() as usize).min(last)];
+        Some(Spread {
+            median: q(0.5),
+            p95: q(0.95),
+            max: v[last],
+        })
+    }
+}
+
+/// A grey heat map of colour differences: ΔE00 0 black, `full_scale` or more white. Write it
+/// with [`linear_display`].
+pub fn heat_map(delta_e: &[f64], width: usize, height: usize, full_scale: f64) -> Image {
+    let mut img = Image::new(width, height);
+    for (p, d) in img.pixels.iter_mut().zip(delta_e) {
+        *p = [(d / full_scale).clamp(0.0, 1.0) as f32; 3];
+    }
+    img
+}
+
+/// The display that writes pixel values as they are (no exposure, clamped).
+pub fn linear_display() -> Display {
+    Display {
+        exposure: 0.0,
+        tone: ToneCurve::Clamp,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn identical_images_differ_by_zero_and_spread_is_by_rank() {
+        let mut img = Image::new(3, 2);
+        for (k, p) in img.pixels.iter_mut().enumerate() {
+            *p = [0.1 * k as f32, 0.2, 0.05 * k as f32];
+        }
+        let display = linear_display();
+        assert!(delta_e00(&img, &img, display).iter().all(|d| *d == 0.0));
+        let s = Spread::of(&[3.0, 1.0, 2.0, 5.0, 4.0]).unwrap();
+        assert_eq!((s.median, s.p95, s.max), (3.0, 5.0, 5.0));
+        assert!(Spread::of(&[]).is_none());
+    }
+
+    #[test]
+    fn a_seeded_comparison_separates_the_systematic_part_from_the_noise() {
+        // The second render is the first scaled by 1.1 (a systematic difference) with its own
+        // noise +e for seed a and -e for seed b: the means differ only by the scaling, and the
+        // noise reference is the mean first render plus e (less the scaling's share of the
+        // first render's own noise, 0.1 (fa - fb) / 2).
+        let grey = |v: f32| {
+            let mut img = Image::new(1, 1);
+            img.pixels[0] = [v; 3];
+            img
+        };
+        let (fa, fb) = (grey(0.20), grey(0.22));
+        let (sa, sb) = (grey(0.20 * 1.1 + 0.01), grey(0.22 * 1.1 - 0.01));
+        let d = linear_display();
+        let c = SeededComparison::new([&fa, &fb], [&sa, &sb], d);
+        let scaled = delta_e00(&grey(0.21), &grey(0.21 * 1.1), d)[0];
+        let noise = delta_e00(&grey(0.21), &grey(0.21 + 0.01 - 0.001), d)[0];
+        assert!(
+            (c.delta_e00[0] - scaled).abs() < 1e-4,
+            "{} {scaled}",
+            c.delta_e00[0]
+        );
+        assert!(
+            (c.noise_reference[0] - noise).abs() < 1e-4,
+            "{} {noise}",
+            c.noise_reference[0]
+        );
+    }
+
+    #[test]
+    fn a_white_and_a_black_pixel_differ_by_100() {
+        // CIEDE2000 between L* = 100 and L* = 0 with a* = b* = 0 is the lightness difference
+        // itself, 100: the weight S_L is 1 at the mean lightness 50 (Sharma et al. 2005, eq. 8).
+        let (mut white, mut black) = (Image::new(1, 1), Image::new(1, 1));
+        white.pixels[0] = [1.0; 3];
+        black.pixels[0] = [0.0; 3];
+        let d = delta_e00(&white, &black, linear_display())[0];
+        assert!((d - 100.0).abs() < 1e-6, "{d}");
+        let map = heat_map(&[0.0, 1.0, 4.0], 3, 1, 2.0);
+        assert_eq!(map.pixels[1], [0.5; 3]);
+        assert_eq!(map.pixels[2], [1.0; 3]);
+    }
+}
