@@ -6,42 +6,12 @@ use glam::{DVec2, DVec3};
 use gonio_brdf::models::{Lambert, Model, ModelSpec};
 use gonio_brdf::table::{BrdfTable, Provenance, Resolution, SampledTable};
 use gonio_brdf::{Brdf, Rgb};
-use gonio_render::{BrdfSampling, Image, RenderOptions, Scene, render};
+use gonio_render::{BrdfSampling, ColourMode, Image, RenderOptions, Scene, render};
 use std::path::Path;
 use std::sync::Arc;
 
-/// A unit sphere seen from 4 m in a uniform sky of radiance 1.
-const FURNACE: &str = r#"
-[camera]
-position = [0.0, 0.0, 4.0]
-look_at = [0.0, 0.0, 0.0]
-fov_deg = 32
-width = 40
-height = 40
-
-[materials.m]
-brdf = { model = "lambert", albedo = 1.0 }
-
-[[shapes]]
-type = "sphere"
-material = "m"
-
-[[lights]]
-type = "sky"
-radiance = 1.0
-"#;
-
-fn scene(text: &str) -> Scene {
-    Scene::from_toml(text, Path::new("test.toml")).unwrap()
-}
-
-fn opts(spp: u32, seed: u32) -> RenderOptions {
-    RenderOptions {
-        spp: Some(spp),
-        seed: Some(seed),
-        ..RenderOptions::default()
-    }
-}
+mod common;
+use common::{FURNACE, opts, scene};
 
 /// Pixels whose centre ray meets the sphere with `cos θo` above 0.2, and that cosine.
 fn sphere_pixels(scene: &Scene) -> Vec<(usize, f64)> {
@@ -95,7 +65,7 @@ fn furnace_error(brdf: Arc<dyn Brdf>, spp: u32) -> f64 {
     let mut s = scene(FURNACE);
     let albedo = albedo_curve(brdf.as_ref());
     s.materials[0].brdf = brdf;
-    let (img, _) = render(&s, &opts(spp, 1)).unwrap();
+    let (img, _) = render(&s, &opts(spp, 1, ColourMode::Tristimulus)).unwrap();
     let pixels = sphere_pixels(&s);
     assert!(pixels.len() > 500, "{}", pixels.len());
     let expect = pixels.iter().map(|&(_, mu)| albedo(mu)).sum::<f64>() / pixels.len() as f64;
@@ -105,7 +75,7 @@ fn furnace_error(brdf: Arc<dyn Brdf>, spp: u32) -> f64 {
 #[test]
 fn white_furnace_lambert_renders_as_the_environment() {
     let s = scene(FURNACE);
-    let (img, _) = render(&s, &opts(64, 7)).unwrap();
+    let (img, _) = render(&s, &opts(64, 7, ColourMode::Tristimulus)).unwrap();
     let pixels = sphere_pixels(&s);
     let mean = mean_grey(&img, &pixels);
     assert!((mean - 1.0).abs() < 0.01, "mean over the sphere {mean}");
@@ -154,16 +124,16 @@ fn image_does_not_depend_on_the_thread_count() {
     let s = scene(&FURNACE.replace("lambert\", albedo = 1.0", "ggx\", alpha = 0.2, index = 1.5"));
     let one = RenderOptions {
         threads: Some(1),
-        ..opts(8, 3)
+        ..opts(8, 3, ColourMode::Tristimulus)
     };
     let two = RenderOptions {
         threads: Some(2),
-        ..opts(8, 3)
+        ..opts(8, 3, ColourMode::Tristimulus)
     };
     let (a, _) = render(&s, &one).unwrap();
     let (b, _) = render(&s, &two).unwrap();
     assert_eq!(a, b);
-    let (c, _) = render(&s, &opts(8, 4)).unwrap();
+    let (c, _) = render(&s, &opts(8, 4, ColourMode::Tristimulus)).unwrap();
     assert_ne!(a, c, "another seed gives other noise");
 }
 
@@ -251,9 +221,9 @@ fn tabulated_ward_renders_like_the_analytic_ward() {
     )
     .unwrap();
     s.materials[0].brdf = Arc::new(model);
-    let (analytic, _) = render(&s, &opts(1024, 1)).unwrap();
+    let (analytic, _) = render(&s, &opts(1024, 1, ColourMode::Tristimulus)).unwrap();
     s.materials[0].brdf = Arc::new(SampledTable::new(table));
-    let (tabulated, _) = render(&s, &opts(1024, 2)).unwrap();
+    let (tabulated, _) = render(&s, &opts(1024, 2, ColourMode::Tristimulus)).unwrap();
     let pixels = sphere_pixels(&s);
     let err = rel_rmse(&tabulated, &analytic, &pixels);
     eprintln!("relative RMSE table vs analytic Ward: {:.3}%", 100.0 * err);
@@ -289,13 +259,13 @@ fn importance_sampling_of_the_epoxy_table_pays() {
         gonio_render::surface::table(&desc, dir.path(), Path::new("test.toml"), "epoxy").unwrap();
     eprintln!("table {:.1} s", t.elapsed().as_secs_f64());
     s.materials[0].brdf = Arc::new(SampledTable::new(table));
-    let (reference, _) = render(&s, &opts(1024, 99)).unwrap();
+    let (reference, _) = render(&s, &opts(1024, 99, ColourMode::Tristimulus)).unwrap();
     eprintln!("reference {:.1} s", t.elapsed().as_secs_f64());
     let pixels = sphere_pixels(&s);
     let rmse = |sampling: BrdfSampling| {
         let o = RenderOptions {
             sampling,
-            ..opts(16, 5)
+            ..opts(16, 5, ColourMode::Tristimulus)
         };
         let (img, _) = render(&s, &o).unwrap();
         rel_rmse(&img, &reference, &pixels)

@@ -8,28 +8,9 @@ use gonio_color::{Colorimetry, Illuminant, Observer, Spectrum};
 use gonio_render::material::Material;
 use gonio_render::{ColourMode, Image, RenderOptions, Scene, render};
 use std::f64::consts::FRAC_1_PI;
-use std::path::Path;
 
-/// A unit sphere seen from 4 m in a uniform sky of radiance 1.
-const FURNACE: &str = r#"
-[camera]
-position = [0.0, 0.0, 4.0]
-look_at = [0.0, 0.0, 0.0]
-fov_deg = 32
-width = 32
-height = 32
-
-[materials.m]
-brdf = { model = "lambert", albedo = 1.0 }
-
-[[shapes]]
-type = "sphere"
-material = "m"
-
-[[lights]]
-type = "sky"
-radiance = 1.0
-"#;
+mod common;
+use common::{FURNACE, opts, scene};
 
 /// Grey materials (a GGX dielectric over a grey diffuse base, a grey floor) under coloured
 /// lights: a warm rectangle and a blue sky.
@@ -73,19 +54,6 @@ radiance = [9.0, 5.0, 2.0]
 type = "sky"
 radiance = [0.1, 0.2, 0.4]
 "#;
-
-fn scene(text: &str) -> Scene {
-    Scene::from_toml(text, Path::new("test.toml")).unwrap()
-}
-
-fn opts(spp: u32, seed: u32, colour: ColourMode) -> RenderOptions {
-    RenderOptions {
-        spp: Some(spp),
-        seed: Some(seed),
-        colour,
-        ..RenderOptions::default()
-    }
-}
 
 /// Pixels whose whole footprint (centre and corners) sees the sphere: background shows in no
 /// sample of them.
