@@ -153,23 +153,28 @@ pub fn run(args: InplaneArgs) -> Result<()> {
     Ok(())
 }
 
-fn check_args(args: &InplaneArgs) -> Result<()> {
-    for &ti in &args.incidence_deg {
+/// The checks of the goniometer flags every in-plane command shares: `--incidence-deg`,
+/// `--aperture-deg` and `--index`.
+pub fn check_geometry(incidence_deg: &[f64], aperture_deg: f64, index: f64) -> Result<()> {
+    for &ti in incidence_deg {
         ensure!(
             ti.is_finite() && (0.0..90.0).contains(&ti),
             "--incidence-deg {ti}: incidence must be in [0, 90) degrees"
         );
     }
     ensure!(
-        args.aperture_deg > 0.0 && args.aperture_deg < 90.0,
-        "--aperture-deg {}: the detector half-angle must be in (0, 90) degrees",
-        args.aperture_deg
+        aperture_deg > 0.0 && aperture_deg < 90.0,
+        "--aperture-deg {aperture_deg}: the detector half-angle must be in (0, 90) degrees"
     );
     ensure!(
-        args.index.is_finite() && args.index > 0.0,
-        "--index {}: the refractive index must be positive",
-        args.index
+        index.is_finite() && index > 0.0,
+        "--index {index}: the refractive index must be positive"
     );
+    Ok(())
+}
+
+fn check_args(args: &InplaneArgs) -> Result<()> {
+    check_geometry(&args.incidence_deg, args.aperture_deg, args.index)?;
     if let Some(k) = args.index_imag {
         ensure!(
             k.is_finite() && k >= 0.0,

@@ -110,22 +110,7 @@ fn check_args(args: &IsotropyArgs) -> Result<()> {
     for &a in &args.angle_deg {
         ensure!(a.is_finite(), "--angle-deg {a}: must be a finite angle");
     }
-    for &ti in &args.incidence_deg {
-        ensure!(
-            ti.is_finite() && (0.0..90.0).contains(&ti),
-            "--incidence-deg {ti}: incidence must be in [0, 90) degrees"
-        );
-    }
-    ensure!(
-        args.aperture_deg > 0.0 && args.aperture_deg < 90.0,
-        "--aperture-deg {}: the detector half-angle must be in (0, 90) degrees",
-        args.aperture_deg
-    );
-    ensure!(
-        args.index.is_finite() && args.index > 0.0,
-        "--index {}: the refractive index must be positive",
-        args.index
-    );
+    crate::inplane::check_geometry(&args.incidence_deg, args.aperture_deg, args.index)?;
     ensure!(
         args.wavelength_nm.is_finite() && args.wavelength_nm > 0.0,
         "--wavelength-nm {}: must be positive",
