@@ -4,8 +4,25 @@
 use crate::report::{Block, Section};
 use anyhow::{Context, Result};
 use gonio_render::difference::{SeededComparison, Spread, heat_map, linear_display};
-use gonio_render::{ColourMode, Image};
+use gonio_render::{ColourMode, Display, Image, RenderOptions, RenderStats};
 use std::path::Path;
+
+/// Render the scene file `scene` in colour mode `colour` with `seed` (`None`: the scene's),
+/// showing progress.
+fn render(
+    scene: &Path,
+    colour: ColourMode,
+    seed: Option<u32>,
+) -> Result<(Image, Display, RenderStats)> {
+    let options = RenderOptions {
+        progress: true,
+        colour,
+        seed,
+        ..Default::default()
+    };
+    gonio_render::render_scene_file(scene, &options)
+        .with_context(|| format!("rendering {}", scene.display()))
+}
 
 /// The metallic scene rendered spectrally (hero wavelengths) and compared with the tristimulus
 /// picture `tristimulus` (rendered with the scene's seed): each mode is rendered once more with
@@ -15,23 +32,12 @@ fn spectral_blocks(
     dir: &Path,
     scene: &Path,
     tristimulus: &Image,
-    display: gonio_render::Display,
+    display: Display,
 ) -> Result<Vec<Block>> {
-    let render = |colour, seed| {
-        let options = gonio_render::RenderOptions {
-            progress: true,
-            colour,
-            seed,
-            ..Default::default()
-        };
-        gonio_render::render_scene_file(scene, &options)
-            .map(|(image, _, stats)| (image, stats))
-            .with_context(|| format!("rendering {}", scene.display()))
-    };
     const SECOND_SEED: Option<u32> = Some(0x9e37_79b9);
-    let (spectral, stats) = render(ColourMode::Spectral, None)?;
-    let (spectral_b, _) = render(ColourMode::Spectral, SECOND_SEED)?;
-    let (tristimulus_b, _) = render(ColourMode::Tristimulus, SECOND_SEED)?;
+    let (spectral, _, stats) = render(scene, ColourMode::Spectral, None)?;
+    let (spectral_b, ..) = render(scene, ColourMode::Spectral, SECOND_SEED)?;
+    let (tristimulus_b, ..) = render(scene, ColourMode::Tristimulus, SECOND_SEED)?;
     let c = SeededComparison::new(
         [tristimulus, &tristimulus_b],
         [&spectral, &spectral_b],
@@ -96,12 +102,7 @@ pub(super) fn render_section(dir: &Path) -> Result<Section> {
         ),
     ] {
         let path = Path::new(EXAMPLES).join(scene);
-        let options = gonio_render::RenderOptions {
-            progress: true,
-            ..Default::default()
-        };
-        let (image, display, stats) = gonio_render::render_scene_file(&path, &options)
-            .with_context(|| format!("rendering {}", path.display()))?;
+        let (image, display, stats) = render(&path, ColourMode::Tristimulus, None)?;
         let png = dir.join(scene.replace(".toml", ".png"));
         image.write(&png, display)?;
         blocks.push(Block::Image {
