@@ -1,6 +1,7 @@
 //! In-plane curves as CSV: the columns `gonio inplane` writes
 //! (`method,wavelength_nm,incidence_deg,scatter_deg,brdf_per_sr,reflectance`, optionally followed
-//! by `rel_uncertainty`) and the simple measured form `incidence_deg,scatter_deg,reflectance`.
+//! by `rel_uncertainty`, `inf` for a detector that caught nothing) and the simple measured form
+//! `incidence_deg,scatter_deg,reflectance`. What `write_csv` writes, `read_csv` reads back.
 
 use crate::error::InstrumentError;
 use gonio_scatter::{CurvePoint, InplaneCurve};
@@ -109,6 +110,19 @@ pub fn read_csv(
                 Some(_) => number(c.unwrap(), name).map(Some),
             }
         };
+        // A relative uncertainty is `inf` where a detector caught nothing (the ray method's
+        // 1/√count with no rays): `write_csv` writes it so, and it reads back as written.
+        let uncertainty = |c: Option<usize>| -> Result<Option<f64>, InstrumentError> {
+            match c.and_then(|c| record.get(c)).filter(|t| !t.is_empty()) {
+                None => Ok(None),
+                Some(text) => match text.parse::<f64>() {
+                    Ok(v) if v >= 0.0 => Ok(Some(v)),
+                    _ => Err(err(format!(
+                        "line {line}: rel_uncertainty '{text}' is not a number >= 0 (or inf)"
+                    ))),
+                },
+            }
+        };
         let method = cm
             .and_then(|c| record.get(c))
             .unwrap_or("measured")
@@ -141,7 +155,7 @@ pub fn read_csv(
             scatter_deg: scatter,
             brdf_per_sr: brdf,
             reflectance,
-            rel_uncertainty: optional(cu, "rel_uncertainty")?,
+            rel_uncertainty: uncertainty(cu)?,
         });
     }
     if order.is_empty() {
@@ -182,6 +196,12 @@ mod tests {
                     reflectance: 0.04,
                     rel_uncertainty: None,
                 },
+                CurvePoint {
+                    scatter_deg: 70.0,
+                    brdf_per_sr: 0.0,
+                    reflectance: 0.0,
+                    rel_uncertainty: Some(f64::INFINITY),
+                },
             ],
         };
         let path = dir.path().join("c.csv");
@@ -191,6 +211,8 @@ mod tests {
         assert_eq!(back[0].method, "ray");
         assert_eq!(back[0].points[1].reflectance, 0.04);
         assert_eq!(back[0].points[0].rel_uncertainty, Some(0.1));
+        assert_eq!(back[0].points[2].rel_uncertainty, Some(f64::INFINITY));
+        assert_eq!(back[0].points[2].reflectance, 0.0);
 
         let simple = dir.path().join("m.csv");
         std::fs::write(
@@ -208,5 +230,14 @@ mod tests {
         std::fs::write(&bad, "incidence_deg,scatter_deg,reflectance\n45,x,0.01\n").unwrap();
         let e = read_csv(&bad, None).unwrap_err().to_string();
         assert!(e.contains("b.csv") && e.contains("line 2"), "{e}");
+        // Reflectance must be finite; only the uncertainty may be infinite, and never negative.
+        for row in ["45,40,inf,", "45,40,0.01,-1"] {
+            std::fs::write(
+                &bad,
+                format!("incidence_deg,scatter_deg,reflectance,rel_uncertainty\n{row}\n"),
+            )
+            .unwrap();
+            assert!(read_csv(&bad, None).is_err(), "{row}");
+        }
     }
 }
