@@ -1,6 +1,7 @@
-//! Virtual instruments for gonio: gloss meters (ISO 2813 / ASTM D523), reflection haze and
-//! distinctness of image (ASTM E430), the comparison of measured and computed in-plane curves, and
-//! the isotropy check (the curves of a map and of the map turned about its normal).
+//! Virtual instruments for gonio: gloss meters (ISO 2813 / ASTM D523), reflection haze (ASTM E430,
+//! ASTM D4039) and distinctness of image (ASTM E430), the comparison of measured and computed
+//! in-plane curves, the isotropy check (the curves of a map and of the map turned about its
+//! normal), and the validity warnings of a virtual reading (`validity`).
 
 pub mod compare;
 pub mod curves;
@@ -10,6 +11,7 @@ pub mod isotropy;
 mod quadrature;
 pub mod specimens;
 pub mod study;
+pub mod validity;
 
 pub use error::{InstrumentError, Result};
 pub use gloss::{GlossReport, Specimen, measure};

@@ -6,6 +6,7 @@ use crate::compare::{Peak, peak};
 use crate::error::{InstrumentError, Result};
 use crate::gloss::{GlossReport, measure};
 use crate::specimens::{KirchhoffSpecimen, RaySpecimen};
+use crate::validity;
 use gonio_brdf::Ior;
 use gonio_scatter::InplaneCurve;
 use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions};
@@ -65,6 +66,8 @@ pub struct SampleResult {
     pub gloss_kirchhoff: Option<GlossReport>,
     /// What could not be computed for this sample, and why.
     pub notes: Vec<String>,
+    /// Readings that were computed but should not be trusted, and why (see [`crate::validity`]).
+    pub warnings: Vec<String>,
     /// Ray curves (one per incidence), then Kirchhoff curves (per wavelength and incidence).
     pub curves: Vec<InplaneCurve>,
 }
@@ -99,7 +102,9 @@ impl SampleResult {
     }
 }
 
-/// Run the study over `samples`; `progress` is told what each step is about to do.
+/// Run the study over `samples`; `progress` is told what each step is about to do. Each sample's
+/// `warnings` name the readings its methods cannot be trusted for ([`crate::validity`]): the ray
+/// method where the map is smooth for the wavelength, Kirchhoff where the map is too small.
 pub fn run(
     samples: &[Sample],
     config: &StudyConfig,
@@ -110,12 +115,35 @@ pub fn run(
             "the study needs incidence and scatter angles".into(),
         ));
     }
+    // An index that is not positive is refused; the warning for one below 1 is the caller's to
+    // give once (`validity::check_index`), not once per sample.
+    validity::check_index(config.ior)?;
     let ior = Ior::Dielectric(config.ior);
+    // The ray curves are judged at the longest wavelength the study compares them with (the
+    // smallest Rayleigh roughness), the meter readings at 550 nm.
+    let longest = config
+        .wavelengths_nm
+        .iter()
+        .map(|w| w * 1e-9)
+        .fold(validity::PHOTOMETRIC_WAVELENGTH, f64::max);
+    let meter = validity::meter_readings();
+    let detectors = validity::inplane_readings(&config.incidences_deg, config.half_angle);
     samples
         .iter()
         .map(|s| {
             progress(&format!("{}: statistics", s.label));
             let stats = statistics(&s.map)?;
+            let mut warnings = Vec::new();
+            warnings.extend(
+                validity::ray_warnings(stats.sq, GLOSS_WAVELENGTH, &meter)
+                    .into_iter()
+                    .map(|w| format!("ray gloss: {w}")),
+            );
+            warnings.extend(
+                validity::ray_warnings(stats.sq, longest, &detectors)
+                    .into_iter()
+                    .map(|w| format!("ray curves: {w}")),
+            );
             progress(&format!("{}: ray method", s.label));
             let engine = RayEngine::new(
                 &s.map,
@@ -135,6 +163,17 @@ pub fn run(
             if config.kirchhoff && !config.wavelengths_nm.is_empty() {
                 progress(&format!("{}: Kirchhoff", s.label));
                 let k = Kirchhoff::new(&s.map, KirchhoffOptions::new(ior))?;
+                let spot = k.spot().diameter;
+                warnings.extend(
+                    validity::kirchhoff_warnings(spot, GLOSS_WAVELENGTH, &meter)
+                        .into_iter()
+                        .map(|w| format!("Kirchhoff gloss: {w}")),
+                );
+                warnings.extend(
+                    validity::kirchhoff_warnings(spot, longest, &detectors)
+                        .into_iter()
+                        .map(|w| format!("Kirchhoff curves: {w}")),
+                );
                 let wavelengths: Vec<f64> =
                     config.wavelengths_nm.iter().map(|l| l * 1e-9).collect();
                 let incidences: Vec<f64> = config
@@ -167,6 +206,7 @@ pub fn run(
                 gloss_ray,
                 gloss_kirchhoff,
                 notes,
+                warnings,
                 curves,
             })
         })

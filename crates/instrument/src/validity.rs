@@ -1,0 +1,298 @@
+//! When a virtual reading cannot be trusted: plain-words warnings about the scattering method
+//! and the map it reads, and the check of the refractive index.
+//!
+//! Three limits, each an estimate from the physics rather than an exact bound:
+//!
+//! - **Ray method on a smooth map.** A Gaussian surface of rms height Sq reflects the fraction
+//!   `e^−g` of its light coherently (a specular spike as narrow as the spot's diffraction), with
+//!   the Rayleigh roughness parameter `g = (4π Sq cos θ / λ)²` at incidence θ (Beckmann &
+//!   Spizzichino 1963, ch. 5; `docs/physics.md`, "Analytic references"). Geometric optics has
+//!   no coherent part: it spreads all the light over the facet-slope lobe. Where `g < 1` the
+//!   coherent part (more than 1/e = 37% of the reflected light) dominates and the ray method
+//!   misses it: `opd-1.opd` reads 53 GU at 20° by the ray method and 93 GU by Kirchhoff.
+//! - **Kirchhoff spot too small for an aperture.** A spot of diameter L resolves directions
+//!   about `λ / (L cos θ)` apart in the plane of incidence (its diffraction spreads a mirror's
+//!   image that wide). A reading is trusted where that spread is at most a quarter of its
+//!   angular scale: the receptor's in-plane width for a specular reading (gloss), the offset
+//!   from specular for an off-specular one (DOI's 0.3°, haze's 1.9–5°), the detector's full
+//!   width for an in-plane curve. A quarter keeps the diffraction tail a mirror spills past
+//!   the scale to a few per cent (for a sinc² pattern the fraction beyond `U` widths is about
+//!   `1/(π² U)`): a flat 0.5 mm patch at 85° (spread 0.72°, receptor 4°) reads the smooth
+//!   surface's gloss within 1%, a 0.13 mm patch (2.8°) reads 68 GU instead of 99.8.
+//! - **Too few speckle grains.** A speckle grain of that spot subtends about `(λ/L)² / cos θ`
+//!   steradians, so a receptor of solid angle Ω averages `N = Ω cos θ (L/λ)²` grains, and the
+//!   diffusely scattered part of its reading fluctuates from spot to spot by about `1/√N`
+//!   (Goodman, *Speckle Phenomena in Optics*, 2007, §4.6). Below 10 grains that is over 30%.
+
+use crate::error::{InstrumentError, Result};
+use crate::gloss::{Aperture, e430};
+
+/// Rayleigh roughness parameter below which the coherent specular part dominates.
+pub const RAYLEIGH_G_MIN: f64 = 1.0;
+/// Fewest speckle grains a receptor should average.
+pub const SPECKLE_GRAINS_MIN: f64 = 10.0;
+/// Largest ratio of the spot's diffraction spread to a reading's angular scale.
+pub const SPREAD_RATIO_MAX: f64 = 0.25;
+/// Wavelength at which photometric readings (gloss, haze, DOI) are judged: 550 nm, near the peak
+/// of the photopic response.
+pub const PHOTOMETRIC_WAVELENGTH: f64 = 550e-9;
+
+/// The Rayleigh roughness parameter `g = (4π Sq cos θ / λ)²` of specular reflection at
+/// incidence `theta` (radians) for rms height `sq` and wavelength `wavelength` (metres)
+/// (Beckmann & Spizzichino 1963; `docs/physics.md`: `g = k² σ² (cos θi + cos θs)²` at
+/// `θs = θi`).
+pub fn rayleigh_g(sq: f64, theta: f64, wavelength: f64) -> f64 {
+    (4.0 * std::f64::consts::PI * sq * theta.cos() / wavelength).powi(2)
+}
+
+/// Check the coating's refractive index: not finite or not positive is refused (the Fresnel
+/// reflectance of such an index is meaningless); an index below 1 is accepted with a warning.
+pub fn check_index(n: f64) -> Result<Vec<String>> {
+    if !n.is_finite() || n <= 0.0 {
+        return Err(InstrumentError::Invalid(format!(
+            "refractive index {n}: it must be a positive number (coatings are about 1.4-1.7)"
+        )));
+    }
+    Ok(if n < 1.0 {
+        vec![format!(
+            "refractive index {n} is below 1: a coating denser than air has n > 1 \
+             (about 1.4-1.7); the reflectance is computed as for an interface seen from \
+             the denser side"
+        )]
+    } else {
+        Vec::new()
+    })
+}
+
+/// One reading a virtual instrument takes, as the validity checks see it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReadingGeometry {
+    /// Name in plain words ("20° gloss", "DOI").
+    pub name: String,
+    /// Incidence angle, radians (the reading's specular direction is at the same angle).
+    pub theta: f64,
+    /// The receptor.
+    pub aperture: Aperture,
+    /// The angular scale the reading resolves, radians: the receptor's in-plane width for a
+    /// specular reading, the offset from specular for an off-specular one.
+    pub scale: f64,
+}
+
+/// The readings of [`crate::gloss::measure`]: the ISO 2813 gloss receptors, DOI's 0.1° slits at
+/// 0.3° from specular, and the haze receptors of E430 Test Methods A and B.
+pub fn meter_readings() -> Vec<ReadingGeometry> {
+    let mut out: Vec<ReadingGeometry> = [20u32, 60, 85]
+        .into_iter()
+        .map(|deg| {
+            let g = crate::gloss::Geometry::iso2813(deg).expect("ISO 2813 angle");
+            ReadingGeometry {
+                name: format!("{deg}° gloss"),
+                theta: g.theta,
+                aperture: g.receptor.aperture,
+                scale: g.receptor.aperture.in_plane,
+            }
+        })
+        .collect();
+    let off = |name: &str, theta_deg: f64, aperture: Aperture, offset_deg: f64| ReadingGeometry {
+        name: name.to_string(),
+        theta: theta_deg.to_radians(),
+        aperture,
+        scale: offset_deg.to_radians(),
+    };
+    out.push(off(
+        "DOI",
+        e430::THETA_DEG,
+        e430::doi_receptor(),
+        e430::DOI_OFFSET_DEG,
+    ));
+    out.push(off(
+        "haze (E430 A, 2°)",
+        e430::THETA_DEG,
+        e430::receptor(),
+        e430::HAZE_OFFSET_DEG,
+    ));
+    out.push(off(
+        "haze (E430 A, 5°)",
+        e430::THETA_DEG,
+        e430::receptor(),
+        e430::WIDE_HAZE_OFFSET_DEG,
+    ));
+    out.push(off(
+        "haze (20°)",
+        e430::B_THETA_DEG,
+        e430::b_receptor(),
+        e430::B_HAZE_OFFSET_DEG,
+    ));
+    out
+}
+
+/// The detectors of in-plane curves at `incidences_deg`: a cone of half-angle `half_angle`
+/// (radians) on the specular direction of each incidence, resolving its own full width.
+pub fn inplane_readings(incidences_deg: &[f64], half_angle: f64) -> Vec<ReadingGeometry> {
+    incidences_deg
+        .iter()
+        .map(|&deg| ReadingGeometry {
+            name: format!("the in-plane curve at {deg}° incidence"),
+            theta: deg.to_radians(),
+            // The square of equal solid angle stands in for the cone: side √π · half-angle.
+            aperture: Aperture {
+                in_plane: std::f64::consts::PI.sqrt() * half_angle,
+                perpendicular: std::f64::consts::PI.sqrt() * half_angle,
+            },
+            scale: 2.0 * half_angle,
+        })
+        .collect()
+}
+
+/// Warnings for the ray method on a map of rms height `sq` (metres) at `wavelength` (metres):
+/// one, naming the readings where `g < 1`, or none.
+pub fn ray_warnings(sq: f64, wavelength: f64, readings: &[ReadingGeometry]) -> Vec<String> {
+    let smooth: Vec<String> = readings
+        .iter()
+        .filter_map(|r| {
+            let g = rayleigh_g(sq, r.theta, wavelength);
+            (g < RAYLEIGH_G_MIN).then(|| format!("{} (g = {g:.2})", r.name))
+        })
+        .collect();
+    if smooth.is_empty() {
+        return Vec::new();
+    }
+    vec![format!(
+        "the map is smooth for light of {:.0} nm (Sq = {:.1} nm): its Rayleigh roughness \
+         g = (4π Sq cos θ / λ)² is below 1 for {}, so most of the light there is reflected \
+         coherently, as a sharp specular spike the ray method cannot produce; these readings \
+         are unreliable by the ray method, use --method kirchhoff",
+        wavelength * 1e9,
+        sq * 1e9,
+        smooth.join(", ")
+    )]
+}
+
+/// Warnings for the Kirchhoff approximation over a spot of diameter `spot` (metres) at
+/// `wavelength` (metres): readings whose angular scale the spot cannot resolve, and readings
+/// that average too few speckle grains.
+pub fn kirchhoff_warnings(spot: f64, wavelength: f64, readings: &[ReadingGeometry]) -> Vec<String> {
+    let mut out = Vec::new();
+    let spread_deg = |r: &ReadingGeometry| (wavelength / (spot * r.theta.cos())).to_degrees();
+    let blurred: Vec<String> = readings
+        .iter()
+        .filter(|r| spread_deg(r) > SPREAD_RATIO_MAX * r.scale.to_degrees())
+        .map(|r| {
+            format!(
+                "{} (spread {:.2}° against {:.2}°)",
+                r.name,
+                spread_deg(r),
+                r.scale.to_degrees()
+            )
+        })
+        .collect();
+    if !blurred.is_empty() {
+        out.push(format!(
+            "the illuminated spot ({:.0} µm across) is too small for {}: its diffraction \
+             spreads a mirror's image over about λ/(L cos θ), more than a quarter of the angle \
+             the reading must resolve, so light spills across the receptor's edge; these \
+             readings need a larger map",
+            spot * 1e6,
+            blurred.join(", ")
+        ));
+    }
+    let grains = |r: &ReadingGeometry| {
+        let omega = r.aperture.in_plane * 2.0 * (0.5 * r.aperture.perpendicular).sin();
+        omega * r.theta.cos() * (spot / wavelength).powi(2)
+    };
+    let speckled: Vec<String> = readings
+        .iter()
+        .filter(|r| grains(r) < SPECKLE_GRAINS_MIN)
+        .map(|r| {
+            let n = grains(r);
+            format!("{} ({n:.1} grains, ±{:.0}%)", r.name, 100.0 / n.sqrt())
+        })
+        .collect();
+    if !speckled.is_empty() {
+        out.push(format!(
+            "too few speckle grains in the receptor for {}: the diffusely scattered light \
+             these readings collect would change by about 1/√grains from one spot of the \
+             surface to another; a larger map (or averaging several spots) steadies them",
+            speckled.join(", ")
+        ));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// g = (4π Sq cos θ / λ)²: for Sq = λ/(4π) at normal incidence g = 1 exactly.
+    #[test]
+    fn rayleigh_parameter() {
+        let lambda = 550e-9;
+        let sq = lambda / (4.0 * std::f64::consts::PI);
+        assert!((rayleigh_g(sq, 0.0, lambda) - 1.0).abs() < 1e-12);
+        let g60 = rayleigh_g(sq, 60f64.to_radians(), lambda);
+        assert!((g60 - 0.25).abs() < 1e-12, "{g60}");
+    }
+
+    #[test]
+    fn index_refused_or_warned() {
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let e = check_index(bad).unwrap_err().to_string();
+            assert!(e.contains("positive"), "{e}");
+        }
+        assert!(check_index(1.55).unwrap().is_empty());
+        let w = check_index(0.8).unwrap();
+        assert_eq!(w.len(), 1);
+        assert!(w[0].contains("below 1"), "{w:?}");
+    }
+
+    /// A map of Sq 10 nm (g = 0.044 at 20°, 550 nm) warns for every meter reading; one of
+    /// Sq 805 nm (g = 331 at 20°, 2.6 at 85°) for none. At Sq 400 nm only 85° (g = 0.63)
+    /// is smooth.
+    #[test]
+    fn ray_method_warns_on_smooth_maps() {
+        let readings = meter_readings();
+        let w = ray_warnings(10e-9, 550e-9, &readings);
+        assert_eq!(w.len(), 1);
+        for r in &readings {
+            assert!(w[0].contains(&r.name), "{} missing: {}", r.name, w[0]);
+        }
+        assert!(ray_warnings(805e-9, 550e-9, &readings).is_empty());
+        let w = ray_warnings(400e-9, 550e-9, &readings);
+        assert!(
+            w[0].contains("85° gloss") && !w[0].contains("20° gloss"),
+            "{w:?}"
+        );
+    }
+
+    /// A 94 µm spot (opd-1.opd's field) at 550 nm: its spread at 85° is
+    /// 550e-9 / (94e-6 · cos 85°) = 0.067 rad = 3.8°, above a quarter of the 4° receptor; at 20°
+    /// 0.36°, under a quarter of 1.8°. DOI's slits (0.1° × 3°) hold
+    /// 1.75e-3 · 5.2e-2 · cos 30° · (94e-6/550e-9)² = 2.3 grains, under 10; the 60° receptor
+    /// (4.4° × 11.7°) 229. A 20 mm spot resolves everything.
+    #[test]
+    fn kirchhoff_spot_and_speckle() {
+        let readings = meter_readings();
+        let w = kirchhoff_warnings(94e-6, 550e-9, &readings);
+        assert_eq!(w.len(), 2, "{w:?}");
+        assert!(
+            w[0].contains("85° gloss") && w[0].contains("DOI"),
+            "{}",
+            w[0]
+        );
+        assert!(
+            !w[0].contains("20° gloss") && !w[0].contains("60° gloss"),
+            "{}",
+            w[0]
+        );
+        assert!(w[1].contains("DOI (2.3 grains"), "{}", w[1]);
+        assert!(!w[1].contains("60° gloss"), "{}", w[1]);
+        assert!(kirchhoff_warnings(20e-3, 550e-9, &readings).is_empty());
+        // In-plane detectors of 1.4° half-angle at 20–70°: the spread λ/(L cos 70°) of a 94 µm
+        // spot is 0.98°, above a quarter of the detector's 2.8° width; the grains
+        // π (0.0244)² · cos 70° · (94e-6/550e-9)² = 18.7 are enough.
+        let inplane = inplane_readings(&[20.0, 70.0], 1.4f64.to_radians());
+        let w = kirchhoff_warnings(94e-6, 550e-9, &inplane);
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(w[0].contains("70° incidence") && !w[0].contains("20° incidence"));
+    }
+}
