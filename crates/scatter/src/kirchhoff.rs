@@ -42,7 +42,8 @@ use std::sync::OnceLock;
 /// Largest refinement of the map's cells.
 pub const MAX_REFINEMENT: usize = 16;
 
-/// Largest number of facets in one refined grid (16.8 million; 32 bytes each).
+/// Default largest number of facets in one refined grid (16.8 million; 32 bytes each, so about
+/// 540 MB per grid).
 pub const MAX_FACETS: usize = 1 << 24;
 
 /// A circular illuminated spot on the map: centre in the map's coordinates (point `(ix, iy)` at
@@ -112,6 +113,10 @@ pub struct KirchhoffOptions {
     /// Largest phase, radians, by which the surface may depart from a facet's tangent plane
     /// (default 0.3).
     pub phase_tolerance: f64,
+    /// Largest number of facets in one grid (default [`MAX_FACETS`]): the memory bound. A
+    /// full-hemisphere or gloss computation whose sampled grid would be larger is done as the
+    /// mean over smaller spots (see [`Kirchhoff::scattered`]).
+    pub max_facets: usize,
 }
 
 impl KirchhoffOptions {
@@ -121,6 +126,7 @@ impl KirchhoffOptions {
             ior,
             spot: None,
             phase_tolerance: 0.3,
+            max_facets: MAX_FACETS,
         }
     }
 }
@@ -132,6 +138,7 @@ pub struct Kirchhoff {
     spot: Spot,
     ior: Ior,
     phase_tolerance: f64,
+    max_facets: usize,
     curvature: f64,
     slope: f64,
     grids: Vec<OnceLock<FacetGrid>>,
@@ -165,6 +172,12 @@ impl Kirchhoff {
                 spot.diameter * 1e6
             )));
         }
+        if options.max_facets < 64 {
+            return Err(ScatterError::Invalid(format!(
+                "a facet limit of {} is too small: a spot needs at least 8 × 8 facets",
+                options.max_facets
+            )));
+        }
         if options.phase_tolerance.is_nan() || options.phase_tolerance <= 0.0 {
             return Err(ScatterError::Invalid(format!(
                 "phase tolerance {} rad must be positive",
@@ -178,6 +191,7 @@ impl Kirchhoff {
             spot,
             ior: options.ior,
             phase_tolerance: options.phase_tolerance,
+            max_facets: options.max_facets,
             curvature,
             slope,
             grids: (0..MAX_REFINEMENT).map(|_| OnceLock::new()).collect(),
@@ -192,26 +206,70 @@ impl Kirchhoff {
     /// Refinement (cells per map cell along each axis) for a wave vector of z component `vz`:
     /// the smallest `r` with `|vz| C/(8 r²) ≤ phase_tolerance`.
     pub fn refinement(&self, vz: f64) -> Result<usize> {
-        let r = (vz.abs() * self.curvature / (8.0 * self.phase_tolerance))
-            .sqrt()
-            .ceil()
-            .max(1.0) as usize;
+        let r = self.curvature_refinement(vz);
         self.check_size(r)?;
         Ok(r)
     }
 
-    /// Fails if a grid of refinement `r` would exceed [`MAX_REFINEMENT`] or [`MAX_FACETS`].
+    /// The smallest `r` with `|vz| C/(8 r²) ≤ phase_tolerance`.
+    fn curvature_refinement(&self, vz: f64) -> usize {
+        (vz.abs() * self.curvature / (8.0 * self.phase_tolerance))
+            .sqrt()
+            .ceil()
+            .max(1.0) as usize
+    }
+
+    /// The smallest refinement whose facet grid puts no grating order on wave vectors within
+    /// `reach` of `v` (see `docs/kirchhoff.md`, "Grating orders of the facets").
+    ///
+    /// Facets of pitch `a` sample the surface: the field of the facet surface at `v` holds, beside
+    /// the true field, images of it shifted by the grating vectors `2π (n/ax, m/ay)`, which the
+    /// facets' exact sinc integrals attenuate (by about `(a δ/2π)²` at a distance `δ` from the
+    /// grating vector) but do not remove. The true field of a map of spacing `d` lies within
+    /// `π/d + |vz| s` of the specular direction in each axis: the map's band plus the spread
+    /// `vz ∇h` of the phase (`s` the 99.9th percentile slope). Its first image then clears `v` if
+    /// `2π r/d - π/d - |vz| s ≥ |v⊥| + reach` along each axis, that is
+    /// `r ≥ (d (|v⊥| + reach + |vz| s) + π)/(2π)`.
+    fn grating_refinement(&self, v: DVec3, reach: f64) -> usize {
+        let spread = reach + v.z.abs() * self.slope;
+        let axis = |d: f64, vt: f64| ((d * (vt.abs() + spread) + PI) / TAU).ceil();
+        axis(self.spline.dx(), v.x)
+            .max(axis(self.spline.dy(), v.y))
+            .max(1.0) as usize
+    }
+
+    /// Refinement of the facet grid for wave vectors within `reach` of `v`: fine enough both for
+    /// the surface's curvature ([`Kirchhoff::refinement`]) and to keep the facets' grating orders
+    /// off those wave vectors.
+    fn facet_refinement(&self, v: DVec3, reach: f64) -> Result<usize> {
+        let r = self
+            .curvature_refinement(v.z)
+            .max(self.grating_refinement(v, reach));
+        self.check_size(r)?;
+        Ok(r)
+    }
+
+    /// Fails if a grid of refinement `r` over the spot would exceed [`MAX_REFINEMENT`] or the
+    /// facet limit ([`KirchhoffOptions::max_facets`]).
     fn check_size(&self, r: usize) -> Result<()> {
-        let n = |d: f64| facets::cells_across(self.spot.diameter, d / r as f64);
-        let cells = n(self.spline.dx()) * n(self.spline.dy());
-        if r > MAX_REFINEMENT || cells > MAX_FACETS {
+        let cells = self.cells(self.spot.diameter, r);
+        if r > MAX_REFINEMENT || cells > self.max_facets {
             return Err(ScatterError::Invalid(format!(
-                "the map is too coarse for this wavelength and direction: it would need \
-                 {r}× finer cells ({cells} facets; limits {MAX_REFINEMENT}× and {MAX_FACETS}); \
-                 use a smaller spot, a longer wavelength or a finer measurement"
+                "this map is too coarse for the Kirchhoff method in this direction: its surface \
+                 would have to be cut into pieces {r} times smaller than the measured spacing \
+                 ({cells} pieces over the spot; the limits are {MAX_REFINEMENT} times and {} \
+                 pieces). Use a smaller spot, a longer wavelength, a map measured at a finer \
+                 spacing, or the ray method",
+                self.max_facets
             )));
         }
         Ok(())
+    }
+
+    /// Cells of a grid of refinement `r` over a spot of `diameter` metres.
+    fn cells(&self, diameter: f64, r: usize) -> usize {
+        let n = |d: f64| facets::cells_across(diameter, d / r as f64);
+        n(self.spline.dx()) * n(self.spline.dy())
     }
 
     /// The facet grid of refinement `r`, built on first use.
@@ -219,9 +277,17 @@ impl Kirchhoff {
         self.grids[r - 1].get_or_init(|| FacetGrid::build(&self.spline, &self.spot, r))
     }
 
-    /// The facet grid for the wave vector `v`.
-    fn grid_for(&self, v: DVec3) -> Result<&FacetGrid> {
-        Ok(self.grid(self.refinement(v.z)?))
+    /// The facet grid for wave vectors within `reach` of `v`.
+    fn grid_for(&self, v: DVec3, reach: f64) -> Result<&FacetGrid> {
+        Ok(self.grid(self.facet_refinement(v, reach)?))
+    }
+
+    /// The facet grid for `detector` lit from `wi` at wave number `k`.
+    fn detector_grid(&self, k: f64, wi: DVec3, detector: &Detector) -> Result<&FacetGrid> {
+        self.grid_for(
+            -k * (wi + detector.direction.normalize()),
+            aperture::reach(k, detector.half_angle),
+        )
     }
 
     /// Facets of the spot left out because they touch non-measured points (at refinement 1).
@@ -238,7 +304,7 @@ impl Kirchhoff {
         }
         let k = TAU / wavelength;
         let v = -k * (wi + wo);
-        let grid = self.grid_for(v)?;
+        let grid = self.grid_for(v, 0.0)?;
         let e = grid.field([v.x, v.y, v.z], [v.x, v.y, v.z]);
         Ok(
             aperture::brdf_factor(self.ior, wi, wo) * k * k * wi.z * e.norm_sqr()
@@ -257,7 +323,7 @@ impl Kirchhoff {
             )));
         }
         let k = TAU / wavelength;
-        let grid = self.grid_for(-k * (wi + detector.direction.normalize()))?;
+        let grid = self.detector_grid(k, wi, detector)?;
         aperture::cone_reflectance(grid, self.ior, k, wi, detector)
     }
 
@@ -281,17 +347,17 @@ impl Kirchhoff {
             })
             .collect();
         // Build the grids first, in order, so that parallel jobs never wait on one another.
+        let detector = |ts: f64| Detector {
+            direction: inplane_direction(ts),
+            half_angle,
+        };
         for &(l, ti, ts) in &jobs {
-            let k = TAU / l;
-            self.grid_for(-k * (incidence_direction(ti) + inplane_direction(ts)))?;
+            self.detector_grid(TAU / l, incidence_direction(ti), &detector(ts))?;
         }
         let readings: Vec<f64> = jobs
             .par_iter()
             .map(|&(l, ti, ts)| {
-                let detector = Detector {
-                    direction: inplane_direction(ts),
-                    half_angle,
-                };
+                let detector = detector(ts);
                 let rho = self.reflectance(l, incidence_direction(ti), &detector);
                 on_done();
                 rho

@@ -33,8 +33,7 @@ pub(crate) fn cone_reflectance(
     let axis = detector.direction.normalize();
     let v0 = -k * (wi + axis);
     let (dvx, dvy) = lattice_spacing(grid);
-    // Directions within alpha of the axis differ from it by at most 2 sin(alpha/2) in x and y.
-    let reach = 2.0 * k * (0.5 * detector.half_angle).sin();
+    let reach = reach(k, detector.half_angle);
     let pmax = (reach / dvx).ceil() as usize + 1;
     let qmax = (reach / dvy).ceil() as usize + 1;
     if 2 * pmax + 1 > grid.nx || 2 * qmax + 1 > grid.ny {
@@ -81,6 +80,12 @@ pub(crate) fn cone_reflectance(
         }
     }
     Ok(sum * dvx * dvy * wi.z / (4.0 * PI * PI * grid.w2_area))
+}
+
+/// How far the wave vectors of a cone of half-angle `alpha` reach from its axis's, in x and y:
+/// directions within alpha of the axis differ from it by at most `2 sin(alpha/2)`.
+pub(crate) fn reach(k: f64, alpha: f64) -> f64 {
+    2.0 * k * (0.5 * alpha).sin()
 }
 
 /// Spacing of the wave-vector lattice a grid resolves, `2π/(n a)` along x and y.

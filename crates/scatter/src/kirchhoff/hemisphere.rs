@@ -14,11 +14,11 @@
 //! between neighbouring points (99.9th percentile of the slope, largest `|vz|`): about ten points
 //! per wavelength of the phase, and far inside the Nyquist limit, so no scattered light aliases.
 
-use super::Kirchhoff;
 use super::aperture::{brdf_factor, lattice_spacing, outgoing};
 use super::facets::FacetGrid;
 use super::kernel::{RowParams, fill_row};
-use crate::error::Result;
+use super::{Kirchhoff, MAX_REFINEMENT, Spot};
+use crate::error::{Result, ScatterError};
 use crate::ray::{HemisphereGrid, HemisphereTable};
 use glam::DVec3;
 use num_complex::Complex64;
@@ -43,14 +43,67 @@ struct Bin {
 }
 
 impl Kirchhoff {
-    /// Refinement of the sampled grid for FFTs at wave vectors up to `|vz| = vz_max`.
-    pub(crate) fn sampling_refinement(&self, vz_max: f64) -> Result<usize> {
+    /// Refinement of the sampled grid for FFTs at wave vectors up to `|vz| = vz_max`: the
+    /// smallest that puts [`POINTS_PER_WAVE`] points on each wavelength of the phase `vz h`.
+    pub(crate) fn sampling_refinement(&self, vz_max: f64) -> usize {
         let dx = self.spline.dx().max(self.spline.dy());
-        let r = (vz_max * self.slope * dx * POINTS_PER_WAVE / TAU)
+        (vz_max * self.slope * dx * POINTS_PER_WAVE / TAU)
             .ceil()
-            .max(1.0) as usize;
-        self.check_size(r)?;
-        Ok(r)
+            .max(1.0) as usize
+    }
+
+    /// The spots whose mean [`Kirchhoff::scattered`] (and the hemisphere and cone variants)
+    /// returns for light of `wavelength` metres from `wi`: the engine's own spot, or the smaller
+    /// spots that its bounding square is cut into when the whole spot's grid would exceed the
+    /// facet limit.
+    pub fn sampling_spots_for(&self, wavelength: f64, wi: DVec3) -> Result<Vec<Spot>> {
+        super::check_wavelength(wavelength)?;
+        let r = self.sampling_refinement(TAU / wavelength * (wi.z + 1.0));
+        self.check_refinement(r, wavelength)?;
+        Ok(self.sampling_spots(r))
+    }
+
+    /// Fails, in words a user can act on, when sampling the phase needs more than
+    /// [`MAX_REFINEMENT`] points per spacing of the map.
+    fn check_refinement(&self, r: usize, wavelength: f64) -> Result<()> {
+        if r <= MAX_REFINEMENT {
+            return Ok(());
+        }
+        let spacing = self.spline.dx().max(self.spline.dy());
+        Err(ScatterError::Invalid(format!(
+            "this surface is too steep for its sampling to be computed by the Kirchhoff method \
+             at {:.0} nm: its slopes would need the map resampled {r} times finer than measured \
+             (at most {MAX_REFINEMENT}). Use a map measured at a spacing of {:.3} µm or finer, a \
+             longer wavelength, or the ray method, which suits surfaces this rough",
+            wavelength * 1e9,
+            spacing * MAX_REFINEMENT as f64 / r as f64 * 1e6
+        )))
+    }
+
+    /// The spots over which light from a sampled grid of refinement `r` is averaged: the spot
+    /// itself when its grid fits the facet limit, otherwise its bounding square cut into `m × m`
+    /// squares, each lit by the circle inscribed in it, with `m` the smallest number for which
+    /// one of them fits. They cover the area the spot's bounding square covers, so the average
+    /// holds as many independent speckle grains as one large spot would.
+    pub(crate) fn sampling_spots(&self, r: usize) -> Vec<Spot> {
+        let whole = self.spot.diameter;
+        let m = (1..)
+            .find(|&m| self.cells(whole / m as f64, r) <= self.max_facets)
+            .expect("a spot of one cell fits");
+        let d = whole / m as f64;
+        let (x0, y0) = (
+            self.spot.center.0 - 0.5 * whole,
+            self.spot.center.1 - 0.5 * whole,
+        );
+        (0..m * m)
+            .map(|i| Spot {
+                center: (
+                    x0 + ((i % m) as f64 + 0.5) * d,
+                    y0 + ((i / m) as f64 + 0.5) * d,
+                ),
+                diameter: d,
+            })
+            .collect()
     }
 
     /// The BRDF over the whole hemisphere for light of `wavelength` metres from `wi`, binned into
@@ -81,6 +134,13 @@ impl Kirchhoff {
     /// as the lattice of outgoing directions the spot resolves, each with its share of the
     /// reflectance (`f cos t dω` of its lattice cell). A detector of any shape reads the sum of
     /// the shares that fall in it.
+    ///
+    /// When the sampled grid of the whole spot would exceed the facet limit
+    /// ([`super::KirchhoffOptions::max_facets`]; rough maps need fine sampling), the spot's
+    /// bounding square is cut into `m × m` smaller spots that fit, and the result is the mean
+    /// over them: the lattices of all spots, each share divided by `m²`. A real instrument
+    /// averages speckle the same way over its large spot; every reading is then the mean of
+    /// `m²` independent speckle patterns (see `docs/kirchhoff.md`, "Spot averaging").
     pub fn scattered(&self, wavelength: f64, wi: DVec3) -> Result<Vec<(DVec3, f64)>> {
         self.scattered_where(wavelength, wi, |_| true)
     }
@@ -107,8 +167,35 @@ impl Kirchhoff {
     ) -> Result<Vec<(DVec3, f64)>> {
         super::check_wavelength(wavelength)?;
         let k = TAU / wavelength;
-        let r = self.sampling_refinement(k * (wi.z + 1.0))?;
-        let facets = self.grid(r);
+        let r = self.sampling_refinement(k * (wi.z + 1.0));
+        self.check_refinement(r, wavelength)?;
+        let spots = self.sampling_spots(r);
+        if spots.len() == 1 {
+            return Ok(self.scattered_on(self.grid(r), k, wi, &keep));
+        }
+        let grids = spots
+            .iter()
+            .map(|spot| FacetGrid::build(&self.spline, spot, r))
+            .filter(|grid| grid.w2_area > 0.0);
+        let mut out = Vec::new();
+        let mut count = 0;
+        for grid in grids {
+            out.extend(self.scattered_on(&grid, k, wi, &keep));
+            count += 1;
+        }
+        let share = 1.0 / count.max(1) as f64;
+        Ok(out.into_iter().map(|(wo, s)| (wo, s * share)).collect())
+    }
+
+    /// The lattice of outgoing directions that `keep` accepts, with their shares of the
+    /// reflectance, from the sampled grid `facets`.
+    fn scattered_on(
+        &self,
+        facets: &FacetGrid,
+        k: f64,
+        wi: DVec3,
+        keep: &(impl Fn(DVec3) -> bool + Sync),
+    ) -> Vec<(DVec3, f64)> {
         let height = facets
             .h
             .iter()
@@ -134,7 +221,7 @@ impl Kirchhoff {
             })
             .collect();
         if points.is_empty() {
-            return Ok(Vec::new());
+            return Vec::new();
         }
         let vz_of = |wo: DVec3| -k * (wi.z + wo.z);
         let (lo, hi) = points
@@ -179,7 +266,7 @@ impl Kirchhoff {
             let e: Complex64 = (0..4).map(|i| window[i][b.index] * l[i]).sum();
             out.push((b.wo, b.weight * e.norm_sqr()));
         }
-        Ok(out)
+        out
     }
 }
 
