@@ -1,12 +1,14 @@
-//! `gonio gloss`: what a gloss meter (ISO 2813 at 20/60/85°) and an ASTM E430-style appearance
-//! meter (haze, distinctness of image) read on a height map (through the ray method) or on a
-//! tabulated BRDF.
+//! `gonio gloss`: what a gloss meter (ISO 2813 at 20/60/85°) and an ASTM E430 appearance meter
+//! (haze, distinctness of image) read on a height map (through the ray method or Kirchhoff) or
+//! on a tabulated BRDF, with the ASTM D4039 haze index, and warnings where the method cannot be
+//! trusted on that map (`gonio_instrument::validity`).
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use gonio_brdf::{Brdf, Ior};
 use gonio_instrument::gloss::{BrdfSpecimen, GlossReport, measure};
 use gonio_instrument::specimens::{KirchhoffSpecimen, RaySpecimen};
+use gonio_instrument::validity;
 use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions};
 use gonio_scatter::ray::{RayEngine, RayOptions};
 use std::path::PathBuf;
@@ -24,7 +26,8 @@ pub struct GlossArgs {
     /// Wavelength for --method kirchhoff, nm.
     #[arg(long, default_value_t = 550.0)]
     wavelength_nm: f64,
-    /// Print the readings as JSON with the keys gu20, gu60, gu85, haze, doi.
+    /// Print the readings as JSON with the keys gu20, gu60, gu85, haze, haze_wide, haze_20,
+    /// haze_d4039, doi and warnings.
     #[arg(long)]
     json: bool,
 }
@@ -41,6 +44,13 @@ enum GlossMethod {
 }
 
 pub fn run(args: GlossArgs) -> Result<()> {
+    let mut warnings =
+        validity::check_index(args.index).map_err(|e| anyhow::anyhow!("--index: {e}"))?;
+    anyhow::ensure!(
+        args.wavelength_nm.is_finite() && args.wavelength_nm > 0.0,
+        "--wavelength-nm {}: must be positive",
+        args.wavelength_nm
+    );
     let is_table = args
         .input
         .extension()
@@ -55,8 +65,17 @@ pub fn run(args: GlossArgs) -> Result<()> {
         measure(&specimen)?
     } else {
         let map = crate::surface::read(&args.input)?;
+        let meter = validity::meter_readings();
         match args.method {
             GlossMethod::Ray => {
+                let levelled = gonio_surface::ops::level(&map)
+                    .with_context(|| format!("{}: levelling", args.input.display()))?;
+                let sq = gonio_surface::stats::height_parameters(&levelled).0;
+                warnings.extend(validity::ray_warnings(
+                    sq,
+                    validity::PHOTOMETRIC_WAVELENGTH,
+                    &meter,
+                ));
                 let options = RayOptions {
                     ior: Ior::Dielectric(args.index),
                     ..RayOptions::default()
@@ -69,6 +88,11 @@ pub fn run(args: GlossArgs) -> Result<()> {
                 let options = KirchhoffOptions::new(Ior::Dielectric(args.index));
                 let engine = Kirchhoff::new(&map, options)
                     .with_context(|| format!("{}: Kirchhoff", args.input.display()))?;
+                warnings.extend(validity::kirchhoff_warnings(
+                    engine.spot().diameter,
+                    args.wavelength_nm * 1e-9,
+                    &meter,
+                ));
                 measure(&KirchhoffSpecimen {
                     engine: &engine,
                     wavelength: args.wavelength_nm * 1e-9,
@@ -76,18 +100,35 @@ pub fn run(args: GlossArgs) -> Result<()> {
             }
         }
     };
+    for w in &warnings {
+        eprintln!("warning: {w}");
+    }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        let mut json = serde_json::to_value(report)?;
+        json["warnings"] = serde_json::json!(warnings);
+        println!("{}", serde_json::to_string_pretty(&json)?);
     } else {
         println!("gloss 20°: {:8.2} GU", report.gu20);
         println!("gloss 60°: {:8.2} GU", report.gu60);
         println!("gloss 85°: {:8.2} GU", report.gu85);
         println!(
-            "haze:      {:8.3}  (100 · flux at ±2° / standard's specular flux, 30°)",
+            "haze:      {:8.3}  (ASTM E430 A: 100 · flux at ±2° / standard's specular flux, 30°)",
             report.haze
         );
         println!(
-            "DOI:       {:8.2}  (100 · (specular − flux at ±0.3°) / specular, 30°)",
+            "haze 5°:   {:8.3}  (ASTM E430 A wide-angle: flux at ±5°, 30°)",
+            report.haze_wide
+        );
+        println!(
+            "haze 20°:  {:8.3}  (ASTM E430 B / ISO 13803 geometry: flux at ±1.9°, 20°)",
+            report.haze_20
+        );
+        println!(
+            "haze D4039:{:8.2}  (ASTM D4039: 60° gloss − 20° gloss, GU)",
+            report.haze_d4039
+        );
+        println!(
+            "DOI:       {:8.2}  (ASTM E430: 100 · (Rs − R0.3) / Rs, equal 0.1° slits, 30°)",
             report.doi
         );
     }
