@@ -8,6 +8,7 @@ use crate::plot::{self, LinePlot, Series};
 use anyhow::{Context, Result, bail, ensure};
 use clap::{Args, ValueEnum};
 use gonio_brdf::Ior;
+use gonio_instrument::validity;
 use gonio_scatter::InplaneCurve;
 use gonio_scatter::analytic::{AnalyticModel, GaussianModel};
 use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions, Spot, average_curves};
@@ -15,6 +16,7 @@ use gonio_scatter::ray::{RayEngine, RayOptions};
 use gonio_surface::normals::NormalMethod;
 use indicatif::{ProgressBar, ProgressStyle};
 use num_complex::Complex64;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 #[derive(Args)]
@@ -27,8 +29,9 @@ pub struct InplaneArgs {
     /// the scalar Kirchhoff integral (wave optics, needs --wavelength-nm; docs/kirchhoff.md).
     #[arg(long, value_delimiter = ',', default_value = "ray")]
     method: Vec<Method>,
-    /// Incidence angles in degrees from the surface normal, comma-separated (e.g. 20,45,60,70).
-    #[arg(long, value_delimiter = ',', required = true)]
+    /// Incidence angles in degrees from the surface normal, comma-separated (default: the NIST
+    /// STARR geometry, 20,45,60,70).
+    #[arg(long, value_delimiter = ',', default_value = "20,45,60,70")]
     incidence_deg: Vec<f64>,
     /// Signed scattering angles in degrees, START:STOP:STEP (both ends included) or a
     /// comma-separated list. The specular direction of incidence ti is at +ti; negative angles
@@ -83,13 +86,14 @@ pub struct InplaneArgs {
     #[arg(long, default_value_t = 1)]
     spots: usize,
     /// Output CSV: method,wavelength_nm,incidence_deg,scatter_deg,brdf_per_sr,reflectance,
-    /// rel_uncertainty (see docs/ray-method.md).
+    /// rel_uncertainty (see docs/ray-method.md). Without it the CSV goes to standard output, or,
+    /// with --json, only the JSON does.
     #[arg(short, long)]
-    output: PathBuf,
+    output: Option<PathBuf>,
     /// Also plot the BRDF curves on a log axis into this PNG.
     #[arg(long)]
     plot: Option<PathBuf>,
-    /// Print the curves as JSON on standard output.
+    /// Print the curves as JSON on standard output, with the warnings (as `warnings`).
     #[arg(long)]
     json: bool,
 }
@@ -121,6 +125,8 @@ enum Normals {
 pub fn run(args: InplaneArgs) -> Result<()> {
     let scatter_deg = parse_angles(&args.scatter_deg)?;
     check_args(&args)?;
+    let mut warnings = gonio_instrument::validity::check_index(args.index)
+        .map_err(|e| anyhow::anyhow!("--index: {e}"))?;
     let steps = args.method.len() * args.incidence_deg.len();
     let progress = progress_bar(steps as u64);
     let mut curves: Vec<InplaneCurve> = Vec::new();
@@ -132,23 +138,41 @@ pub fn run(args: InplaneArgs) -> Result<()> {
     };
     for method in methods {
         match method {
-            Method::Ray => curves.extend(ray_curves(&args, &scatter_deg, &progress)?),
-            Method::Kirchhoff => curves.extend(kirchhoff_curves(&args, &scatter_deg, &progress)?),
+            Method::Ray => {
+                curves.extend(ray_curves(&args, &scatter_deg, &progress, &mut warnings)?)
+            }
+            Method::Kirchhoff => curves.extend(kirchhoff_curves(
+                &args,
+                &scatter_deg,
+                &progress,
+                &mut warnings,
+            )?),
         }
     }
     curves.extend(model_curves(&args, &scatter_deg)?);
     progress.finish_and_clear();
-    gonio_instrument::curves::write_csv(&args.output, &curves)?;
+    for w in &warnings {
+        eprintln!("warning: {w}");
+    }
+    match &args.output {
+        Some(path) => gonio_instrument::curves::write_csv(path, &curves)?,
+        None if !args.json => {
+            let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+            gonio_instrument::curves::write_csv_to(&mut out, &curves)?;
+            out.flush()?;
+        }
+        None => {}
+    }
     if let Some(png) = &args.plot {
         plot_curves(png, &curves)?;
     }
     if args.json {
         println!(
             "{}",
-            serde_json::to_string_pretty(&curves_json(&curves, &args.output))?
+            serde_json::to_string_pretty(&curves_json(&curves, args.output.as_deref(), &warnings))?
         );
-    } else {
-        eprintln!("wrote {} curves to {}", curves.len(), args.output.display());
+    } else if let Some(path) = &args.output {
+        eprintln!("wrote {} curves to {}", curves.len(), path.display());
     }
     Ok(())
 }
@@ -246,12 +270,28 @@ fn ray_curves(
     args: &InplaneArgs,
     scatter_deg: &[f64],
     progress: &ProgressBar,
+    warnings: &mut Vec<String>,
 ) -> Result<Vec<InplaneCurve>> {
     let Some(path) = &args.surface else {
         bail!("--method ray needs a height map: gonio inplane SURFACE --method ray ...");
     };
     progress.set_message(format!("reading {}", path.display()));
     let map = gonio_surface::io::read(path)?;
+    // The ray curves are judged at the longest wavelength given (the smallest Rayleigh
+    // roughness), 550 nm when none is.
+    let wavelength = args
+        .wavelength_nm
+        .iter()
+        .copied()
+        .fold(None, |a: Option<f64>, w| Some(a.map_or(w, |a| a.max(w))))
+        .map_or(validity::PHOTOMETRIC_WAVELENGTH, |w| w * 1e-9);
+    let levelled =
+        gonio_surface::ops::level(&map).with_context(|| format!("{}", path.display()))?;
+    warnings.extend(validity::ray_warnings(
+        gonio_surface::stats::height_parameters(&levelled).0,
+        wavelength,
+        &validity::inplane_readings(&args.incidence_deg, args.aperture_deg.to_radians()),
+    ));
     let options = RayOptions {
         ior: ior(args),
         normals: match args.normals {
@@ -300,6 +340,7 @@ fn kirchhoff_curves(
     args: &InplaneArgs,
     scatter_deg: &[f64],
     progress: &ProgressBar,
+    warnings: &mut Vec<String>,
 ) -> Result<Vec<InplaneCurve>> {
     let Some(path) = &args.surface else {
         bail!(
@@ -319,6 +360,12 @@ fn kirchhoff_curves(
             Spot::tiled(&map, d * 1e-6, n).with_context(|| format!("{}", path.display()))?
         }
     };
+    let longest = wavelengths.iter().copied().fold(0.0, f64::max);
+    warnings.extend(validity::kirchhoff_warnings(
+        spots[0].diameter,
+        longest,
+        &validity::inplane_readings(&args.incidence_deg, args.aperture_deg.to_radians()),
+    ));
     let incidences: Vec<f64> = args.incidence_deg.iter().map(|t| t.to_radians()).collect();
     let scatter: Vec<f64> = scatter_deg.iter().map(|t| t.to_radians()).collect();
     let detectors = spots.len() * wavelengths.len() * incidences.len() * scatter.len();
@@ -436,7 +483,11 @@ pub fn plot_curves(path: &Path, curves: &[InplaneCurve]) -> Result<()> {
     plot::line_plot_png(path, (900, 600), &plot, &series)
 }
 
-fn curves_json(curves: &[InplaneCurve], output: &Path) -> serde_json::Value {
+fn curves_json(
+    curves: &[InplaneCurve],
+    output: Option<&Path>,
+    warnings: &[String],
+) -> serde_json::Value {
     let curves: Vec<serde_json::Value> = curves
         .iter()
         .map(|c| {
@@ -453,5 +504,9 @@ fn curves_json(curves: &[InplaneCurve], output: &Path) -> serde_json::Value {
             })
         })
         .collect();
-    serde_json::json!({ "output": output.display().to_string(), "curves": curves })
+    serde_json::json!({
+        "output": output.map(|p| p.display().to_string()),
+        "curves": curves,
+        "warnings": warnings,
+    })
 }

@@ -125,3 +125,60 @@ fn bad_input_exits_2_and_writes_nothing() {
     }
     assert!(!Path::new(csv).exists());
 }
+
+/// Issue 12: `--json` alone prints the curves at the STARR incidences (20/45/60/70°) on standard
+/// output and writes no file; with neither `-o` nor `--json` the CSV goes to standard output.
+#[test]
+fn default_geometry_and_json_without_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = gen_map(dir.path());
+    let before = std::fs::read_dir(dir.path()).unwrap().count();
+    let out = ok(&["inplane", &map, "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let incidences: Vec<f64> = json["curves"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["incidence_deg"].as_f64().unwrap())
+        .collect();
+    assert_eq!(incidences, [20.0, 45.0, 60.0, 70.0]);
+    assert!(json["output"].is_null());
+    assert!(json["warnings"].as_array().unwrap().is_empty());
+    let out = ok(&["inplane", &map, "--incidence-deg", "30"]);
+    let csv = String::from_utf8(out.stdout).unwrap();
+    assert!(csv.starts_with("method,wavelength_nm,incidence_deg,scatter_deg"));
+    assert_eq!(csv.lines().count(), 1 + 151);
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), before);
+}
+
+/// Issue 12: the ray method on a map far smoother than the wavelength (Sq 5 nm: Rayleigh
+/// roughness g = (4π · 5 nm · cos 20° / 550 nm)² = 0.01 at 20°) warns on stderr and in the JSON.
+#[test]
+fn ray_method_on_a_smooth_map_warns() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("smooth.x3p");
+    let path = path.to_str().unwrap();
+    ok(&[
+        "surface",
+        "gen",
+        "--sq-nm",
+        "5",
+        "--corr-um",
+        "6",
+        "--size",
+        "64",
+        "--dx-um",
+        "0.5",
+        "--seed",
+        "1",
+        "-o",
+        path,
+    ]);
+    let out = ok(&["inplane", path, "--incidence-deg", "20", "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let warnings = json["warnings"].as_array().unwrap();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(warnings[0].as_str().unwrap().contains("coherently"));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("warning: the map is smooth"), "{stderr}");
+}
