@@ -83,6 +83,8 @@ pub fn run(args: StudyArgs) -> Result<()> {
             })
             .collect::<Result<_>>()?
     };
+    let index_warnings = gonio_instrument::validity::check_index(args.index)
+        .map_err(|e| anyhow::anyhow!("--index: {e}"))?;
     let config = StudyConfig {
         ior: args.index,
         wavelengths_nm: args.wavelength_nm.clone(),
@@ -90,8 +92,17 @@ pub fn run(args: StudyArgs) -> Result<()> {
         ..StudyConfig::starr()
     };
     let out = execute(&samples, &config, &args.output)?;
+    let mut warnings = index_warnings;
+    for r in &out.results {
+        warnings.extend(r.warnings.iter().map(|w| format!("{}: {w}", r.label)));
+    }
+    for w in &warnings {
+        eprintln!("warning: {w}");
+    }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&summary_json(&out))?);
+        let mut json = summary_json(&out);
+        json["warnings"] = serde_json::json!(warnings);
+        println!("{}", serde_json::to_string_pretty(&json)?);
     } else {
         for f in out.files.iter().chain(out.plots.iter().map(|p| &p.0)) {
             eprintln!("wrote {}", f.display());
@@ -357,7 +368,9 @@ fn plot_gloss(path: &Path, results: &[SampleResult]) -> Result<()> {
 }
 
 fn write_gloss_csv(path: &Path, results: &[SampleResult]) -> Result<()> {
-    let mut s = String::from("sample,sq_m,sdq,method,gu20,gu60,gu85,haze,doi\n");
+    let mut s = String::from(
+        "sample,sq_m,sdq,method,gu20,gu60,gu85,haze,haze_wide,haze_20,haze_d4039,doi\n",
+    );
     for r in results {
         let methods = [
             ("ray", Some(&r.gloss_ray)),
@@ -366,8 +379,18 @@ fn write_gloss_csv(path: &Path, results: &[SampleResult]) -> Result<()> {
         for (method, g) in methods {
             let Some(g) = g else { continue };
             s.push_str(&format!(
-                "{},{:.6e},{:.6},{method},{:.3},{:.3},{:.3},{:.4},{:.3}\n",
-                r.label, r.statistics.sq, r.statistics.sdq, g.gu20, g.gu60, g.gu85, g.haze, g.doi
+                "{},{:.6e},{:.6},{method},{:.3},{:.3},{:.3},{:.4},{:.4},{:.4},{:.3},{:.3}\n",
+                r.label,
+                r.statistics.sq,
+                r.statistics.sdq,
+                g.gu20,
+                g.gu60,
+                g.gu85,
+                g.haze,
+                g.haze_wide,
+                g.haze_20,
+                g.haze_d4039,
+                g.doi
             ));
         }
     }
@@ -408,6 +431,7 @@ fn summary_json(out: &StudyOutputs) -> serde_json::Value {
                 "gloss_ray": r.gloss_ray,
                 "gloss_kirchhoff_550nm": r.gloss_kirchhoff,
                 "notes": r.notes,
+                "warnings": r.warnings,
             })
         })
         .collect();
