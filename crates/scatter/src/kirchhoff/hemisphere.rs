@@ -19,6 +19,7 @@ use super::facets::FacetGrid;
 use super::kernel::{RowParams, fill_row};
 use super::{Kirchhoff, MAX_REFINEMENT, Spot};
 use crate::error::{Result, ScatterError};
+use crate::geometry::Detector;
 use crate::ray::{HemisphereGrid, HemisphereTable};
 use glam::DVec3;
 use num_complex::Complex64;
@@ -56,11 +57,49 @@ impl Kirchhoff {
     /// returns for light of `wavelength` metres from `wi`: the engine's own spot, or the smaller
     /// spots that its bounding square is cut into when the whole spot's grid would exceed the
     /// facet limit.
-    pub fn sampling_spots_for(&self, wavelength: f64, wi: DVec3) -> Result<Vec<Spot>> {
+    /// `cone`: the detector of [`Kirchhoff::scattered_in_cone`], `None` for the whole hemisphere.
+    pub fn sampling_spots_for(
+        &self,
+        wavelength: f64,
+        wi: DVec3,
+        cone: Option<&Detector>,
+    ) -> Result<Vec<Spot>> {
         super::check_wavelength(wavelength)?;
-        let r = self.sampling_refinement(TAU / wavelength * (wi.z + 1.0));
+        let k = TAU / wavelength;
+        let r = match cone {
+            Some(detector) => self.cone_sampling_refinement(k, wi, detector),
+            None => self.sampling_refinement(k * (wi.z + 1.0)),
+        };
         self.check_refinement(r, wavelength)?;
         Ok(self.sampling_spots(r))
+    }
+
+    /// Refinement of the sampled grid for the lattice directions inside `detector`'s cone only:
+    /// the full-hemisphere refinement, or less when that already keeps every image of the field
+    /// off the cone. The sampled sum is the integral plus its images shifted by the grating
+    /// vectors `2π (n/ax, m/ay)` (Poisson summation; no sinc factors attenuate them here). The
+    /// field lies within `π/d + |vz| s` of specular along each axis (the map's band and the
+    /// spread of the phase, `s` the 99.9th percentile slope), taken here with the slope doubled:
+    /// for Gaussian slopes that is 7.4 standard deviations, where their density is e⁻²⁷ of its
+    /// peak. So the cone (axis at `v⊥` from specular, wave vectors within `reach`) is clear, and
+    /// inside the lattice, when `2π r/d ≥ |v⊥| + reach + 2 |vz| s + π/d` and
+    /// `π r/d ≥ |v⊥| + reach` along each axis. A gloss meter's receptors, about specular, need
+    /// about three times fewer points per map spacing than the whole hemisphere: at 20° and
+    /// 550 nm, 4 instead of 13 on the demo's Sq 805 nm map.
+    pub(crate) fn cone_sampling_refinement(&self, k: f64, wi: DVec3, detector: &Detector) -> usize {
+        let full = self.sampling_refinement(k * (wi.z + 1.0));
+        let v = -k * (wi + detector.direction.normalize());
+        let reach = super::aperture::reach(k, detector.half_angle);
+        let spread = 2.0 * k * (wi.z + 1.0) * self.slope;
+        let axis = |d: f64, vt: f64| {
+            let images = (d * (vt.abs() + reach + spread) + PI) / TAU;
+            let lattice = d * (vt.abs() + reach) / PI;
+            images.max(lattice).ceil()
+        };
+        let r = axis(self.spline.dx(), v.x)
+            .max(axis(self.spline.dy(), v.y))
+            .max(1.0) as usize;
+        r.min(full)
     }
 
     /// Fails, in words a user can act on, when sampling the phase needs more than
@@ -142,7 +181,9 @@ impl Kirchhoff {
     /// averages speckle the same way over its large spot; every reading is then the mean of
     /// `m²` independent speckle patterns (see `docs/kirchhoff.md`, "Spot averaging").
     pub fn scattered(&self, wavelength: f64, wi: DVec3) -> Result<Vec<(DVec3, f64)>> {
-        self.scattered_where(wavelength, wi, |_| true)
+        super::check_wavelength(wavelength)?;
+        let r = self.sampling_refinement(TAU / wavelength * (wi.z + 1.0));
+        self.scattered_where(wavelength, wi, r, |_| true)
     }
 
     /// As [`Kirchhoff::scattered`], for the lattice directions inside the cone of `detector`
@@ -152,22 +193,25 @@ impl Kirchhoff {
         &self,
         wavelength: f64,
         wi: DVec3,
-        detector: &crate::geometry::Detector,
+        detector: &Detector,
     ) -> Result<Vec<(DVec3, f64)>> {
+        super::check_wavelength(wavelength)?;
         let cos_alpha = detector.half_angle.cos();
         let axis = detector.direction.normalize();
-        self.scattered_where(wavelength, wi, |wo| wo.dot(axis) >= cos_alpha)
+        let r = self.cone_sampling_refinement(TAU / wavelength, wi, detector);
+        self.scattered_where(wavelength, wi, r, |wo| wo.dot(axis) >= cos_alpha)
     }
 
+    /// The lattice directions that `keep` accepts, on sampled grids of refinement `r`, averaged
+    /// over the spots of [`Kirchhoff::sampling_spots`].
     fn scattered_where(
         &self,
         wavelength: f64,
         wi: DVec3,
+        r: usize,
         keep: impl Fn(DVec3) -> bool + Sync,
     ) -> Result<Vec<(DVec3, f64)>> {
-        super::check_wavelength(wavelength)?;
         let k = TAU / wavelength;
-        let r = self.sampling_refinement(k * (wi.z + 1.0));
         self.check_refinement(r, wavelength)?;
         let spots = self.sampling_spots(r);
         if spots.len() == 1 {
