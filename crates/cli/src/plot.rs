@@ -38,7 +38,7 @@ pub fn palette(i: usize) -> RGBColor {
 
 /// One curve of a line plot.
 pub struct Series {
-    /// Legend label.
+    /// Legend label (empty: not in the legend).
     pub label: String,
     /// (x, y) points in drawing order.
     pub points: Vec<(f64, f64)>,
@@ -57,6 +57,20 @@ pub struct LinePlot<'a> {
     pub log_y: bool,
 }
 
+/// The x axis of a line plot when it is not the plain linear one: logarithmic, and with named
+/// positions (the samples of a study) written above the plot with a faint guide line each.
+#[derive(Default)]
+pub struct XAxis {
+    /// Logarithmic x axis (non-positive values are dropped).
+    pub log: bool,
+    /// (x, name): a name written above the plot at x.
+    pub marks: Vec<(f64, String)>,
+}
+
+/// On a logarithmic y axis, the smallest value shown relative to the largest: values below it
+/// (numerical noise twelve decades under the peak) are left out, not piled up on the axis.
+const LOG_Y_DECADES: f64 = 1e-12;
+
 /// Draw `series` into a PNG of `size` pixels at `path`.
 pub fn line_plot_png(
     path: &Path,
@@ -64,7 +78,20 @@ pub fn line_plot_png(
     plot: &LinePlot,
     series: &[Series],
 ) -> Result<()> {
-    render_png(path, size, |root| draw_line_plot(root, plot, series))
+    render_png(path, size, |root| {
+        draw_line_plot_x(root, plot, &XAxis::default(), series)
+    })
+}
+
+/// [`line_plot_png`] with the x axis `x` (logarithmic, with named positions).
+pub fn line_plot_png_x(
+    path: &Path,
+    size: (u32, u32),
+    plot: &LinePlot,
+    x: &XAxis,
+    series: &[Series],
+) -> Result<()> {
+    render_png(path, size, |root| draw_line_plot_x(root, plot, x, series))
 }
 
 /// Draw a line plot into any drawing area (so that several plots can share one image).
@@ -76,118 +103,234 @@ pub fn draw_line_plot<DB: DrawingBackend>(
 where
     DB::ErrorType: 'static,
 {
-    let finite = |&(x, y): &(f64, f64)| x.is_finite() && y.is_finite() && (!plot.log_y || y > 0.0);
+    draw_line_plot_x(root, plot, &XAxis::default(), series)
+}
+
+/// [`draw_line_plot`] with the x axis `x`. The title is drawn across the top, the legend in a
+/// column to the right of the axes, so that it never covers data.
+pub fn draw_line_plot_x<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    plot: &LinePlot,
+    x_axis: &XAxis,
+    series: &[Series],
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let usable = |&(x, y): &(f64, f64)| {
+        x.is_finite() && y.is_finite() && (!plot.log_y || y > 0.0) && (!x_axis.log || x > 0.0)
+    };
     let all: Vec<(f64, f64)> = series
         .iter()
-        .flat_map(|s| s.points.iter().copied().filter(finite))
+        .flat_map(|s| s.points.iter().copied().filter(usable))
         .collect();
     anyhow::ensure!(!all.is_empty(), "nothing to plot in '{}'", plot.title);
     let (mut x0, mut x1) = min_max(all.iter().map(|p| p.0));
     let (mut y0, mut y1) = min_max(all.iter().map(|p| p.1));
-    if x1 <= x0 {
+    if x_axis.log {
+        if x1 <= x0 {
+            x1 = x0 * 10.0;
+        }
+        // A little room beyond the first and last points, so that no marker sits on the frame.
+        let pad = (x1 / x0).powf(0.04);
+        (x0, x1) = (x0 / pad, x1 * pad);
+    } else if x1 <= x0 {
         x0 -= 0.5;
         x1 += 0.5;
     }
-    if plot.log_y {
-        y0 = y0.max(y1 * 1e-12);
+    let floor = if plot.log_y {
+        y0 = y0.max(y1 * LOG_Y_DECADES);
         if y1 <= y0 {
             y1 = y0 * 10.0;
         }
-        draw_chart(
-            root,
-            plot,
-            x0..x1,
-            (y0 / 1.5..y1 * 1.5).log_scale(),
-            series,
-            finite,
-        )
+        y0
+    } else {
+        f64::NEG_INFINITY
+    };
+    let shown = |p: &(f64, f64)| usable(p) && p.1 >= floor;
+    let title_font = ("sans-serif", 20).into_font();
+    let area = root.titled(plot.title, title_font)?;
+    let (area, legend) = split_legend(&area, series);
+    let xs = x0..x1;
+    let xl = (x0..x1).log_scale();
+    let chart = Chart {
+        plot,
+        log_x: x_axis.log,
+        marks: &x_axis.marks,
+        series,
+        shown: &shown,
+    };
+    if plot.log_y {
+        let ys = (y0 / 1.5..y1 * 1.5).log_scale();
+        if x_axis.log {
+            chart.draw(&area, xl, ys)?;
+        } else {
+            chart.draw(&area, xs, ys)?;
+        }
     } else {
         if y1 <= y0 {
             y0 -= 0.5;
             y1 += 0.5;
         }
         let pad = 0.05 * (y1 - y0);
-        draw_chart(root, plot, x0..x1, y0 - pad..y1 + pad, series, finite)
+        let ys = y0 - pad..y1 + pad;
+        if x_axis.log {
+            chart.draw(&area, xl, ys)?;
+        } else {
+            chart.draw(&area, xs, ys)?;
+        }
     }
-}
-
-/// The chart of [`draw_line_plot`] on the y axis `y` (linear or logarithmic): caption, mesh
-/// with the axis labels (powers of ten on a log axis), the series and the legend.
-fn draw_chart<DB, Y>(
-    root: &DrawingArea<DB, Shift>,
-    plot: &LinePlot,
-    x: std::ops::Range<f64>,
-    y: Y,
-    series: &[Series],
-    finite: impl Fn(&(f64, f64)) -> bool,
-) -> Result<()>
-where
-    DB: DrawingBackend,
-    DB::ErrorType: 'static,
-    Y: AsRangedCoord<Value = f64>,
-    Y::CoordDescType: Ranged<ValueType = f64> + ValueFormatter<f64>,
-{
-    let mut chart = ChartBuilder::on(root)
-        .caption(plot.title, ("sans-serif", 20))
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(70)
-        .build_cartesian_2d(x, y)?;
-    let power_of_ten = |v: &f64| format!("{v:.0e}");
-    let mut mesh = chart.configure_mesh();
-    mesh.x_desc(plot.x_label)
-        .y_desc(plot.y_label)
-        .label_style(("sans-serif", 13));
-    if plot.log_y {
-        mesh.y_label_formatter(&power_of_ten);
-    }
-    mesh.draw()?;
-    for s in series {
-        let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(&finite).collect();
-        draw_series(&mut chart, s, pts)?;
-    }
-    finish_legend(&mut chart)?;
-    Ok(())
-}
-
-fn draw_series<'a, DB, X, Y>(
-    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
-    s: &Series,
-    pts: Vec<(f64, f64)>,
-) -> Result<()>
-where
-    DB: DrawingBackend + 'a,
-    DB::ErrorType: 'static,
-    X: Ranged<ValueType = f64>,
-    Y: Ranged<ValueType = f64>,
-{
-    let colour = s.colour;
-    let anno = if s.markers {
-        chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 2, colour.filled())))?
-    } else {
-        chart.draw_series(LineSeries::new(pts, colour.stroke_width(2)))?
-    };
-    if !s.label.is_empty() {
-        anno.label(s.label.clone()).legend(move |(x, y)| {
-            PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
-        });
+    if let Some(legend) = legend {
+        draw_legend(&legend, series)?;
     }
     Ok(())
 }
 
-fn finish_legend<'a, DB, X, Y>(chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>) -> Result<()>
+/// What [`draw_line_plot_x`] draws once its axis ranges are known.
+struct Chart<'a, F: Fn(&(f64, f64)) -> bool> {
+    plot: &'a LinePlot<'a>,
+    log_x: bool,
+    marks: &'a [(f64, String)],
+    series: &'a [Series],
+    /// Whether a point is drawn (finite, positive on a log axis, above the floor).
+    shown: &'a F,
+}
+
+/// Font size of the legend, the tick labels and the marks.
+const SMALL: u32 = 13;
+
+impl<F: Fn(&(f64, f64)) -> bool> Chart<'_, F> {
+    /// Mesh with the axis labels (powers of ten on a log y axis), the marks, then the series:
+    /// lines are broken where a point is not shown, markers of such points are left out.
+    fn draw<DB, X, Y>(&self, area: &DrawingArea<DB, Shift>, x: X, y: Y) -> Result<()>
+    where
+        DB: DrawingBackend,
+        DB::ErrorType: 'static,
+        X: AsRangedCoord<Value = f64>,
+        X::CoordDescType: Ranged<ValueType = f64> + ValueFormatter<f64>,
+        Y: AsRangedCoord<Value = f64>,
+        Y::CoordDescType: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    {
+        let mark_band = self
+            .marks
+            .iter()
+            .map(|(_, name)| text_width(area, name))
+            .max()
+            .map_or(0, |w| w + 10);
+        let mut chart = ChartBuilder::on(area)
+            .margin(12)
+            .margin_top(12 + mark_band)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x, y)?;
+        let power_of_ten = |v: &f64| format!("{v:.0e}");
+        // Plain numbers on a log x axis (1, 10, 100 rather than 1e0, 1e1, 1e2).
+        let plain = |v: &f64| format!("{}", (v * 1e3).round() / 1e3);
+        let mut mesh = chart.configure_mesh();
+        mesh.x_desc(self.plot.x_label)
+            .y_desc(self.plot.y_label)
+            .label_style(("sans-serif", SMALL));
+        if self.plot.log_y {
+            mesh.y_label_formatter(&power_of_ten);
+        }
+        if self.log_x {
+            mesh.x_label_formatter(&plain);
+        }
+        mesh.draw()?;
+        let (y_lo, y_hi) = {
+            let r = chart.y_range();
+            (r.start, r.end)
+        };
+        let base = area.get_base_pixel();
+        let font = ("sans-serif", SMALL)
+            .into_font()
+            .transform(FontTransform::Rotate270);
+        for (x, name) in self.marks {
+            let guide = [(*x, y_lo), (*x, y_hi)];
+            chart.draw_series(std::iter::once(PathElement::new(
+                guide.to_vec(),
+                RGBColor(200, 200, 200),
+            )))?;
+            let (px, top) = chart.backend_coord(&guide[1]);
+            area.draw(&Text::new(
+                name.clone(),
+                (px - base.0 - SMALL as i32 / 2, top - base.1 - 4),
+                font.clone(),
+            ))?;
+        }
+        for s in self.series {
+            let colour = s.colour;
+            if s.markers {
+                let pts = s.points.iter().copied().filter(|p| (self.shown)(p));
+                chart.draw_series(pts.map(|p| Circle::new(p, 3, colour.filled())))?;
+            } else {
+                for run in s.points.split(|p| !(self.shown)(p)) {
+                    chart.draw_series(LineSeries::new(run.to_vec(), colour.stroke_width(2)))?;
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The width in pixels of `text` in the small font.
+fn text_width<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, text: &str) -> i32 {
+    area.estimate_text_size(text, &TextStyle::from(("sans-serif", SMALL).into_font()))
+        .map_or(text.len() as i32 * 8, |(w, _)| w as i32)
+}
+
+/// Width of a legend entry's symbol and the gap after it, in pixels.
+const LEGEND_SYMBOL: i32 = 22;
+
+/// The axes' area and the legend's, if there is a legend.
+type Areas<DB> = (DrawingArea<DB, Shift>, Option<DrawingArea<DB, Shift>>);
+
+/// Split `area` into the axes and, when some series has a label, a legend column on the right
+/// as wide as the longest label.
+fn split_legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, series: &[Series]) -> Areas<DB> {
+    let widest = series
+        .iter()
+        .filter(|s| !s.label.is_empty())
+        .map(|s| text_width(area, &s.label))
+        .max();
+    match widest {
+        Some(w) => {
+            let width = area.dim_in_pixel().0 as i32;
+            let (axes, legend) = area.split_horizontally(width - (w + LEGEND_SYMBOL + 24));
+            (axes, Some(legend))
+        }
+        None => (area.clone(), None),
+    }
+}
+
+/// The legend: one entry per labelled series, its symbol as the series is drawn (a line or a
+/// dot) and its label, from the top of `area` down.
+fn draw_legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, series: &[Series]) -> Result<()>
 where
-    DB: DrawingBackend + 'a,
     DB::ErrorType: 'static,
-    X: Ranged<ValueType = f64>,
-    Y: Ranged<ValueType = f64>,
 {
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 13))
-        .draw()?;
+    let mut y = 20;
+    for s in series.iter().filter(|s| !s.label.is_empty()) {
+        let colour = s.colour;
+        if s.markers {
+            area.draw(&Circle::new(
+                (4 + LEGEND_SYMBOL / 2 - 3, y),
+                3,
+                colour.filled(),
+            ))?;
+        } else {
+            area.draw(&PathElement::new(
+                vec![(4, y), (4 + LEGEND_SYMBOL - 6, y)],
+                colour.stroke_width(2),
+            ))?;
+        }
+        area.draw(&Text::new(
+            s.label.clone(),
+            (4 + LEGEND_SYMBOL, y - SMALL as i32 / 2 - 1),
+            ("sans-serif", SMALL).into_font(),
+        ))?;
+        y += SMALL as i32 + 7;
+    }
     Ok(())
 }
 

@@ -308,12 +308,16 @@ fn plot_peaks(
                     } else {
                         p.peak.fwhm_deg
                     };
-                    Some(((p.sq_m * 1e9).log10(), y?))
+                    Some((p.sq_m * 1e9, y?))
                 })
                 .collect();
+            let points = by_sq(points);
             if !points.is_empty() {
                 series.push(Series {
-                    label: format!("{method} {ti}°"),
+                    label: format!(
+                        "{} {ti}°",
+                        if method == "ray" { "ray" } else { "Kirchhoff" }
+                    ),
                     points,
                     colour: plot::palette(i),
                     markers: method != "ray",
@@ -323,7 +327,7 @@ fn plot_peaks(
     }
     let spec = LinePlot {
         title,
-        x_label: "log10(Sq / nm)",
+        x_label: "Sq (nm)",
         y_label: if value == 0 {
             "peak reflectance per detector"
         } else {
@@ -331,17 +335,45 @@ fn plot_peaks(
         },
         log_y: true,
     };
-    plot::line_plot_png(path, (900, 600), &spec, &series)
+    plot::line_plot_png_x(
+        path,
+        (900, 600),
+        &spec,
+        &sample_axis(peaks_marks(peaks)),
+        &series,
+    )
+}
+
+/// Points in order of Sq, so that a line joins the samples from smooth to rough whatever the
+/// order they were given in.
+fn by_sq(mut points: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+    points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    points
+}
+
+/// A logarithmic Sq axis (nm) with each sample's name written at its Sq.
+fn sample_axis(marks: Vec<(f64, String)>) -> plot::XAxis {
+    plot::XAxis { log: true, marks }
+}
+
+fn peaks_marks(peaks: &[PeakRow]) -> Vec<(f64, String)> {
+    let mut marks: Vec<(f64, String)> = Vec::new();
+    for p in peaks {
+        if !marks.iter().any(|(_, l)| *l == p.label) {
+            marks.push((p.sq_m * 1e9, p.label.clone()));
+        }
+    }
+    marks
 }
 
 fn plot_gloss(path: &Path, results: &[SampleResult]) -> Result<()> {
     let mut series = Vec::new();
     for (i, label) in ["20°", "60°", "85°"].into_iter().enumerate() {
         let pick = |g: &GlossReport| [g.gu20, g.gu60, g.gu85][i];
-        let x = |r: &SampleResult| (r.statistics.sq * 1e9).log10();
+        let x = |r: &SampleResult| r.statistics.sq * 1e9;
         series.push(Series {
             label: format!("ray {label}"),
-            points: results.iter().map(|r| (x(r), pick(&r.gloss_ray))).collect(),
+            points: by_sq(results.iter().map(|r| (x(r), pick(&r.gloss_ray))).collect()),
             colour: plot::palette(i),
             markers: false,
         });
@@ -360,11 +392,15 @@ fn plot_gloss(path: &Path, results: &[SampleResult]) -> Result<()> {
     }
     let spec = LinePlot {
         title: "Specular gloss against roughness: ray (lines), Kirchhoff (dots)",
-        x_label: "log10(Sq / nm)",
+        x_label: "Sq (nm)",
         y_label: "gloss units (GU)",
         log_y: false,
     };
-    plot::line_plot_png(path, (900, 600), &spec, &series)
+    let marks = results
+        .iter()
+        .map(|r| (r.statistics.sq * 1e9, r.label.clone()))
+        .collect();
+    plot::line_plot_png_x(path, (900, 600), &spec, &sample_axis(marks), &series)
 }
 
 fn write_gloss_csv(path: &Path, results: &[SampleResult]) -> Result<()> {
