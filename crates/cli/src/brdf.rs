@@ -230,6 +230,11 @@ fn detector(theta_deg: f64) -> DVec3 {
     DVec3::new(t.sin(), 0.0, t.cos())
 }
 
+/// The in-plane plots' x axis, in words and unit.
+const SCATTER_AXIS: &str = "scattering angle θs (degrees from the normal, + on the specular side)";
+/// The in-plane plots' y axis, in words and unit.
+const BRDF_AXIS: &str = "BRDF f (1/sr), mean of the channels";
+
 fn info(a: InfoArgs) -> Result<()> {
     let t = load(&a.table)?;
     let angles = [0.0, 30.0, 60.0, 80.0];
@@ -291,7 +296,13 @@ fn info(a: InfoArgs) -> Result<()> {
         let mean = a.iter().sum::<f64>() / a.len() as f64;
         println!("albedo {th:>3}°  {mean:.4} (mean of channels)");
     }
-    println!("reciprocity  {reciprocity:.4} (relative |f(wi,wo) - f(wo,wi)|)");
+    println!(
+        "reciprocity  {reciprocity:.4}: swapping light and viewer changes the BRDF by {:.1}% of \
+         its value, summed over the table (Σ|f(wi,wo) - f(wo,wi)| / Σ(f(wi,wo) + f(wo,wi)));\n\
+         {:13}0 for a reciprocal (physical) BRDF, 1 when one of every swapped pair is zero",
+        100.0 * reciprocity,
+        ""
+    );
     let (ti, pi) = deg(wi);
     let (to, po) = deg(wo);
     println!(
@@ -382,7 +393,11 @@ fn export(a: ExportArgs) -> Result<()> {
                 .unwrap_or("brdf");
             let files = pabopto::write(&t, &a.output, name, &a.incidence_deg)?;
             pb.finish_and_clear();
-            println!("wrote {} files into {}", files.len(), a.output.display());
+            println!(
+                "wrote {} into {}",
+                crate::units::count(files.len(), "file"),
+                a.output.display()
+            );
             return Ok(());
         }
     }
@@ -454,8 +469,8 @@ fn plot_table(a: PlotArgs) -> Result<()> {
             &left,
             &LinePlot {
                 title: &format!("{title}: in-plane BRDF"),
-                x_label: "theta_s_deg (signed, + = specular side)",
-                y_label: "f_per_sr (mean of channels)",
+                x_label: SCATTER_AXIS,
+                y_label: BRDF_AXIS,
                 log_y: true,
             },
             &curves,
@@ -464,8 +479,8 @@ fn plot_table(a: PlotArgs) -> Result<()> {
             &right,
             &LinePlot {
                 title: "lobes: f cos(theta_s), normalised",
-                x_label: "sin(theta_s) (+ = specular side)",
-                y_label: "cos(theta_s)",
+                x_label: "f·cos θs, normalised: along the surface (+ on the specular side)",
+                y_label: "f·cos θs, normalised: along the normal",
                 log_y: false,
             },
             &lobes,
@@ -527,8 +542,8 @@ fn fit_table(a: FitArgs) -> Result<()> {
             (900, 600),
             &LinePlot {
                 title: &format!("{} fit of {}", kind.name(), a.table.display()),
-                x_label: "theta_s_deg (signed, + = specular side)",
-                y_label: "f_per_sr (mean of channels)",
+                x_label: SCATTER_AXIS,
+                y_label: BRDF_AXIS,
                 log_y: true,
             },
             &series,

@@ -172,7 +172,11 @@ pub fn run(args: InplaneArgs) -> Result<()> {
             serde_json::to_string_pretty(&curves_json(&curves, args.output.as_deref(), &warnings))?
         );
     } else if let Some(path) = &args.output {
-        eprintln!("wrote {} curves to {}", curves.len(), path.display());
+        eprintln!(
+            "wrote {} to {}",
+            crate::units::count(curves.len(), "curve"),
+            path.display()
+        );
     }
     Ok(())
 }

@@ -15,8 +15,9 @@ mod render;
 mod report;
 mod study;
 mod surface;
+mod units;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
 
 /// gonio: predict how a coated surface looks from its measured topography.
@@ -63,7 +64,8 @@ enum Command {
 
 fn main() -> ExitCode {
     die_quietly_on_closed_stdout();
-    let cli = Cli::parse();
+    let matches = accept_negative_numbers(Cli::command()).get_matches();
+    let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
     let result: anyhow::Result<()> = match cli.command {
         Command::Surface(cmd) => surface::run(cmd),
         Command::Compare(args) => compare::run(args),
@@ -79,10 +81,42 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) => {
-            eprintln!("error: {err:#}");
+            eprintln!("error: {}", message(&err));
             ExitCode::from(2)
         }
     }
+}
+
+/// Let every flag and positional value of every subcommand take a negative number
+/// (`--sq-nm -5`, `--exposure -1`), so that the command's own range check explains what is
+/// wrong instead of clap reading `-5` as an unknown flag.
+fn accept_negative_numbers(cmd: clap::Command) -> clap::Command {
+    cmd.mut_args(|arg| {
+        if arg.get_action().takes_values() {
+            arg.allow_negative_numbers(true)
+        } else {
+            arg
+        }
+    })
+    .mut_subcommands(accept_negative_numbers)
+}
+
+/// The error and its causes, outermost first, joined by ": ", each said once: a cause whose
+/// text the message already contains (an error type that prints its source and also returns it
+/// as `source()`) is left out.
+fn message(err: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in err.chain() {
+        let part = cause.to_string();
+        if text.contains(&part) {
+            continue;
+        }
+        if !text.is_empty() {
+            text.push_str(": ");
+        }
+        text.push_str(&part);
+    }
+    text
 }
 
 /// When the reader of stdout goes away (`gonio inplane ... --json | head -c 10`), end the process
@@ -95,5 +129,27 @@ fn die_quietly_on_closed_stdout() {
     // any other thread exists.
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_cause_printed_by_its_error_is_not_repeated() {
+        let io = std::io::Error::from(std::io::ErrorKind::NotFound);
+        let said = io.to_string();
+        let err = anyhow::Error::new(gonio_surface::SurfaceError::io("a.x3p", io))
+            .context("reading the map");
+        assert_eq!(message(&err), format!("reading the map: a.x3p: {said}"));
+    }
+
+    #[test]
+    fn distinct_causes_are_all_shown() {
+        let err = anyhow::anyhow!("disk full")
+            .context("b.png: cannot write")
+            .context("plotting");
+        assert_eq!(message(&err), "plotting: b.png: cannot write: disk full");
     }
 }

@@ -3,6 +3,7 @@
 //! and JSON hold SI metres.
 
 use crate::plot::{self, Raster};
+use crate::units::length;
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
 use gonio_surface::stats::{self, Statistics};
@@ -20,7 +21,8 @@ use std::time::Duration;
 /// by the output file's extension.
 #[derive(Subcommand)]
 pub enum SurfaceCommand {
-    /// Print the grid, metadata and ISO 25178-2 statistics (after plane levelling) of a file.
+    /// Print the grid, metadata, the rms height as read and the ISO 25178-2 statistics after
+    /// plane levelling of a file.
     Info(InfoArgs),
     /// Synthesise a periodic Gaussian random surface (FFT spectral filtering).
     Gen(GenArgs),
@@ -82,8 +84,16 @@ pub struct GenArgs {
 pub struct ConvertArgs {
     /// Input height-map file.
     input: PathBuf,
+    /// Output file, .x3p or .gsf (or give it with -o, as the other commands take it).
+    #[arg(
+        value_name = "OUTPUT",
+        required_unless_present = "output",
+        conflicts_with = "output"
+    )]
+    target: Option<PathBuf>,
     /// Output file, .x3p or .gsf.
-    output: PathBuf,
+    #[arg(short, long)]
+    output: Option<PathBuf>,
 }
 
 #[derive(Args)]
@@ -154,7 +164,13 @@ pub fn run(cmd: SurfaceCommand) -> Result<()> {
     match cmd {
         SurfaceCommand::Info(a) => info(&a),
         SurfaceCommand::Gen(a) => generate(&a),
-        SurfaceCommand::Convert(a) => write(&read(&a.input)?, &a.output),
+        SurfaceCommand::Convert(a) => {
+            let output = a
+                .output
+                .or(a.target)
+                .context("name the output file: -o OUTPUT")?;
+            write(&read(&a.input)?, &output)
+        }
         SurfaceCommand::Level(a) => write(&ops::level(&read(&a.input)?)?, &a.output),
         SurfaceCommand::Crop(a) => crop(&a),
         SurfaceCommand::Rotate(a) => {
@@ -196,12 +212,25 @@ fn info(a: &InfoArgs) -> Result<()> {
     let map = read(&a.file)?;
     let st = busy("computing statistics", || stats::statistics(&map))
         .with_context(|| format!("{}: statistics", a.file.display()))?;
+    let raw = rms_as_read(&map);
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&info_json(&map, &st))?);
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&info_json(&map, &st, raw))?
+        );
     } else {
-        print!("{}", info_text(&a.file, &map, &st));
+        print!("{}", info_text(&a.file, &map, &st, raw));
     }
     Ok(())
+}
+
+/// The rms height of the valid points about their mean, before any levelling: with Sq after
+/// levelling it shows how much of the heights was tilt.
+fn rms_as_read(map: &HeightMap) -> f64 {
+    let valid = || map.heights().iter().filter(|z| !z.is_nan());
+    let n = valid().count() as f64;
+    let mean = valid().sum::<f64>() / n;
+    (valid().map(|z| (z - mean).powi(2)).sum::<f64>() / n).sqrt()
 }
 
 /// A finite number as JSON, anything else as null.
@@ -209,7 +238,7 @@ fn num(v: f64) -> Value {
     if v.is_finite() { json!(v) } else { Value::Null }
 }
 
-fn info_json(map: &HeightMap, st: &Statistics) -> Value {
+fn info_json(map: &HeightMap, st: &Statistics, rms_as_read: f64) -> Value {
     let meta = &map.meta;
     let extra: serde_json::Map<String, Value> = meta
         .extra
@@ -223,6 +252,7 @@ fn info_json(map: &HeightMap, st: &Statistics) -> Value {
         "dx_m": map.dx(),
         "dy_m": map.dy(),
         "valid_fraction": map.valid_fraction(),
+        "rms_unlevelled_m": num(rms_as_read),
         "sq_m": num(st.sq),
         "sa_m": num(st.sa),
         "ssk": num(st.ssk),
@@ -240,10 +270,12 @@ fn info_json(map: &HeightMap, st: &Statistics) -> Value {
     })
 }
 
-fn info_text(path: &Path, map: &HeightMap, st: &Statistics) -> String {
+fn info_text(path: &Path, map: &HeightMap, st: &Statistics, rms_as_read: f64) -> String {
     let meta = &map.meta;
-    let um = |m: f64| m * 1e6;
     let opt = |v: Option<f64>, f: &dyn Fn(f64) -> String| v.map_or("undefined".into(), f);
+    // One line per parameter: name, value (lengths with the unit that suits them), meaning.
+    let line =
+        |name: &str, value: String, meaning: &str| format!("  {name:<4}{value:>14}   {meaning}\n");
     let mut s = format!("{}\n", path.display());
     s += &format!("  format      {}\n", meta.format.as_deref().unwrap_or("?"));
     if let Some(i) = &meta.instrument {
@@ -253,35 +285,45 @@ fn info_text(path: &Path, map: &HeightMap, st: &Statistics) -> String {
         s += &format!("  date        {d}\n");
     }
     s += &format!(
-        "  grid        {} × {} points, spacing {:.4} × {:.4} µm, field {:.1} × {:.1} µm\n",
+        "  grid        {} × {} points, spacing {} × {}, field {} × {}\n",
         map.nx(),
         map.ny(),
-        um(map.dx()),
-        um(map.dy()),
-        um(map.dx() * map.nx() as f64),
-        um(map.dy() * map.ny() as f64)
+        length(map.dx()),
+        length(map.dy()),
+        length(map.dx() * map.nx() as f64),
+        length(map.dy() * map.ny() as f64)
     );
     s += &format!(
         "  valid       {:.2}% of points\n",
         100.0 * map.valid_fraction()
     );
-    s += "  after least-squares levelling (ISO 25178-2):\n";
-    s += &format!("  Sq  {:>12.3} nm    rms height\n", st.sq * 1e9);
-    s += &format!("  Sa  {:>12.3} nm    mean absolute height\n", st.sa * 1e9);
-    s += &format!("  Ssk {:>12.4}       skewness\n", st.ssk);
-    s += &format!("  Sku {:>12.4}       kurtosis\n", st.sku);
-    s += &format!("  Sdq {:>12.5}       rms gradient\n", st.sdq);
-    s += &format!(
-        "  Sal {:>12} µm    autocorrelation length (s = 0.2)\n",
-        opt(st.sal, &|v| format!("{:.3}", um(v)))
+    s += "  as read:\n";
+    s += &line(
+        "rms",
+        length(rms_as_read),
+        "rms height about the mean, before levelling",
     );
-    s += &format!(
-        "  Str {:>12}       texture aspect ratio\n",
-        opt(st.str, &|v| if st.str_is_upper_bound {
-            format!("<= {v:.4}")
-        } else {
-            format!("{v:.4}")
-        })
+    s += "  after least-squares levelling (ISO 25178-2):\n";
+    s += &line("Sq", length(st.sq), "rms height");
+    s += &line("Sa", length(st.sa), "mean absolute height");
+    s += &line("Ssk", format!("{:.4}", st.ssk), "skewness");
+    s += &line("Sku", format!("{:.4}", st.sku), "kurtosis");
+    s += &line("Sdq", format!("{:.5}", st.sdq), "rms gradient");
+    s += &line(
+        "Sal",
+        opt(st.sal, &|v| length(v)),
+        "autocorrelation length (s = 0.2)",
+    );
+    s += &line(
+        "Str",
+        opt(st.str, &|v| {
+            if st.str_is_upper_bound {
+                format!("<= {v:.4}")
+            } else {
+                format!("{v:.4}")
+            }
+        }),
+        "texture aspect ratio",
     );
     for (k, v) in meta
         .extra
@@ -395,10 +437,10 @@ pub fn plot_height_map(map: &HeightMap, name: &str, output: &Path) -> Result<()>
     let bar_um = plot::nice_number(width_um / 5.0);
     let sq = stats::height_parameters(&lev).0;
     let title = format!(
-        "{name}: {} × {} points, Sq = {:.1} nm (levelled)",
+        "{name}: {} × {} points, Sq = {} (levelled)",
         map.nx(),
         map.ny(),
-        sq * 1e9
+        length(sq)
     );
     let raster = Raster {
         title: &title,

@@ -617,17 +617,45 @@ pub(crate) fn to_bytes(map: &HeightMap) -> std::result::Result<Vec<u8>, String> 
 
 fn main_xml(map: &HeightMap, data_md5: &str, valid_md5: Option<&str>) -> String {
     let version = env!("CARGO_PKG_VERSION");
-    let date = map
-        .meta
-        .date
-        .as_deref()
+    // The source's Record2 is kept (what the reader put in `meta`); gonio's step is added to its
+    // comment. Fields the source lacks are gonio's own: the instrument "gonio" and the time now.
+    let meta = &map.meta;
+    let extra = |key: &str| {
+        meta.extra
+            .iter()
+            .find(|(k, _)| k == key)
+            .map(|(_, v)| escape(v))
+    };
+    let xsd_date = meta.date.as_deref().filter(|d| is_xsd_datetime(d));
+    let date = xsd_date.map_or_else(now_utc, str::to_string);
+    let calibration_date = extra("calibration date")
         .filter(|d| is_xsd_datetime(d))
-        .map_or_else(now_utc, str::to_string);
-    let instrument = escape(map.meta.instrument.as_deref().unwrap_or("gonio"));
-    let comment = match &map.meta.source {
+        .unwrap_or_else(|| date.clone());
+    let instrument = escape(meta.instrument.as_deref().unwrap_or("gonio"));
+    let or_not_available = |v: Option<String>| v.unwrap_or_else(|| NOT_AVAILABLE.to_string());
+    let serial = or_not_available(extra("instrument serial"));
+    let instrument_version = match &meta.instrument {
+        Some(_) => or_not_available(extra("instrument version")),
+        None => version.to_string(),
+    };
+    let (probe, probe_id) = match extra("probing system") {
+        Some(probe) => (probe, NOT_AVAILABLE.to_string()),
+        None => ("Software".into(), format!("gonio {version}")),
+    };
+    let mut comment: Vec<String> = meta
+        .extra
+        .iter()
+        .filter(|(k, _)| k == "comment")
+        .map(|(_, v)| v.clone())
+        .collect();
+    if let (Some(d), None) = (&meta.date, xsd_date) {
+        comment.push(format!("measured {d}"));
+    }
+    comment.push(match &meta.source {
         Some(source) => format!("written by gonio {version} from {}", source.display()),
         None => format!("written by gonio {version}"),
-    };
+    });
+    let comment = comment.join("; ");
     let valid_link = valid_md5.map_or(String::new(), |md5| {
         format!(
             "      <ValidPointsLink>bindata/valid.bin</ValidPointsLink>\n      \
@@ -666,13 +694,13 @@ fn main_xml(map: &HeightMap, data_md5: &str, valid_md5: Option<&str>) -> String 
     <Instrument>
       <Manufacturer>{instrument}</Manufacturer>
       <Model>{NOT_AVAILABLE}</Model>
-      <Serial>{NOT_AVAILABLE}</Serial>
-      <Version>{version}</Version>
+      <Serial>{serial}</Serial>
+      <Version>{instrument_version}</Version>
     </Instrument>
-    <CalibrationDate>{date}</CalibrationDate>
+    <CalibrationDate>{calibration_date}</CalibrationDate>
     <ProbingSystem>
-      <Type>Software</Type>
-      <Identification>gonio {version}</Identification>
+      <Type>{probe}</Type>
+      <Identification>{probe_id}</Identification>
     </ProbingSystem>
     <Comment>{comment}</Comment>
   </Record2>
