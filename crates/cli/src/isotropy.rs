@@ -145,7 +145,8 @@ pub fn plot_check(path: &Path, c: &RotationCheck) -> Result<()> {
     })
 }
 
-fn write_csv(path: &Path, checks: &[RotationCheck]) -> Result<()> {
+/// The curves of every check, original and turned, as CSV (the `--csv` output).
+pub fn write_csv(path: &Path, checks: &[RotationCheck]) -> Result<()> {
     crate::output::write_atomic(path, |w| {
         writeln!(
             w,

@@ -32,6 +32,8 @@ pub struct Section {
 pub struct Report {
     pub title: String,
     pub intro: String,
+    /// Paragraphs under "Summary", before the contents: what the run found, with its numbers.
+    pub summary: Vec<String>,
     pub sections: Vec<Section>,
 }
 
@@ -56,6 +58,12 @@ impl Report {
             css = CSS,
             intro = esc(&self.intro)
         )?;
+        if !self.summary.is_empty() {
+            h.push_str("<h2>Summary</h2>\n");
+            for p in &self.summary {
+                writeln!(h, "<p>{}</p>", esc(p))?;
+            }
+        }
         h.push_str("<h2>Contents</h2>\n<table><tr><th>section</th><th>time (s)</th></tr>\n");
         for (i, s) in self.sections.iter().enumerate() {
             writeln!(
@@ -76,6 +84,20 @@ impl Report {
                     Block::Text(t) => writeln!(h, "<p>{}</p>", esc(t))?,
                     Block::Code(t) => writeln!(h, "<pre>{}</pre>", esc(t))?,
                     Block::Table { headers, rows } => {
+                        if let Some((i, r)) = rows
+                            .iter()
+                            .enumerate()
+                            .find(|(_, r)| r.len() != headers.len())
+                        {
+                            anyhow::bail!(
+                                "section '{}': a table row {} has {} cells for {} headers ({})",
+                                s.title,
+                                i + 1,
+                                r.len(),
+                                headers.len(),
+                                headers.join(", ")
+                            );
+                        }
                         h.push_str("<table><tr>");
                         for c in headers {
                             write!(h, "<th>{}</th>", esc(c))?;
@@ -146,6 +168,7 @@ mod tests {
         let report = Report {
             title: "T <1>".into(),
             intro: "a & b".into(),
+            summary: vec!["found <3>".into()],
             sections: vec![Section {
                 title: "S".into(),
                 blocks: vec![
@@ -166,9 +189,35 @@ mod tests {
         assert!(
             html.contains("T &lt;1&gt;") && html.contains("a &amp; b") && html.contains("x &lt; y")
         );
+        assert!(html.contains("<h2>Summary</h2>\n<p>found &lt;3&gt;</p>"));
         assert!(html.contains("data:image/png;base64,iVBOR"));
         let out = dir.path().join("r/report.html");
         report.write(&out).unwrap();
         assert!(out.exists());
+    }
+
+    #[test]
+    fn a_row_of_the_wrong_width_is_refused() {
+        let report = Report {
+            title: "T".into(),
+            intro: String::new(),
+            summary: Vec::new(),
+            sections: vec![Section {
+                title: "gloss".into(),
+                blocks: vec![Block::Table {
+                    headers: vec!["sample".into(), "GU 60°".into()],
+                    rows: vec![
+                        vec!["a".into(), "1".into()],
+                        vec!["b".into(), "ray".into(), "2".into()],
+                    ],
+                }],
+                seconds: 0.0,
+            }],
+        };
+        let err = report.to_html().unwrap_err().to_string();
+        assert!(
+            err.contains("'gloss'") && err.contains("row 2 has 3 cells for 2"),
+            "{err}"
+        );
     }
 }

@@ -34,11 +34,117 @@ fn quick_demo_writes_a_complete_report() {
     let images = html.matches("<img src=\"data:image/png;base64,").count();
     assert!(images >= 8, "only {images} images");
     assert!(!text_of(&html).contains("NaN"), "a NaN reached the report");
+    tables_are_rectangular(&html);
+    commands_name_files_beside_the_report(&html, &out);
+    summary_quotes_the_results(&html, &out);
     if let Some(chromium) = find_chromium() {
         check_in_browser(&chromium, &out.join("report.html"), images);
     } else {
         eprintln!("chromium not installed: browser check skipped");
     }
+}
+
+/// Every table of the page has as many cells in each row as in its header row.
+fn tables_are_rectangular(html: &str) {
+    let tables: Vec<&str> = html
+        .split("<table>")
+        .skip(1)
+        .map(|t| &t[..t.find("</table>").expect("a table is closed")])
+        .collect();
+    assert!(tables.len() >= 6, "only {} tables", tables.len());
+    for table in tables {
+        let rows: Vec<&str> = table.split("<tr>").skip(1).collect();
+        let header = rows[0].matches("<th>").count();
+        assert!(header > 0, "a table without a header row: {table}");
+        for row in &rows[1..] {
+            assert_eq!(
+                row.matches("<td").count(),
+                header,
+                "a row whose cells do not match the {header} headers: {row}\nin {table}"
+            );
+        }
+    }
+}
+
+/// Every command the report shows names only files that exist in the output folder (inputs
+/// and the outputs the demo wrote), so that it runs as written there.
+fn commands_name_files_beside_the_report(html: &str, out: &Path) {
+    let unescape = |s: &str| {
+        s.replace("&lt;", "<")
+            .replace("&gt;", ">")
+            .replace("&quot;", "\"")
+            .replace("&amp;", "&")
+    };
+    let mut commands = 0;
+    for block in html.split("<pre>").skip(1) {
+        let block = unescape(&block[..block.find("</pre>").unwrap()]);
+        for line in block.lines().filter(|l| l.starts_with("gonio ")) {
+            commands += 1;
+            let words: Vec<&str> = line.split_whitespace().collect();
+            for (i, word) in words.iter().enumerate().skip(2) {
+                let after_output = matches!(words[i - 1], "-o" | "--output" | "--csv" | "--plot");
+                let has_extension = !word.starts_with('-')
+                    && word.parse::<f64>().is_err()
+                    && Path::new(word).extension().is_some_and(|e| {
+                        e.to_string_lossy()
+                            .chars()
+                            .all(|c| c.is_ascii_alphanumeric())
+                    });
+                if after_output || has_extension {
+                    assert!(
+                        out.join(word).exists() || expanded(out, word),
+                        "'{line}' names {word}, which is not in {}",
+                        out.display()
+                    );
+                }
+            }
+        }
+    }
+    assert!(commands >= 5, "only {commands} commands shown");
+}
+
+/// Whether the folder `out` holds files that a command writing several plots makes of the
+/// output name `word` (`gonio isotropy -o isotropy.png` with two angles writes
+/// `isotropy_rot90.png` and `isotropy_rot45.png`).
+fn expanded(out: &Path, word: &str) -> bool {
+    let path = Path::new(word);
+    let (Some(stem), Some(ext)) = (path.file_stem(), path.extension()) else {
+        return false;
+    };
+    let prefix = format!("{}_", stem.to_string_lossy());
+    std::fs::read_dir(out.join(path.parent().unwrap_or(Path::new(""))))
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .any(|e| {
+            let p = e.path();
+            p.extension() == Some(ext)
+                && p.file_name()
+                    .is_some_and(|n| n.to_string_lossy().starts_with(&prefix))
+        })
+}
+
+/// The summary at the top states the study's 60° gloss readings as the study wrote them.
+fn summary_quotes_the_results(html: &str, out: &Path) {
+    let start = html.find("<h2>Summary</h2>").expect("a summary");
+    let summary = &html[start..html.find("<h2>Contents</h2>").unwrap()];
+    let gloss = std::fs::read_to_string(out.join("study/gloss.csv")).unwrap();
+    let mut lines = gloss.lines();
+    let column = lines
+        .next()
+        .and_then(|h| h.split(',').position(|c| c == "gu60"))
+        .expect("gloss.csv has a gu60 column");
+    let mut quoted = 0;
+    for line in lines {
+        let gu60: f64 = line.split(',').nth(column).unwrap().parse().unwrap();
+        if summary.contains(&format!("{gu60:.1} GU")) || summary.contains(&format!("{gu60:.1} and"))
+        {
+            quoted += 1;
+        }
+    }
+    assert!(
+        quoted >= 2,
+        "the summary quotes {quoted} of the 60° readings: {summary}"
+    );
 }
 
 /// The page without its embedded image data.

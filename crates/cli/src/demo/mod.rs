@@ -3,6 +3,7 @@
 //! isotropy, the roughness study by both scattering methods, and the gloss readings.
 
 mod pictures;
+mod summary;
 
 use crate::report::{Block, Report, Section};
 use crate::study::{self, StudyOutputs};
@@ -93,7 +94,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
 
     announce("a real instrument file: statistics and in-plane curves");
     let (section, seconds) = timed(|| real_file_section(dir));
-    let mut section = section?;
+    let (mut section, real) = section?;
     section.seconds = seconds;
     sections.push(section);
 
@@ -109,7 +110,8 @@ pub fn run(args: DemoArgs) -> Result<()> {
         ..StudyConfig::starr()
     };
     let (out, seconds) = timed(|| study::execute(&samples, &config, &dir.join("study")));
-    sections.push(study_section(&out?, &config, &plan, seconds));
+    let out = out?;
+    sections.push(study_section(&out, &config, &plan, seconds));
 
     if !args.quick {
         announce("pictures: the NIST figure 6 panels and the metallic paints");
@@ -132,6 +134,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
             gonio_surface::synth::EPOXY_CORR_LENGTH_M * 1e6,
             env!("CARGO_PKG_VERSION")
         ),
+        summary: summary::paragraphs(&out.results, KIRCHHOFF_GLOSS_NM, &real, !args.quick),
         sections,
     };
     let path = dir.join("report.html");
@@ -230,7 +233,14 @@ fn series_section(
     })
 }
 
-fn real_file_section(dir: &Path) -> Result<Section> {
+/// The wavelength of the study's Kirchhoff gloss readings, nm.
+const KIRCHHOFF_GLOSS_NM: f64 = 550.0;
+
+/// The real file's section, and what the summary quotes of it. The file is written beside the
+/// report, so that the commands the section shows run as written in the output folder.
+fn real_file_section(dir: &Path) -> Result<(Section, summary::RealFile)> {
+    let copy = dir.join(REAL_FILE_NAME);
+    crate::output::write_atomic(&copy, |w| Ok(std::io::Write::write_all(w, REAL_FILE)?))?;
     let map = io::read_bytes(Path::new(REAL_FILE_NAME), REAL_FILE)?;
     let st = statistics(&map)?;
     let png = dir.join("real_surface.png");
@@ -247,7 +257,7 @@ fn real_file_section(dir: &Path) -> Result<Section> {
     let curves_png = dir.join("real_inplane.png");
     crate::inplane::plot_curves(&curves_png, &curves)?;
     let meta = &map.meta;
-    Ok(Section {
+    let section = Section {
         title: format!("A real instrument file: {REAL_FILE_NAME}"),
         blocks: vec![
             Block::Text(format!(
@@ -294,7 +304,13 @@ fn real_file_section(dir: &Path) -> Result<Section> {
             )),
         ],
         seconds: 0.0,
-    })
+    };
+    let real = summary::RealFile {
+        name: REAL_FILE_NAME,
+        sq: st.sq,
+        gloss,
+    };
+    Ok((section, real))
 }
 
 /// The isotropy check on the real file: its in-plane curves (ray method) and those of the map
@@ -377,6 +393,7 @@ fn isotropy_section(dir: &Path) -> Result<Section> {
         .to_vec(),
         rows,
     });
+    crate::isotropy::write_csv(&dir.join("isotropy.csv"), &checks)?;
     for c in &checks {
         let png = dir.join(format!("isotropy_rot{}.png", c.angle_deg));
         crate::isotropy::plot_check(&png, c)?;
@@ -444,7 +461,7 @@ fn study_section(out: &StudyOutputs, config: &StudyConfig, plan: &Plan, seconds:
     ));
     blocks.push(Block::Table {
         headers: [
-            "sample", "Sq (nm)", "GU 20°", "GU 60°", "GU 85°", "haze", "DOI",
+            "sample", "method", "Sq (nm)", "GU 20°", "GU 60°", "GU 85°", "haze", "DOI",
         ]
         .map(String::from)
         .to_vec(),
@@ -495,9 +512,9 @@ fn study_section(out: &StudyOutputs, config: &StudyConfig, plan: &Plan, seconds:
     });
     blocks.push(Block::Code(format!(
         "gonio study --sq-nm {} --corr-um {} --size {} --dx-um {} --wavelength-nm {} -o study",
-        out.results
+        plan.sq_nm
             .iter()
-            .map(|r| format!("{:.0}", r.statistics.sq * 1e9))
+            .map(|v| v.to_string())
             .collect::<Vec<_>>()
             .join(","),
         gonio_surface::synth::EPOXY_CORR_LENGTH_M * 1e6,

@@ -5,7 +5,7 @@ use crate::report::{Block, Section};
 use anyhow::{Context, Result};
 use gonio_render::difference::{SeededComparison, Spread, heat_map, linear_display};
 use gonio_render::{ColourMode, Display, Image, RenderOptions, RenderStats};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Render the scene file `scene` in colour mode `colour` with `seed` (`None`: the scene's),
 /// showing progress.
@@ -70,14 +70,45 @@ fn spectral_blocks(
                 de.median, de.p95, de.max, noise.median, noise.p95, noise.max
             ),
         },
-        Block::Code(
-            "gonio render examples/metallic.toml --spectral -o metallic-spectral.png".into(),
-        ),
+        Block::Code("gonio render metallic.toml --spectral -o metallic-spectral.png".into()),
     ])
 }
 
 /// The example scenes of the repository, rendered as the report's pictures.
 const EXAMPLES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples");
+
+/// Copy the scene file `scene` into `dir`, with every file it names (quoted strings that are
+/// paths of existing files, relative to the scene) copied beside it and named there by its bare
+/// file name, so that `gonio render SCENE` runs as written in `dir`. Returns the copy's path.
+fn copy_scene(scene: &Path, dir: &Path) -> Result<PathBuf> {
+    let text = std::fs::read_to_string(scene)
+        .with_context(|| format!("{}: cannot read the scene", scene.display()))?;
+    let base = scene.parent().unwrap_or(Path::new("."));
+    let mut copy = String::with_capacity(text.len());
+    // Quoted strings sit between the odd and even quotes of each line.
+    for line in text.split_inclusive('\n') {
+        for (i, part) in line.split('"').enumerate() {
+            if i > 0 {
+                copy.push('"');
+            }
+            let named = base.join(part);
+            match named.file_name().filter(|_| i % 2 == 1 && named.is_file()) {
+                Some(name) => {
+                    std::fs::copy(&named, dir.join(name)).with_context(|| {
+                        format!("{}: cannot copy beside the report", named.display())
+                    })?;
+                    copy.push_str(&name.to_string_lossy());
+                }
+                None => copy.push_str(part),
+            }
+        }
+    }
+    let path = dir.join(scene.file_name().context("a scene file has a name")?);
+    crate::output::write_atomic(&path, |w| {
+        Ok(std::io::Write::write_all(w, copy.as_bytes())?)
+    })?;
+    Ok(path)
+}
 
 pub(super) fn render_section(dir: &Path) -> Result<Section> {
     let mut blocks = vec![Block::Text(
@@ -101,7 +132,7 @@ pub(super) fn render_section(dir: &Path) -> Result<Section> {
             "Cayman metallic (sphere and panel) and Garnet Red (sphere)",
         ),
     ] {
-        let path = Path::new(EXAMPLES).join(scene);
+        let path = copy_scene(&Path::new(EXAMPLES).join(scene), dir)?;
         let (image, display, stats) = render(&path, ColourMode::Tristimulus, None)?;
         let png = dir.join(scene.replace(".toml", ".png"));
         image.write(&png, display)?;
@@ -113,7 +144,7 @@ pub(super) fn render_section(dir: &Path) -> Result<Section> {
             ),
         });
         blocks.push(Block::Code(format!(
-            "gonio render examples/{scene} -o {}",
+            "gonio render {scene} -o {}",
             scene.replace(".toml", ".png")
         )));
         if scene == "metallic.toml" {
