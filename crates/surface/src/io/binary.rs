@@ -79,7 +79,7 @@ impl<'a> Binary<'a> {
 
     /// A fixed-size text field: up to the first NUL, Latin-1 decoded, surrounding blanks removed.
     pub(crate) fn text(&self, offset: usize, len: usize, what: &str) -> Result<String> {
-        Ok(latin1(self.slice(offset, len, what)?))
+        Ok(header_text(self.slice(offset, len, what)?))
     }
 
     /// The `points` values of `bytes_per_point` bytes each at `offset`, after checking (before
@@ -147,15 +147,22 @@ pub(crate) type Be = BigEndian;
 /// Little-endian byte order (Wyko, Sensofar, Digital Surf, Alicona).
 pub(crate) type Le = LittleEndian;
 
-/// Latin-1 text up to the first NUL, with surrounding blanks removed.
-pub(crate) fn latin1(bytes: &[u8]) -> String {
+/// Text of a fixed-size header field up to the first NUL, with surrounding blanks removed:
+/// UTF-8 where the bytes are valid UTF-8 (other software writes `µm` as the two bytes `c2 b5`),
+/// else Latin-1 (the instruments' own `b5` for `µ`). A Latin-1 string is valid UTF-8 only when it
+/// is ASCII or holds a run like `Âµ`, which no header field means, so the choice is unambiguous.
+pub(crate) fn header_text(bytes: &[u8]) -> String {
     let end = bytes.iter().position(|&b| b == 0).unwrap_or(bytes.len());
-    bytes[..end]
-        .iter()
-        .map(|&b| char::from(b))
-        .collect::<String>()
-        .trim()
-        .to_string()
+    let bytes = &bytes[..end];
+    match std::str::from_utf8(bytes) {
+        Ok(text) => text.trim().to_string(),
+        Err(_) => bytes
+            .iter()
+            .map(|&b| char::from(b))
+            .collect::<String>()
+            .trim()
+            .to_string(),
+    }
 }
 
 /// A time as `YYYY-MM-DDThh:mm:ssZ` (UTC, whole seconds; the civil date comes from `jiff`).
@@ -204,8 +211,11 @@ mod tests {
     }
 
     #[test]
-    fn latin1_stops_at_nul_and_trims() {
-        assert_eq!(latin1(b" 20X  Mirau\0junk"), "20X  Mirau");
-        assert_eq!(latin1(&[0xb5, b'm', b' ', b' ']), "µm");
+    fn header_text_stops_at_nul_and_trims_and_reads_latin1_or_utf8() {
+        assert_eq!(header_text(b" 20X  Mirau\0junk"), "20X  Mirau");
+        assert_eq!(header_text(&[0xb5, b'm', b' ', b' ']), "µm");
+        assert_eq!(header_text(&[0xc2, 0xb5, b'm', 0, 0xb5]), "µm");
+        assert_eq!(header_text(&[0xc5, 0]), "Å");
+        assert_eq!(header_text("Å".as_bytes()), "Å");
     }
 }
