@@ -3,29 +3,108 @@
 //! header" Gwyddion writes `# Channel: name`, `# Width: 12.34 µm`, `# Height: 5678.9 nm` (the
 //! physical size of the whole field) and `# Value units: m`.
 //!
+//! Gwyddion translates the keys into the language of its user interface (`# Breite:`,
+//! `# Höhe:` in German, `# Largeur:`, `# Hauteur:` in French, ...). The keys of the languages in
+//! [`KEYS`] are read by name; any other header is read by position and value, in the order
+//! Gwyddion writes it: the first length (`number unit`) is the width, the second the height, a
+//! bare length unit is the value unit, and a line before them that is neither is the channel name.
+//!
 //! The matrix itself carries no spacing, so a file without the `# Width:` and `# Height:` lines
 //! is an error that says how to re-export it. Width, height and value units may be m, mm, µm
 //! (um), nm, pm or Å; values in any other unit are an error. Numbers may use a decimal comma;
 //! `nan` marks a point that was not measured.
 
-use super::common::{build_map, parse_number, unit_scale};
+use super::common::{build_map, metres_per_unit, parse_number, unit_scale};
 use crate::error::{Result, SurfaceError};
 use crate::heightmap::HeightMap;
 use std::path::Path;
 
 pub(crate) const NAME: &str = "Gwyddion ASCII matrix";
 
-/// A text file whose first line is one of the comment lines of Gwyddion's header.
+/// What a header line of Gwyddion's export states.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Key {
+    Channel,
+    Width,
+    Height,
+    ValueUnits,
+}
+
+/// Gwyddion's header keys in the languages of its translations that a user is likely to meet
+/// (English, German, French, Czech, Spanish, Italian, Portuguese), compared case-insensitively.
+const KEYS: &[(&str, Key)] = &[
+    ("channel", Key::Channel),
+    ("kanal", Key::Channel),
+    ("canal", Key::Channel),
+    ("kanál", Key::Channel),
+    ("canale", Key::Channel),
+    ("width", Key::Width),
+    ("breite", Key::Width),
+    ("largeur", Key::Width),
+    ("šířka", Key::Width),
+    ("anchura", Key::Width),
+    ("ancho", Key::Width),
+    ("larghezza", Key::Width),
+    ("largura", Key::Width),
+    ("height", Key::Height),
+    ("höhe", Key::Height),
+    ("hauteur", Key::Height),
+    ("výška", Key::Height),
+    ("altura", Key::Height),
+    ("altezza", Key::Height),
+    ("value units", Key::ValueUnits),
+    ("werteinheiten", Key::ValueUnits),
+    ("einheiten der werte", Key::ValueUnits),
+    ("unités des valeurs", Key::ValueUnits),
+    ("unités de valeur", Key::ValueUnits),
+    ("jednotky hodnot", Key::ValueUnits),
+    ("unidades de valor", Key::ValueUnits),
+    ("unità dei valori", Key::ValueUnits),
+];
+
+/// A text file that opens with a `# key: value` header line, as Gwyddion's export does in every
+/// language.
 pub(crate) fn sniff(bytes: &[u8]) -> bool {
-    [&b"# Channel:"[..], b"# Width:", b"# Height:"]
-        .iter()
-        .any(|m| bytes.starts_with(m))
+    let first = bytes.split(|&b| b == b'\n').next().unwrap_or_default();
+    let Ok(first) = std::str::from_utf8(first) else {
+        return false;
+    };
+    first
+        .strip_prefix("# ")
+        .and_then(|rest| rest.split_once(':'))
+        .is_some_and(|(key, _)| !key.trim().is_empty() && !key.contains(['=', '\t']))
+}
+
+/// Which header entry a `# key: value` line is: by its key where the key is known, else by its
+/// value and by the entries already seen (Gwyddion writes channel, width, height, value units).
+fn classify(key: &str, value: &str, seen: &[Key]) -> Option<Key> {
+    let lower = key.trim().to_lowercase();
+    if let Some(&(_, k)) = KEYS.iter().find(|(name, _)| *name == lower) {
+        return Some(k);
+    }
+    if is_length(value) {
+        return [Key::Width, Key::Height]
+            .into_iter()
+            .find(|k| !seen.contains(k));
+    }
+    if metres_per_unit(value).is_some() {
+        return (!seen.contains(&Key::ValueUnits)).then_some(Key::ValueUnits);
+    }
+    (seen.is_empty()).then_some(Key::Channel)
+}
+
+/// Whether `value` reads as `number unit` with a length unit.
+fn is_length(value: &str) -> bool {
+    value
+        .split_once(char::is_whitespace)
+        .is_some_and(|(n, u)| parse_number(n).is_some() && metres_per_unit(u).is_some())
 }
 
 pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
     let fail = |m: String| SurfaceError::format(path, NAME, m);
     let text = std::str::from_utf8(bytes).map_err(|e| fail(format!("not UTF-8 text: {e}")))?;
     let (mut width, mut height, mut z_unit, mut channel) = (None, None, "m", None);
+    let mut seen = Vec::new();
     let mut heights = Vec::new();
     let mut nx = 0;
     for (number, line) in text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())) {
@@ -39,12 +118,16 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
                 continue;
             };
             let value = value.trim();
-            match key.trim() {
-                "Width" => width = Some(length(path, "Width", value)?),
-                "Height" => height = Some(length(path, "Height", value)?),
-                "Value units" => z_unit = value,
-                "Channel" => channel = Some(value),
-                _ => {}
+            let Some(entry) = classify(key, value, &seen) else {
+                continue;
+            };
+            seen.push(entry);
+            let key = key.trim();
+            match entry {
+                Key::Width => width = Some(length(path, key, value)?),
+                Key::Height => height = Some(length(path, key, value)?),
+                Key::ValueUnits => z_unit = value,
+                Key::Channel => channel = Some(value),
             }
             continue;
         }
@@ -75,8 +158,9 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
     }
     let (Some(width), Some(height)) = (width, height) else {
         return Err(fail(
-            "no '# Width:' and '# Height:' lines state the field size, so the spacing is \
-             unknown: export from Gwyddion with \"Add informational comment header\" checked"
+            "no '# Width:' and '# Height:' lines (or their translations) state the field size, so \
+             the spacing is unknown: export from Gwyddion with \"Add informational comment \
+             header\" checked"
                 .into(),
         ));
     };
