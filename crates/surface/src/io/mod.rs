@@ -140,11 +140,25 @@ pub fn read(path: &Path) -> Result<HeightMap> {
     read_bytes(path, &bytes)
 }
 
+/// Read the bytes of a file as `format`, without detection (one reader alone, as the fuzz
+/// targets drive them); `path` names the file in messages.
+pub fn read_bytes_as(format: Format, path: &Path, bytes: &[u8]) -> Result<HeightMap> {
+    let reader = READERS
+        .iter()
+        .find(|r| r.format == format)
+        .expect("every Format has a reader");
+    finish_read(reader, path, bytes)
+}
+
 /// Read a height map from the bytes of a file; `path` names it in messages and picks the format
 /// by extension when the content does not.
 pub fn read_bytes(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
     let reader =
         pick(path, bytes).ok_or_else(|| SurfaceError::UnknownFormat { path: path.into() })?;
+    finish_read(reader, path, bytes)
+}
+
+fn finish_read(reader: &Reader, path: &Path, bytes: &[u8]) -> Result<HeightMap> {
     let mut map = (reader.parse)(path, bytes)?;
     map.meta.source = Some(path.to_path_buf());
     map.meta.format = Some(reader.name.to_string());
