@@ -9,70 +9,37 @@
 //! `nan` marks a point that was not measured.
 
 use super::common::{build_map, parse_number, unit_scale};
+use super::text::{looks_like_gwyddion, matrix_rows, numbered_lines, utf8};
 use crate::error::{Result, SurfaceError};
 use crate::heightmap::HeightMap;
 use std::path::Path;
 
 pub(crate) const NAME: &str = "Gwyddion ASCII matrix";
 
-/// A text file whose first line is one of the comment lines of Gwyddion's header.
+/// A text file whose first non-blank line is a `#` comment.
 pub(crate) fn sniff(bytes: &[u8]) -> bool {
-    [&b"# Channel:"[..], b"# Width:", b"# Height:"]
-        .iter()
-        .any(|m| bytes.starts_with(m))
+    looks_like_gwyddion(bytes)
 }
 
 pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
     let fail = |m: String| SurfaceError::format(path, NAME, m);
-    let text = std::str::from_utf8(bytes).map_err(|e| fail(format!("not UTF-8 text: {e}")))?;
+    let text = utf8(path, NAME, bytes)?;
     let (mut width, mut height, mut z_unit, mut channel) = (None, None, "m", None);
-    let mut heights = Vec::new();
-    let mut nx = 0;
-    for (number, line) in text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())) {
-        if let Some(comment) = line.strip_prefix('#') {
-            if !heights.is_empty() {
-                return Err(fail(format!(
-                    "line {number}: a comment among the data rows"
-                )));
-            }
-            let Some((key, value)) = comment.split_once(':') else {
-                continue;
-            };
-            let value = value.trim();
-            match key.trim() {
-                "Width" => width = Some(length(path, "Width", value)?),
-                "Height" => height = Some(length(path, "Height", value)?),
-                "Value units" => z_unit = value,
-                "Channel" => channel = Some(value),
-                _ => {}
-            }
+    let mut lines = numbered_lines(text).peekable();
+    while let Some((_, comment)) = lines.next_if(|(_, l)| l.starts_with('#')) {
+        let Some((key, value)) = comment[1..].split_once(':') else {
             continue;
-        }
-        if line.is_empty() {
-            continue;
-        }
-        let start = heights.len();
-        for token in line.split_whitespace() {
-            let v = parse_number(token)
-                .ok_or_else(|| fail(format!("line {number}: '{token}' is not a number")))?;
-            if v.is_infinite() {
-                return Err(fail(format!("line {number}: infinite value")));
-            }
-            heights.push(v);
-        }
-        let columns = heights.len() - start;
-        if start == 0 {
-            nx = columns;
-        } else if columns != nx {
-            return Err(fail(format!(
-                "line {number} holds {columns} values, the first data row {nx}: the file is \
-                 truncated or not a matrix"
-            )));
+        };
+        let value = value.trim();
+        match key.trim() {
+            "Width" => width = Some(length(path, "Width", value)?),
+            "Height" => height = Some(length(path, "Height", value)?),
+            "Value units" => z_unit = value,
+            "Channel" => channel = Some(value),
+            _ => {}
         }
     }
-    if heights.is_empty() {
-        return Err(fail("the file holds no data rows".into()));
-    }
+    let (mut heights, nx) = matrix_rows(path, NAME, lines)?;
     let (Some(width), Some(height)) = (width, height) else {
         return Err(fail(
             "no '# Width:' and '# Height:' lines state the field size, so the spacing is \
