@@ -345,6 +345,10 @@ cases! {
     // FRT: blocks 0x0065, 0x0077, 0x0066 (columns and rows as little-endian u32 at 38 and 42),
     // 0x0067, 0x006c, then the counts of block 0x000b from 124.
     frt: binary("frt-1.frt", 124, Lie::U32Le(&[38, 42]));
+    // MountainsMap document: a compound file (512-byte header); the x and y point counts (960,
+    // 600) of the measured surface are u32 entries of the ScopedContents stream, which lie at
+    // 160440 and 160647 of the file.
+    mnt: binary("mnt-1.mnt", 512, Lie::U32Le(&[160_440, 160_647]));
     // NanoFocus NMS: 3468-byte header with columns and rows (512) as little-endian u32 at 1368
     // and 1372. Its version string sits at 32, so flipping the first bytes hits the data type.
     nms: binary("nms-1.nms", 3468, Lie::U32Le(&[1368, 1372]));
@@ -380,6 +384,7 @@ fn every_fixture_is_covered() {
         "sur-2.sur",
         "al3d-1.al3d",
         "frt-1.frt",
+        "mnt-1.mnt",
         "nms-1.nms",
         "tmd-1.tmd",
         "xyz-1.txt",

@@ -1,5 +1,5 @@
-//! The profiler and text readers added after the first set (FRT MicroProf, NanoFocus NMS,
-//! TrueMap TMD, `x y z` lists, `h= w=` header matrices) on real files (tests/data, provenance in
+//! The profiler and text readers added after the first set (FRT MicroProf, MountainsMap
+//! documents, NanoFocus NMS, TrueMap TMD, `x y z` lists, `h= w=` header matrices) on real files (tests/data, provenance in
 //! its README): grid, lateral size, valid fraction and plane-levelled Sq against
 //! SurfaceTopography 1.27.1, and, where the two disagree, a test that shows from the file's
 //! bytes which is right.
@@ -61,6 +61,29 @@ fn tmd_truemap() {
         map.meta
             .extra
             .contains(&("comment".into(), "Created by TrueMap v6".into()))
+    );
+}
+
+#[test]
+fn mnt_mountains_document() {
+    let map = read("mnt-1.mnt");
+    assert_eq!(
+        io::detect(&fixture("mnt-1.mnt"), &bytes("mnt-1.mnt")),
+        Some(Format::Mnt)
+    );
+    // SurfaceTopography: (960, 600), (1779.257393117831, 1112.7325542570952) µm,
+    // Sq 0.024367248912793675 µm, no masked points, channel 'A48_10x_P1'.
+    check(
+        &map,
+        (960, 600),
+        (1779.257393117831e-6, 1112.7325542570952e-6),
+        2.4367248912793675e-8,
+    );
+    assert_eq!(map.valid_fraction(), 1.0);
+    assert!(
+        map.meta
+            .extra
+            .contains(&("surface".into(), "A48_10x_P1".into()))
     );
 }
 

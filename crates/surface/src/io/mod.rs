@@ -4,11 +4,13 @@
 
 mod al3d;
 mod binary;
+mod cfb;
 mod common;
 mod frt;
 mod gsf;
 mod gwyddion_ascii;
 mod header_matrix;
+mod mnt;
 mod nms;
 mod plu;
 mod sdf;
@@ -50,6 +52,8 @@ pub enum Format {
     Al3d,
     /// FRT MicroProf `.frt`.
     Frt,
+    /// Digital Surf MountainsMap document `.mnt`.
+    Mnt,
     /// NanoFocus µsurf `.nms`.
     Nms,
     /// TrueMap / GelSight `.tmd`.
@@ -121,6 +125,13 @@ const READERS: &[Reader] = &[
         extensions: &["frt"],
         sniff: frt::sniff,
         parse: frt::parse,
+    },
+    Reader {
+        format: Format::Mnt,
+        name: mnt::NAME,
+        extensions: &["mnt"],
+        sniff: mnt::sniff,
+        parse: mnt::parse,
     },
     Reader {
         format: Format::Nms,
