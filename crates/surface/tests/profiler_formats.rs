@@ -1,8 +1,8 @@
 //! The profiler and text readers added after the first set (FRT MicroProf, MountainsMap
-//! documents, NanoFocus NMS, TrueMap TMD, `x y z` lists, `h= w=` header matrices) on real files (tests/data, provenance in
-//! its README): grid, lateral size, valid fraction and plane-levelled Sq against
-//! SurfaceTopography 1.27.1, and, where the two disagree, a test that shows from the file's
-//! bytes which is right.
+//! documents, NanoFocus NMS, TrueMap TMD, `x y z` lists, `h= w=` header matrices) on real files
+//! (tests/data, provenance in its README): grid, lateral size, valid fraction and plane-levelled
+//! Sq against SurfaceTopography 1.27.1, and, where the two disagree, a test that shows from the
+//! file's bytes which is right.
 //!
 //! Reference values: `SurfaceTopography.read_topography(path)`, then `nb_grid_pts`,
 //! `physical_sizes` (in its `unit`), the masked fraction of `heights()` and
@@ -119,9 +119,9 @@ fn nms_lateral_size_is_160_um_not_160_m() {
     assert_eq!((u32_at(1368), u32_at(1372)), (512, 512));
     let step = f64_at(1376);
     assert_eq!(step, f64_at(1384));
-    // 512 steps make 160 000 units: a round field in nanometres (160 µm, the field of a µsurf
-    // 100× objective), while in SurfaceTopography's millimetres it would be 160 m across, a
-    // 31 cm pixel, for heights that span 3.3 (zmax − zmin at 24 and 16, in µm).
+    // 512 steps make 160 000 units: a round 160 µm field in nanometres, while in
+    // SurfaceTopography's millimetres it would be 160 m across, a 31 cm pixel in a confocal
+    // microscope image, for heights that span 3.3 (zmax − zmin at 24 and 16, in µm).
     assert!((512.0 * step - 160_000.0).abs() < 0.01, "{}", 512.0 * step);
     assert!((f64_at(24) - f64_at(16) - 3.318).abs() < 0.001);
     // D. Mendroch's musurf_reader, written for this OM_MS_2.0 layout, converts these steps to
@@ -180,6 +180,34 @@ fn frt_zero_line_is_outside_the_valid_range() {
     let sq = sq_plane(&st);
     assert!(rel(sq, 4.396005581656494e-6) < 0.005, "Sq {sq:e} m");
     assert_eq!(st.valid_count(), 250_000 - 76_456);
+}
+
+/// Without block 0x000b the reader takes the topography image of the multi-image block 0x007d,
+/// which in this file holds the same counts.
+#[test]
+fn frt_topography_from_the_multi_image_block() {
+    let mut b = bytes("frt-1.frt");
+    assert_eq!(u16::from_le_bytes([b[118], b[119]]), 0x000b);
+    // An unknown block type (0x00ff) in place of 0x000b: the block is skipped.
+    b[118..120].copy_from_slice(&0x00ffu16.to_le_bytes());
+    let from_multi = io::read_bytes(Path::new("multi.frt"), &b).unwrap();
+    let from_single = read("frt-1.frt");
+    assert_eq!(from_multi.heights().shape(), from_single.heights().shape());
+    assert_eq!(from_multi.valid_count(), from_single.valid_count());
+    assert!(
+        from_multi
+            .heights()
+            .iter()
+            .zip(from_single.heights())
+            .all(|(a, b)| a == b || (a.is_nan() && b.is_nan()))
+    );
+    // The intensity image is still listed as another channel.
+    assert!(
+        from_multi
+            .meta
+            .extra
+            .contains(&("channel".into(), "Intensity".into()))
+    );
 }
 
 #[test]

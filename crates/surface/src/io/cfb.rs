@@ -227,3 +227,99 @@ impl<'a, 'b> Compound<'a, 'b> {
         Ok(out)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    fn put_u32(v: &mut [u8], at: usize, x: u32) {
+        v[at..at + 4].copy_from_slice(&x.to_le_bytes());
+    }
+
+    /// A version-3 compound file after MS-CFB: sector 0 the FAT, 1 the directory (root entry
+    /// and the 100-byte stream "Small"), 2 the mini FAT, 3 the mini stream holding "Small" in
+    /// mini sectors 0 and 1.
+    fn small_file() -> Vec<u8> {
+        let mut f = vec![0u8; 512 * 5];
+        f[..8].copy_from_slice(SIGNATURE);
+        f[0x18..0x1a].copy_from_slice(&0x3eu16.to_le_bytes());
+        f[0x1a..0x1c].copy_from_slice(&3u16.to_le_bytes());
+        f[0x1c..0x1e].copy_from_slice(&0xfffeu16.to_le_bytes());
+        f[0x1e..0x20].copy_from_slice(&9u16.to_le_bytes());
+        f[0x20..0x22].copy_from_slice(&6u16.to_le_bytes());
+        put_u32(&mut f, 0x2c, 1);
+        put_u32(&mut f, 0x30, 1);
+        put_u32(&mut f, 0x38, 4096);
+        put_u32(&mut f, 0x3c, 2);
+        put_u32(&mut f, 0x40, 1);
+        put_u32(&mut f, 0x44, END_OF_CHAIN);
+        put_u32(&mut f, 0x4c, 0);
+        for k in 1..HEADER_DIFAT {
+            put_u32(&mut f, 0x4c + 4 * k, FREE);
+        }
+        let sector = |n: usize| 512 * (n + 1);
+        for (k, next) in [0xffff_fffd, END_OF_CHAIN, END_OF_CHAIN, END_OF_CHAIN]
+            .into_iter()
+            .enumerate()
+        {
+            put_u32(&mut f, sector(0) + 4 * k, next);
+        }
+        for k in 4..128 {
+            put_u32(&mut f, sector(0) + 4 * k, FREE);
+        }
+        for (i, (name, kind, start, size)) in [
+            ("Root Entry", TYPE_ROOT, 3, 128),
+            ("Small", TYPE_STREAM, 0, 100),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let e = sector(1) + ENTRY_SIZE * i;
+            let units: Vec<u8> = name.encode_utf16().flat_map(u16::to_le_bytes).collect();
+            f[e..e + units.len()].copy_from_slice(&units);
+            f[e + 64..e + 66].copy_from_slice(&(units.len() as u16 + 2).to_le_bytes());
+            f[e + 66] = kind;
+            put_u32(&mut f, e + 116, start);
+            put_u32(&mut f, e + 120, size);
+        }
+        put_u32(&mut f, sector(2), 1);
+        put_u32(&mut f, sector(2) + 4, END_OF_CHAIN);
+        for (k, byte) in f[sector(3)..sector(3) + 100].iter_mut().enumerate() {
+            *byte = k as u8;
+        }
+        f
+    }
+
+    #[test]
+    fn small_streams_come_from_the_mini_stream() {
+        let f = small_file();
+        let b = Binary::new(Path::new("c.bin"), "test", &f);
+        let c = Compound::open(&b).unwrap();
+        let small = c.stream("Small").unwrap();
+        assert_eq!(small, (0..100u8).collect::<Vec<_>>());
+        let err = c.stream("Missing").err().unwrap().to_string();
+        assert!(err.contains("c.bin") && err.contains("Missing"), "{err}");
+    }
+
+    #[test]
+    fn broken_chains_are_errors() {
+        // The mini chain ends after one of the two mini sectors "Small" needs.
+        let mut f = small_file();
+        put_u32(&mut f, 512 * 3, END_OF_CHAIN);
+        let b = Binary::new(Path::new("short.bin"), "test", &f);
+        let err = Compound::open(&b).unwrap().stream("Small").err().unwrap();
+        assert!(err.to_string().contains("ends early"), "{err}");
+        // The directory chain points at itself.
+        let mut f = small_file();
+        put_u32(&mut f, 512 + 4, 1);
+        let b = Binary::new(Path::new("loop.bin"), "test", &f);
+        let err = Compound::open(&b).err().unwrap().to_string();
+        assert!(err.contains("loop.bin") && err.contains("loops"), "{err}");
+        // A file cut inside a sector.
+        let f = small_file();
+        let b = Binary::new(Path::new("cut.bin"), "test", &f[..f.len() - 1]);
+        let err = Compound::open(&b).err().unwrap().to_string();
+        assert!(err.contains("truncated"), "{err}");
+    }
+}

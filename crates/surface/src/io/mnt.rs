@@ -328,3 +328,117 @@ fn array(
     }
     Ok((out, size))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::io::Write;
+
+    fn tlv(tag: u16, content: &[u8]) -> Vec<u8> {
+        let mut out = tag.to_le_bytes().to_vec();
+        out.extend((content.len() as u64).to_le_bytes());
+        out.extend(content);
+        out
+    }
+
+    fn level(entries: &[(u16, Vec<u8>)]) -> Vec<u8> {
+        entries.iter().flat_map(|(t, c)| tlv(*t, c)).collect()
+    }
+
+    fn text(s: &str) -> Vec<u8> {
+        let mut out = vec![TEXT_MARKER];
+        out.extend(s.encode_utf16().flat_map(u16::to_le_bytes));
+        out
+    }
+
+    fn zlib(bytes: &[u8]) -> Vec<u8> {
+        let mut e = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::default());
+        e.write_all(bytes).unwrap();
+        e.finish().unwrap()
+    }
+
+    /// An array object of class `class`: `count` elements of `size` bytes in the given blocks
+    /// (first element, bytes).
+    fn array_object(class: u32, count: u32, size: u64, blocks: &[(u64, &[u8])]) -> Vec<u8> {
+        let mut data = (u64::from(count) * size).to_le_bytes().to_vec();
+        for (first, bytes) in blocks {
+            let z = zlib(bytes);
+            data.extend(first.to_le_bytes());
+            data.extend(((bytes.len() as u64 / size) as u32).to_le_bytes());
+            data.extend((z.len() as u32).to_le_bytes());
+            data.extend(z);
+        }
+        let body = level(&[(1, count.to_le_bytes().to_vec()), (2, data)]);
+        level(&[(1, level(&[(1, class.to_le_bytes().to_vec())])), (2, body)])
+    }
+
+    fn axis(step: f64, unit: &str, n: u32) -> Vec<u8> {
+        let scale = level(&[(1, step.to_le_bytes().to_vec()), (2, text(unit))]);
+        let axis = level(&[(HEADER, scale), (1, n.to_le_bytes().to_vec())]);
+        level(&[(HEADER, axis)])
+    }
+
+    /// A 3 × 2 measurement with 32-bit counts 0..6 in two blocks stored out of order, height
+    /// step 2 nm, origin 1 µm, and a mask that leaves point (1, 1) unmeasured.
+    fn measurement(blocks: &[(u64, &[u8])]) -> Vec<u8> {
+        let mut mask = vec![MASK_MEASURED; 5 * 4];
+        mask[2 * 5 + 2] = 22;
+        let mask_body = level(&[
+            (1, 3u32.to_le_bytes().to_vec()),
+            (2, 2u32.to_le_bytes().to_vec()),
+            (5, array_object(9048, 20, 1, &[(0, &mask)])),
+        ]);
+        let mask_object = level(&[
+            (1, level(&[(1, CLASS_MASK.to_le_bytes().to_vec())])),
+            (2, mask_body),
+        ]);
+        let grid = level(&[
+            (1, axis(0.5, "µm", 3)),
+            (2, axis(0.25, "mm", 2)),
+            (3, mask_object),
+        ]);
+        let z = level(&[
+            (1, 2.0f64.to_le_bytes().to_vec()),
+            (2, text("nm")),
+            (3, text("µm")),
+            (5, 1.0f64.to_le_bytes().to_vec()),
+        ]);
+        level(&[
+            (HEADER, grid),
+            (1, array_object(CLASS_HEIGHTS, 6, 4, blocks)),
+            (2, level(&[(HEADER, z)])),
+        ])
+    }
+
+    fn counts(range: std::ops::Range<i32>) -> Vec<u8> {
+        range.flat_map(i32::to_le_bytes).collect()
+    }
+
+    #[test]
+    fn measurement_with_mask_and_blocks_out_of_order() {
+        let (first, second) = (counts(0..2), counts(2..6));
+        let bytes = measurement(&[(2, &second), (0, &first)]);
+        let b = Binary::new(Path::new("m.mnt"), NAME, &bytes);
+        let m = Level::of(&b, &bytes, false, "test").unwrap();
+        let map = surface(&b, &m, "test").unwrap().map.unwrap();
+        assert_eq!((map.nx(), map.ny()), (3, 2));
+        assert_eq!((map.dx(), map.dy()), (0.5e-6, 0.25e-3));
+        // count · 2 nm + 1 µm
+        assert!((map.get(2, 0).unwrap() - (2.0 * 2e-9 + 1e-6)).abs() < 1e-18);
+        assert!((map.get(0, 1).unwrap() - (3.0 * 2e-9 + 1e-6)).abs() < 1e-18);
+        assert!(!map.is_valid(1, 1));
+        assert_eq!(map.valid_count(), 5);
+    }
+
+    #[test]
+    fn blocks_that_leave_a_gap_are_an_error() {
+        let bytes = measurement(&[(0, &counts(0..2)), (3, &counts(3..6))]);
+        let b = Binary::new(Path::new("gap.mnt"), NAME, &bytes);
+        let m = Level::of(&b, &bytes, false, "test").unwrap();
+        let err = surface(&b, &m, "test").err().unwrap().to_string();
+        assert!(
+            err.contains("gap.mnt") && err.contains("gap or overlap"),
+            "{err}"
+        );
+    }
+}
