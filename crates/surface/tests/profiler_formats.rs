@@ -242,6 +242,7 @@ fn xyz_point_list() {
     // (in the file's unit); the reader takes the unit as metres and says so.
     check(&map, (4, 4), (4.0, 4.0), 0.32596012026013244);
     assert_eq!((map.dx(), map.dy()), (1.0, 1.0));
+    assert_eq!(map.valid_fraction(), 1.0);
     // "1 1 2", "1 2 2", "2 1 1": x slowest in the file, ix along x in the map.
     assert_eq!(
         (map.get(1, 1), map.get(1, 2), map.get(2, 1)),
