@@ -156,7 +156,7 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
         32 => 4,
         other => return Err(b.err(format!("{other} bits per point is not 16 or 32"))),
     };
-    let what = "topography counts";
+    let what = "topography counts (within their block)";
     let data = Binary::new(path, NAME, image.data).array(0, nx * ny, point, what)?;
     image.data = data;
     let (first_valid, last_valid) = match block(0x0070, 8)? {
