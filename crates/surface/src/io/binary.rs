@@ -7,7 +7,12 @@ use crate::error::{Result, SurfaceError};
 use crate::heightmap::HeightMap;
 use crate::io::common::{build_map, data_bytes, grid_points};
 use byteorder::{BigEndian, ByteOrder, LittleEndian};
+use std::io::Read;
 use std::path::Path;
+
+/// Largest ratio of inflated to deflated size zlib can reach (1032:1, zlib technical details,
+/// <https://zlib.net/zlib_tech.html>): a header claiming more is lying.
+pub(crate) const MAX_ZLIB_RATIO: usize = 1032;
 
 /// The bytes of one file together with its name and format, for error messages.
 pub(crate) struct Binary<'a> {
@@ -121,6 +126,36 @@ impl<'a> Binary<'a> {
                 "{what} = {value} must be a positive, finite number"
             )))
         }
+    }
+
+    /// Inflate the zlib stream `input` (part of this file) onto `out`; it must give exactly
+    /// `raw` bytes. A claim beyond zlib's largest expansion is refused before inflating, and
+    /// inflation stops one byte past `raw`, so a lying size cannot make it allocate more.
+    pub(crate) fn inflate(
+        &self,
+        input: &[u8],
+        raw: usize,
+        out: &mut Vec<u8>,
+        what: &str,
+    ) -> Result<()> {
+        if raw > input.len().saturating_mul(MAX_ZLIB_RATIO) {
+            return Err(self.err(format!(
+                "{what}: {} compressed bytes cannot inflate to the {raw} bytes claimed",
+                input.len()
+            )));
+        }
+        let before = out.len();
+        flate2::read::ZlibDecoder::new(input)
+            .take(raw as u64 + 1)
+            .read_to_end(out)
+            .map_err(|e| self.err(format!("{what}: {e}")))?;
+        if out.len() - before != raw {
+            return Err(self.err(format!(
+                "{what} inflates to {} bytes, not the {raw} its header states",
+                out.len() - before
+            )));
+        }
+        Ok(())
     }
 
     /// The height map of `ny` rows of `nx` heights in metres (NaN = not measured).

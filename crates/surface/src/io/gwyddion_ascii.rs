@@ -15,11 +15,17 @@
 //! `nan` marks a point that was not measured.
 
 use super::common::{build_map, metres_per_unit, parse_number, unit_scale};
+use super::text::{looks_like_gwyddion, matrix_rows, numbered_lines, utf8};
 use crate::error::{Result, SurfaceError};
 use crate::heightmap::HeightMap;
 use std::path::Path;
 
 pub(crate) const NAME: &str = "Gwyddion ASCII matrix";
+
+/// A text file whose first non-blank line is a `#` comment.
+pub(crate) fn sniff(bytes: &[u8]) -> bool {
+    looks_like_gwyddion(bytes)
+}
 
 /// What a header line of Gwyddion's export states.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -62,19 +68,6 @@ const KEYS: &[(&str, Key)] = &[
     ("unità dei valori", Key::ValueUnits),
 ];
 
-/// A text file that opens with a `# key: value` header line, as Gwyddion's export does in every
-/// language.
-pub(crate) fn sniff(bytes: &[u8]) -> bool {
-    let first = bytes.split(|&b| b == b'\n').next().unwrap_or_default();
-    let Ok(first) = std::str::from_utf8(first) else {
-        return false;
-    };
-    first
-        .strip_prefix("# ")
-        .and_then(|rest| rest.split_once(':'))
-        .is_some_and(|(key, _)| !key.trim().is_empty() && !key.contains(['=', '\t']))
-}
-
 /// Which header entry a `# key: value` line is: by its key where the key is known, else by its
 /// value and by the entries already seen (Gwyddion writes channel, width, height, value units).
 fn classify(key: &str, value: &str, seen: &[Key]) -> Option<Key> {
@@ -102,60 +95,28 @@ fn is_length(value: &str) -> bool {
 
 pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
     let fail = |m: String| SurfaceError::format(path, NAME, m);
-    let text = std::str::from_utf8(bytes).map_err(|e| fail(format!("not UTF-8 text: {e}")))?;
+    let text = utf8(path, NAME, bytes)?;
     let (mut width, mut height, mut z_unit, mut channel) = (None, None, "m", None);
     let mut seen = Vec::new();
-    let mut heights = Vec::new();
-    let mut nx = 0;
-    for (number, line) in text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())) {
-        if let Some(comment) = line.strip_prefix('#') {
-            if !heights.is_empty() {
-                return Err(fail(format!(
-                    "line {number}: a comment among the data rows"
-                )));
-            }
-            let Some((key, value)) = comment.split_once(':') else {
-                continue;
-            };
-            let value = value.trim();
-            let Some(entry) = classify(key, value, &seen) else {
-                continue;
-            };
-            seen.push(entry);
-            let key = key.trim();
-            match entry {
-                Key::Width => width = Some(length(path, key, value)?),
-                Key::Height => height = Some(length(path, key, value)?),
-                Key::ValueUnits => z_unit = value,
-                Key::Channel => channel = Some(value),
-            }
+    let mut lines = numbered_lines(text).peekable();
+    while let Some((_, comment)) = lines.next_if(|(_, l)| l.starts_with('#')) {
+        let Some((key, value)) = comment[1..].split_once(':') else {
             continue;
-        }
-        if line.is_empty() {
+        };
+        let value = value.trim();
+        let Some(entry) = classify(key, value, &seen) else {
             continue;
-        }
-        let start = heights.len();
-        for token in line.split_whitespace() {
-            let v = parse_number(token)
-                .ok_or_else(|| fail(format!("line {number}: '{token}' is not a number")))?;
-            if v.is_infinite() {
-                return Err(fail(format!("line {number}: infinite value")));
-            }
-            heights.push(v);
-        }
-        let columns = heights.len() - start;
-        if start == 0 {
-            nx = columns;
-        } else if columns != nx {
-            return Err(fail(format!(
-                "line {number} holds {columns} values, the first data row {nx}: the file is \
-                 truncated or not a matrix"
-            )));
+        };
+        seen.push(entry);
+        let key = key.trim();
+        match entry {
+            Key::Width => width = Some(length(path, key, value)?),
+            Key::Height => height = Some(length(path, key, value)?),
+            Key::ValueUnits => z_unit = value,
+            Key::Channel => channel = Some(value),
         }
     }
-    if heights.is_empty() {
-        return Err(fail("the file holds no data rows".into()));
-    }
+    let (mut heights, nx) = matrix_rows(path, NAME, lines)?;
     let (Some(width), Some(height)) = (width, height) else {
         return Err(fail(
             "no '# Width:' and '# Height:' lines (or their translations) state the field size, so \

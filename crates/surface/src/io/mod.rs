@@ -4,14 +4,22 @@
 
 mod al3d;
 mod binary;
+mod cfb;
 mod common;
+mod frt;
 mod gsf;
 mod gwyddion_ascii;
+mod header_matrix;
+mod mnt;
+mod nms;
 mod plu;
 mod sdf;
 mod sur;
+mod text;
+mod tmd;
 mod wyko;
 mod x3p;
+mod xyz;
 mod zygo;
 
 use crate::error::{Result, SurfaceError};
@@ -42,6 +50,18 @@ pub enum Format {
     Sur,
     /// Alicona `.al3d`.
     Al3d,
+    /// FRT MicroProf `.frt`.
+    Frt,
+    /// Digital Surf MountainsMap document `.mnt`.
+    Mnt,
+    /// NanoFocus µsurf `.nms`.
+    Nms,
+    /// TrueMap / GelSight `.tmd`.
+    Tmd,
+    /// Text matrix with an `h= w= pixel size=` header.
+    HeaderMatrix,
+    /// Text `x y z` point list on a regular grid.
+    XyzList,
 }
 
 /// A format's reader: its name, a content test and the parser.
@@ -54,6 +74,8 @@ struct Reader {
 }
 
 /// Binary formats with magic bytes come first; the text formats, whose tests are looser, last.
+/// Each text layout has its own content test (see `text`); a `.txt` file that passes none is
+/// read as a Gwyddion matrix, the first reader listing that extension.
 const READERS: &[Reader] = &[
     Reader {
         format: Format::X3p,
@@ -98,6 +120,34 @@ const READERS: &[Reader] = &[
         parse: al3d::parse,
     },
     Reader {
+        format: Format::Frt,
+        name: frt::NAME,
+        extensions: &["frt"],
+        sniff: frt::sniff,
+        parse: frt::parse,
+    },
+    Reader {
+        format: Format::Mnt,
+        name: mnt::NAME,
+        extensions: &["mnt"],
+        sniff: mnt::sniff,
+        parse: mnt::parse,
+    },
+    Reader {
+        format: Format::Nms,
+        name: nms::NAME,
+        extensions: &["nms"],
+        sniff: nms::sniff,
+        parse: nms::parse,
+    },
+    Reader {
+        format: Format::Tmd,
+        name: tmd::NAME,
+        extensions: &["tmd"],
+        sniff: tmd::sniff,
+        parse: tmd::parse,
+    },
+    Reader {
         format: Format::Gsf,
         name: gsf::NAME,
         extensions: &["gsf"],
@@ -117,6 +167,20 @@ const READERS: &[Reader] = &[
         extensions: &["txt", "asc", "csv"],
         sniff: gwyddion_ascii::sniff,
         parse: gwyddion_ascii::parse,
+    },
+    Reader {
+        format: Format::HeaderMatrix,
+        name: header_matrix::NAME,
+        extensions: &[],
+        sniff: header_matrix::sniff,
+        parse: header_matrix::parse,
+    },
+    Reader {
+        format: Format::XyzList,
+        name: xyz::NAME,
+        extensions: &["xyz"],
+        sniff: xyz::sniff,
+        parse: xyz::parse,
     },
 ];
 
