@@ -24,7 +24,7 @@
 
 use crate::error::Result;
 use crate::heightmap::HeightMap;
-use crate::io::binary::{Binary, Le, latin1, unix_time_iso};
+use crate::io::binary::{Binary, Le, header_text, unix_time_iso};
 use byteorder::ByteOrder;
 use std::path::Path;
 
@@ -186,7 +186,7 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
     meta.instrument = Some("FRT MicroProf".into());
     if let Some(serial) = block(0x008e, 4)? {
         let len = (u32_at(serial, 0) as usize).min(serial.len() - 4);
-        let serial = latin1(&serial[4..4 + len]);
+        let serial = header_text(&serial[4..4 + len]);
         if !serial.is_empty() {
             meta.instrument = Some(format!("FRT MicroProf, sensor {serial}"));
         }
@@ -198,7 +198,7 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
         }
     }
     if let Some(text) = block(0x0065, 0)? {
-        let text = latin1(text);
+        let text = header_text(text);
         if !text.is_empty() {
             meta.extra.push(("description".into(), text));
         }

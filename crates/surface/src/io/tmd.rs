@@ -10,7 +10,7 @@
 
 use crate::error::Result;
 use crate::heightmap::HeightMap;
-use crate::io::binary::{Binary, Le, latin1};
+use crate::io::binary::{Binary, Le, header_text};
 use std::path::Path;
 
 pub(crate) const NAME: &str = "TrueMap TMD";
@@ -42,7 +42,7 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
                  bytes: the file is truncated or not a TrueMap file"
             ))
         })?;
-    let comment = latin1(&tail[..comment_len]);
+    let comment = header_text(&tail[..comment_len]);
     let header = MAGIC_SIZE + comment_len + 1;
     let nx = b.u32::<Le>(header, "number of columns")?;
     let ny = b.u32::<Le>(header + 4, "number of rows")?;
