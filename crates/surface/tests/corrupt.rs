@@ -331,6 +331,21 @@ cases! {
     // Alicona: 52-byte tag records; the values of "Cols" (200) and "Rows" (296) start at 141
     // and 713. The depth image starts at 1261 (DepthImageOffset).
     al3d: binary("al3d-1.al3d", 1261, Lie::PaddedDecimal(&[141, 713]));
+    // Nanoscope: a text header up to the first data block (Data offset 40960); the first image
+    // section's grid is the first `Samps/line` directly followed by `Number of lines`.
+    nanoscope_4_channels: binary("di-1.di", 40960, Lie::Text(&[(
+        "\\Samps/line: 512\r\n\\Number of lines: 512",
+        "\\Samps/line: 40000\r\n\\Number of lines: 40000",
+    )]));
+    nanoscope_zsensor: binary("di-3.di", 40960, Lie::Text(&[(
+        "\\Samps/line: 256\r\n\\Number of lines: 256",
+        "\\Samps/line: 40000\r\n\\Number of lines: 40000",
+    )]));
+    // Nanosurf: an INI header ended by `#!` at 30746; the first data set's grid.
+    nid: binary("nid-1.nid", 30748, Lie::Text(&[(
+        "Points=256\r\nLines=256\r\n",
+        "Points=40000\r\nLines=40000\r\n",
+    )]));
 }
 
 /// Every file in tests/data has a case above.
@@ -351,6 +366,9 @@ fn every_fixture_is_covered() {
         "plu-1.plu",
         "sur-2.sur",
         "al3d-1.al3d",
+        "di-1.di",
+        "di-3.di",
+        "nid-1.nid",
     ];
     for entry in std::fs::read_dir(fixture("")).unwrap() {
         let name = entry.unwrap().file_name().into_string().unwrap();

@@ -1,0 +1,225 @@
+//! The AFM and profile readers (Bruker Nanoscope, Nanosurf NID, Asylum/Igor IBW, PicoView MI,
+//! WSxM, Bruker Vision64 OPDx) on real files (tests/data, provenance in its README): grid,
+//! lateral size, the channels listed and the one read by default, channel selection by name and
+//! index, and Sq after removing the least-squares plane against SurfaceTopography.
+//!
+//! Reference values: SurfaceTopography 1.27.1, `read_topography(path)` (its default channel),
+//! `t.rms_height_from_area()` (rms about the mean, no levelling) and
+//! `t.detrend('height').rms_height_from_area()` (levelled Sq), and `open_topography(path)
+//! .channels` for the channel lists; run on these very files.
+
+mod fixture_tools;
+
+use fixture_tools::{fixture, rel, rms_about_mean, sq_plane};
+use gonio_surface::io::{self, ReadOptions};
+use gonio_surface::{ChannelSelector, HeightMap};
+
+/// What SurfaceTopography reports for a fixture, and the channels gonio lists in it.
+struct Expected {
+    name: &'static str,
+    format: &'static str,
+    grid: (usize, usize),
+    /// Lateral size, m.
+    size: (f64, f64),
+    /// Channel names as gonio lists them, and which are height channels.
+    channels: &'static [(&'static str, bool)],
+    /// Index of the channel read by default.
+    default: usize,
+    /// SurfaceTopography's rms height about the mean, m.
+    rms: f64,
+    /// SurfaceTopography's Sq after removing the least-squares plane, m.
+    sq: f64,
+}
+
+fn read(name: &str) -> HeightMap {
+    io::read(&fixture(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+fn read_channel(name: &str, channel: &str) -> gonio_surface::Result<HeightMap> {
+    let options = ReadOptions {
+        channel: Some(channel.parse().unwrap()),
+    };
+    io::read_with(&fixture(name), &options)
+}
+
+/// Grid, size, channels, valid fraction and Sq of the default read, within 0.5 % of
+/// SurfaceTopography's Sq.
+fn check(e: &Expected) {
+    let map = read(e.name);
+    assert_eq!(map.meta.format.as_deref(), Some(e.format));
+    assert_eq!((map.nx(), map.ny()), e.grid, "{}: grid", e.name);
+    let size = (map.dx() * map.nx() as f64, map.dy() * map.ny() as f64);
+    assert!(
+        rel(size.0, e.size.0) < 1e-9,
+        "{}: x size {} m",
+        e.name,
+        size.0
+    );
+    assert!(
+        rel(size.1, e.size.1) < 1e-9,
+        "{}: y size {} m",
+        e.name,
+        size.1
+    );
+    let channels: Vec<(&str, bool)> = map
+        .meta
+        .channels
+        .iter()
+        .map(|c| (c.name.as_str(), c.is_height))
+        .collect();
+    assert_eq!(channels, e.channels, "{}: channels", e.name);
+    for (k, c) in map.meta.channels.iter().enumerate() {
+        assert_eq!(c.index, k);
+    }
+    assert_eq!(map.meta.channel, e.default, "{}: default channel", e.name);
+    assert_eq!(map.valid_fraction(), 1.0, "{}: valid fraction", e.name);
+    let rms = rms_about_mean(&map);
+    assert!(
+        rel(rms, e.rms) < 5e-3,
+        "{}: rms {rms:e} m, SurfaceTopography {:e} m",
+        e.name,
+        e.rms
+    );
+    let sq = sq_plane(&map);
+    assert!(
+        rel(sq, e.sq) < 5e-3,
+        "{}: Sq {sq:e} m, SurfaceTopography {:e} m",
+        e.name,
+        e.sq
+    );
+}
+
+/// Reading `channel` gives that channel (by index `index`) with Sq `sq` (SurfaceTopography).
+fn check_other_channel(name: &str, channel: &str, index: usize, sq: f64) {
+    let map = read_channel(name, channel).unwrap_or_else(|e| panic!("{name} {channel}: {e}"));
+    assert_eq!(map.meta.channel, index, "{name}: channel {channel}");
+    let got = sq_plane(&map);
+    assert!(
+        rel(got, sq) < 5e-3,
+        "{name} {channel}: Sq {got:e} m, expected {sq:e} m"
+    );
+}
+
+/// An unknown channel is an error that names the file and lists the channels.
+fn check_unknown_channel(name: &str) {
+    let map = read(name);
+    for wanted in ["no-such-channel", "99"] {
+        let e = read_channel(name, wanted).unwrap_err().to_string();
+        assert!(e.contains(name), "{e}");
+        for c in &map.meta.channels {
+            assert!(e.contains(&c.to_string()), "{e} lacks {c}");
+        }
+    }
+}
+
+const NM: f64 = 1e-9;
+const UM: f64 = 1e-6;
+
+#[test]
+fn nanoscope_di1_reads_the_first_height_channel() {
+    check(&Expected {
+        name: "di-1.di",
+        format: "Nanoscope",
+        grid: (512, 512),
+        size: (500.0 * NM, 500.0 * NM),
+        channels: &[
+            ("Height", true),
+            ("Height", true),
+            ("Phase", false),
+            ("AmplitudeError", false),
+        ],
+        default: 0,
+        rms: 9.94599 * NM,
+        sq: 9.84366 * NM,
+    });
+    // The retrace height, by index (SurfaceTopography, channel_index=1: Sq 9.96656 nm).
+    check_other_channel("di-1.di", "1", 1, 9.96656 * NM);
+    check_unknown_channel("di-1.di");
+    // Phase is in degrees (soft scale "Sens. Phase"), not a height.
+    let e = read_channel("di-1.di", "phase").unwrap_err().to_string();
+    assert!(
+        e.contains("does not hold heights") && e.contains("2 'Phase' (º)"),
+        "{e}"
+    );
+}
+
+#[test]
+fn nanoscope_di3_reads_the_height_sensor() {
+    check(&Expected {
+        name: "di-3.di",
+        format: "Nanoscope",
+        grid: (256, 256),
+        size: (10.0 * UM, 10.0 * UM),
+        channels: &[
+            ("ZSensor", true),
+            ("AmplitudeError", false),
+            ("Phase", false),
+            ("Height", true),
+        ],
+        default: 0,
+        rms: 226.425 * NM,
+        sq: 35.2229 * NM,
+    });
+    // The piezo height by name, any case (SurfaceTopography, channel_index=3: Sq 45.4622 nm).
+    check_other_channel("di-3.di", "HEIGHT", 3, 45.4622 * NM);
+    check_unknown_channel("di-3.di");
+}
+
+#[test]
+fn nanoscope_scale_follows_the_header() {
+    // di-1.di, first channel: `@2:Z scale: V [Sens. Zsens] (0.005035400 V/LSB) 2.910461 V` and
+    // `@Sens. Zsens: V 20.82646 nm/V`, so a count is 2.910461 / 65536 × 20.82646 nm. The first
+    // stored value is 3074 (bytes 40960..40962, little-endian); SurfaceTopography shows the
+    // lines bottom-up, so its first row (6.0599801 nm at x = 0) is our last one.
+    let map = read("di-1.di");
+    let count = 2.910461 / 65536.0 * 20.82646 * NM;
+    assert!(rel(map.get(0, 0).unwrap(), 3074.0 * count) < 1e-12);
+    assert!(rel(map.get(0, 511).unwrap(), 6.0599801 * NM) < 1e-7);
+}
+
+#[test]
+fn nid_reads_the_forward_z_axis() {
+    // SurfaceTopography lists only the four channels in a length unit (its indices 0..3 are
+    // our 1, 3, 5, 7); gonio lists the deflection (N) and friction (V) channels too, since
+    // they have data blocks of their own between the heights (the file holds 8 blocks of
+    // 256 × 256 × 4 bytes after the header's `#!`).
+    check(&Expected {
+        name: "nid-1.nid",
+        format: "Nanosurf NID",
+        grid: (256, 256),
+        size: (20.0 * UM, 20.0 * UM),
+        channels: &[
+            ("Scan forward (Deflection)", false),
+            ("Scan forward (Z-Axis)", true),
+            ("Scan forward (Friction force)", false),
+            ("Scan forward (Z-AxisSensor)", true),
+            ("Scan backward (Deflection)", false),
+            ("Scan backward (Z-Axis)", true),
+            ("Scan backward (Friction force)", false),
+            ("Scan backward (Z-AxisSensor)", true),
+        ],
+        default: 1,
+        rms: 2.3959e-7,
+        sq: 7.11192e-9,
+    });
+    // SurfaceTopography's channels 1, 2 and 3: Sq 11.4186, 11.8523 and 11.5652 nm.
+    check_other_channel("nid-1.nid", "scan forward (z-axissensor)", 3, 11.4186 * NM);
+    check_other_channel("nid-1.nid", "5", 5, 11.8523 * NM);
+    check_other_channel("nid-1.nid", "Scan backward (Z-AxisSensor)", 7, 11.5652 * NM);
+    check_unknown_channel("nid-1.nid");
+}
+
+#[test]
+fn single_channel_formats_report_one_height_channel() {
+    let map = read("sur-2.sur");
+    assert_eq!(map.meta.channels.len(), 1);
+    assert!(map.meta.channels[0].is_height);
+    assert_eq!(map.meta.channel, 0);
+    assert!(read_channel("sur-2.sur", "0").is_ok());
+    let e = read_channel("sur-2.sur", "Phase").unwrap_err().to_string();
+    assert!(e.contains("sur-2.sur") && e.contains("0 'Height'"), "{e}");
+    assert_eq!(
+        ChannelSelector::Name("Phase".into()),
+        "Phase".parse().unwrap()
+    );
+}
