@@ -223,3 +223,63 @@ fn single_channel_formats_report_one_height_channel() {
         "Phase".parse().unwrap()
     );
 }
+
+#[test]
+fn picoview_reads_the_topography() {
+    check(&Expected {
+        name: "mi-1.mi",
+        format: "PicoView",
+        grid: (256, 256),
+        size: (20.0 * UM, 20.0 * UM),
+        channels: &[
+            ("Topography", true),
+            ("Deflection", false),
+            ("Friction", false),
+            ("Friction", false),
+        ],
+        default: 0,
+        rms: 0.0332154 * UM,
+        sq: 0.00343396 * UM,
+    });
+    check_unknown_channel("mi-1.mi");
+    // Deflection is in V: listed, but not a height.
+    let e = read_channel("mi-1.mi", "deflection")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("1 'Deflection' (V)") && e.contains("does not hold heights"),
+        "{e}"
+    );
+}
+
+#[test]
+fn wsxm_integer_and_float_images() {
+    // The same scan saved as int16 (.top, normalised to the Z amplitude 18.8851 nm) and as
+    // f64 (.stp, in nm). SurfaceTopography names the one channel "Default"; gonio takes the
+    // header's "Acquisition channel".
+    for (name, rms, sq) in [
+        ("top-1.top", 3.1531 * NM, 1.61398 * NM),
+        ("stp-1.stp", 1.65416 * NM, 1.63534 * NM),
+    ] {
+        check(&Expected {
+            name,
+            format: "WSxM",
+            grid: (256, 256),
+            size: (600.0 * NM, 600.0 * NM),
+            channels: &[("Topography", true)],
+            default: 0,
+            rms,
+            sq,
+        });
+        check_unknown_channel(name);
+    }
+    // top-1.top: the stored counts span [Minimum, Maximum] = [5927, 6900] of [Miscellaneous],
+    // so the normalisation from the data equals SurfaceTopography's from the header.
+    let top = read("top-1.top");
+    let span = top
+        .heights()
+        .iter()
+        .fold(f64::NEG_INFINITY, |a, &h| a.max(h))
+        - top.heights().iter().fold(f64::INFINITY, |a, &h| a.min(h));
+    assert!(rel(span, 18.8851 * NM) < 1e-12, "span {span:e} m");
+}

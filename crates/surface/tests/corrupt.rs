@@ -346,6 +346,21 @@ cases! {
         "Points=256\r\nLines=256\r\n",
         "Points=40000\r\nLines=40000\r\n",
     )]));
+    // PicoView: a text header ended by its `data` line (5073 bytes), then four int32 buffers.
+    picoview: binary("mi-1.mi", 5073, Lie::Text(&[
+        ("xPixels       256", "xPixels       40000"),
+        ("yPixels       256", "yPixels       40000"),
+    ]));
+    // WSxM: a text header of the size its third line states (2245 and 4607 bytes), then the
+    // image (int16 and f64).
+    wsxm_int16: binary("top-1.top", 2245, Lie::Text(&[
+        ("Number of columns: 256", "Number of columns: 40000"),
+        ("Number of rows: 256", "Number of rows: 40000"),
+    ]));
+    wsxm_double: binary("stp-1.stp", 4607, Lie::Text(&[
+        ("Number of columns: 256", "Number of columns: 40000"),
+        ("Number of rows: 256", "Number of rows: 40000"),
+    ]));
 }
 
 /// Every file in tests/data has a case above.
@@ -369,6 +384,9 @@ fn every_fixture_is_covered() {
         "di-1.di",
         "di-3.di",
         "nid-1.nid",
+        "mi-1.mi",
+        "top-1.top",
+        "stp-1.stp",
     ];
     for entry in std::fs::read_dir(fixture("")).unwrap() {
         let name = entry.unwrap().file_name().into_string().unwrap();

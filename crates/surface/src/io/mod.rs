@@ -9,9 +9,11 @@ mod gsf;
 mod gwyddion_ascii;
 mod nanoscope;
 mod nid;
+mod picoview;
 mod plu;
 mod sdf;
 mod sur;
+mod wsxm;
 mod wyko;
 mod x3p;
 mod zygo;
@@ -49,6 +51,10 @@ pub enum Format {
     Nanoscope,
     /// Nanosurf `.nid`.
     Nid,
+    /// Agilent / Molecular Imaging PicoView `.mi`.
+    PicoView,
+    /// Nanotec WSxM (`.top`, `.stp`, ...).
+    Wsxm,
 }
 
 /// How a file is to be read.
@@ -136,6 +142,20 @@ const READERS: &[Reader] = &[
         extensions: &["nid"],
         sniff: nid::sniff,
         parse: Parse::Channels(nid::parse),
+    },
+    Reader {
+        format: Format::PicoView,
+        name: picoview::NAME,
+        extensions: &["mi"],
+        sniff: picoview::sniff,
+        parse: Parse::Channels(picoview::parse),
+    },
+    Reader {
+        format: Format::Wsxm,
+        name: wsxm::NAME,
+        extensions: &["top", "stp"],
+        sniff: wsxm::sniff,
+        parse: Parse::Channels(wsxm::parse),
     },
     Reader {
         format: Format::Gsf,
