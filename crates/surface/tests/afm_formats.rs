@@ -283,3 +283,33 @@ fn wsxm_integer_and_float_images() {
         - top.heights().iter().fold(f64::INFINITY, |a, &h| a.min(h));
     assert!(rel(span, 18.8851 * NM) < 1e-12, "span {span:e} m");
 }
+
+#[test]
+fn igor_wave_reads_the_height_trace() {
+    // The wave's one data unit is `m`, so all eight layers count as height channels, as in
+    // SurfaceTopography (which reports the phase layers in m as well).
+    check(&Expected {
+        name: "spot_1-1000nm.ibw",
+        format: "Igor binary wave",
+        grid: (256, 256),
+        // sfA = 7.843137254901961e-08 m per pixel: 256 of them.
+        size: (2.007843137254902e-5, 2.007843137254902e-5),
+        channels: &[
+            ("HeightTrace", true),
+            ("HeightRetrace", true),
+            ("AmplitudeTrace", true),
+            ("AmplitudeRetrace", true),
+            ("PhaseTrace", true),
+            ("PhaseRetrace", true),
+            ("NapPotentialTrace", true),
+            ("NapPotentialRetrace", true),
+        ],
+        default: 0,
+        rms: 8.94548e-8,
+        sq: 9.55224e-9,
+    });
+    // SurfaceTopography, channel_index=1 and 2: Sq 9.80597 nm and 0.694361 nm.
+    check_other_channel("spot_1-1000nm.ibw", "heightretrace", 1, 9.80597 * NM);
+    check_other_channel("spot_1-1000nm.ibw", "2", 2, 0.694361 * NM);
+    check_unknown_channel("spot_1-1000nm.ibw");
+}

@@ -361,6 +361,14 @@ cases! {
         ("Number of columns: 256", "Number of columns: 40000"),
         ("Number of rows: 256", "Number of rows: 40000"),
     ]));
+    // Igor binary wave: a 64-byte binary header and a 320-byte wave header, whose nDim[0] and
+    // nDim[1] (256, 256) are little-endian i32 at 64 + 68 and 64 + 72. The sections the header
+    // sizes (wave record, note, labels of the layers) end at 2112969; the 131578 bytes Asylum
+    // appends after them have no stated size, so the cuts are made before that point.
+    ibw: Case {
+        data_end: Some(2_112_969),
+        ..binary("spot_1-1000nm.ibw", 384, Lie::U32Le(&[132, 136]))
+    };
 }
 
 /// Every file in tests/data has a case above.
@@ -387,6 +395,7 @@ fn every_fixture_is_covered() {
         "mi-1.mi",
         "top-1.top",
         "stp-1.stp",
+        "spot_1-1000nm.ibw",
     ];
     for entry in std::fs::read_dir(fixture("")).unwrap() {
         let name = entry.unwrap().file_name().into_string().unwrap();

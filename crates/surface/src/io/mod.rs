@@ -7,6 +7,7 @@ mod binary;
 mod common;
 mod gsf;
 mod gwyddion_ascii;
+mod ibw;
 mod nanoscope;
 mod nid;
 mod picoview;
@@ -55,6 +56,8 @@ pub enum Format {
     PicoView,
     /// Nanotec WSxM (`.top`, `.stp`, ...).
     Wsxm,
+    /// Igor binary wave `.ibw` (Asylum Research).
+    Ibw,
 }
 
 /// How a file is to be read.
@@ -156,6 +159,13 @@ const READERS: &[Reader] = &[
         extensions: &["top", "stp"],
         sniff: wsxm::sniff,
         parse: Parse::Channels(wsxm::parse),
+    },
+    Reader {
+        format: Format::Ibw,
+        name: ibw::NAME,
+        extensions: &["ibw"],
+        sniff: ibw::sniff,
+        parse: Parse::Channels(ibw::parse),
     },
     Reader {
         format: Format::Gsf,
