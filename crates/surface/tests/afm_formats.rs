@@ -313,3 +313,27 @@ fn igor_wave_reads_the_height_trace() {
     check_other_channel("spot_1-1000nm.ibw", "2", 2, 0.694361 * NM);
     check_unknown_channel("spot_1-1000nm.ibw");
 }
+
+#[test]
+fn opdx_profile() {
+    // SurfaceTopography: a line scan of 3001 points, 49.983344425752584 µm long (the Extent,
+    // 49.966688862798314 µm from the first to the last point, times 3001/3000), rms
+    // 5.30751 nm, and 2.82572 nm after removing the least-squares line.
+    let map = read("opdx-3.opdx");
+    assert!(map.is_profile());
+    assert_eq!(map.meta.format.as_deref(), Some("Bruker OPDx"));
+    assert_eq!((map.nx(), map.ny()), (3001, 1));
+    assert!(rel(map.dx() * 3001.0, 49.983344425752584 * UM) < 1e-12);
+    assert_eq!(map.valid_fraction(), 1.0);
+    let channels: Vec<(&str, bool)> = map
+        .meta
+        .channels
+        .iter()
+        .map(|c| (c.name.as_str(), c.is_height))
+        .collect();
+    assert_eq!(channels, [("Height", true)]);
+    assert!(rel(rms_about_mean(&map), 5.30751 * NM) < 5e-3);
+    let s = gonio_surface::profile_stats::profile_statistics(&map).unwrap();
+    assert!(rel(s.rq, 2.82572 * NM) < 5e-3, "Rq {:e} m", s.rq);
+    check_unknown_channel("opdx-3.opdx");
+}

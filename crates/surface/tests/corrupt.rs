@@ -15,7 +15,8 @@
 //!   flipping any other header byte gives an error naming the file or a valid map (a byte of a
 //!   date or a comment may change harmlessly), never a panic;
 //! - a header whose grid fields are patched to 40000 × 40000 points (under the crate's point
-//!   limit, so only the check against the file's size can stop it) gives an error;
+//!   limit, so only the check against the file's size can stop it), or a profile's length to
+//!   40000 points, gives an error;
 //! - no mutation leads to a single allocation larger than 16 × the file size + 1 MiB.
 
 mod fixture_tools;
@@ -369,6 +370,10 @@ cases! {
         data_end: Some(2_112_969),
         ..binary("spot_1-1000nm.ibw", 384, Lie::U32Le(&[132, 136]))
     };
+    // OPDx: a tree of items; the profile's values start at 48561 (its Array item at 48556 and
+    // 5 leading bytes). NumPoints (3001) is a little-endian u64 at 48397; its low half is
+    // patched.
+    opdx_profile: binary("opdx-3.opdx", 48561, Lie::U32Le(&[48397]));
 }
 
 /// Every file in tests/data has a case above.
@@ -396,6 +401,7 @@ fn every_fixture_is_covered() {
         "top-1.top",
         "stp-1.stp",
         "spot_1-1000nm.ibw",
+        "opdx-3.opdx",
     ];
     for entry in std::fs::read_dir(fixture("")).unwrap() {
         let name = entry.unwrap().file_name().into_string().unwrap();

@@ -10,6 +10,7 @@ mod gwyddion_ascii;
 mod ibw;
 mod nanoscope;
 mod nid;
+mod opdx;
 mod picoview;
 mod plu;
 mod sdf;
@@ -58,6 +59,8 @@ pub enum Format {
     Wsxm,
     /// Igor binary wave `.ibw` (Asylum Research).
     Ibw,
+    /// Bruker Vision64 `.opdx` (Dektak profiles).
+    Opdx,
 }
 
 /// How a file is to be read.
@@ -166,6 +169,13 @@ const READERS: &[Reader] = &[
         extensions: &["ibw"],
         sniff: ibw::sniff,
         parse: Parse::Channels(ibw::parse),
+    },
+    Reader {
+        format: Format::Opdx,
+        name: opdx::NAME,
+        extensions: &["opdx"],
+        sniff: opdx::sniff,
+        parse: Parse::Channels(opdx::parse),
     },
     Reader {
         format: Format::Gsf,

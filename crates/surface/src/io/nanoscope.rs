@@ -12,8 +12,9 @@
 //! `v · (Z scale value) / 256^(bytes per pixel) · (soft scale)`, the soft scale being the value
 //! of the `@Sens. Zsens` key (bracketed name) in the scanner or scan list, e.g. `V 20.8 nm/V`:
 //! its numerator (nm) is the unit of the channel, and its denominator must be the unit of the
-//! Z scale value; a soft scale without a unit (`V 1.000000`) keeps the Z scale's unit. A channel without a length soft scale (phase in º, amplitude in mV) is listed
-//! but is not a height channel. Lines are kept in their stored order (SurfaceTopography and
+//! Z scale value; a soft scale without a unit (`V 1.000000`) keeps the Z scale's unit. A
+//! channel without a length unit (phase in º, amplitude in mV) is listed but is not a height
+//! channel. Lines are kept in their stored order (SurfaceTopography and
 //! Gwyddion show them bottom-up, so their first row is the file's last line).
 
 use crate::channel::{Channel, ChannelSelector, select};
