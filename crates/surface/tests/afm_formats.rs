@@ -337,3 +337,104 @@ fn opdx_profile() {
     assert!(rel(s.rq, 2.82572 * NM) < 5e-3, "Rq {:e} m", s.rq);
     check_unknown_channel("opdx-3.opdx");
 }
+
+/// How SurfaceTopography's `heights()[x, y]` maps onto gonio's point `(ix, iy)` of an
+/// `nx × ny` map.
+#[derive(Clone, Copy)]
+enum Orientation {
+    /// Lines in reverse order: SurfaceTopography (like Gwyddion) shows the file's first line at
+    /// the bottom of the image (Nanoscope, Nanosurf, Igor waves, PicoView).
+    LinesReversed,
+    /// Turned by 180°: SurfaceTopography turns WSxM images to match Gwyddion.
+    Turned,
+}
+
+/// Heights at three points equal SurfaceTopography's (`heights()[x, y]` in metres, from
+/// `read_topography(path)`), once its orientation is accounted for: the readers agree on every
+/// value and differ only in which corner comes first. gonio keeps the file's line order.
+#[test]
+fn heights_match_surface_topography_point_by_point() {
+    use Orientation::*;
+    let cases: [(&str, Orientation, [f64; 3]); 7] = [
+        (
+            "di-1.di",
+            LinesReversed,
+            [
+                6.059980111183002e-09,
+                1.1811041822314855e-09,
+                9.33784481112692e-09,
+            ],
+        ),
+        (
+            "di-3.di",
+            LinesReversed,
+            [
+                5.6401630244078e-07,
+                5.142240066919355e-07,
+                -1.1470010985001677e-07,
+            ],
+        ),
+        (
+            "nid-1.nid",
+            LinesReversed,
+            [
+                -9.253918035998941e-07,
+                -9.850195037126541e-07,
+                -1.649836201876402e-06,
+            ],
+        ),
+        (
+            "spot_1-1000nm.ibw",
+            LinesReversed,
+            [
+                -3.9969469867173757e-07,
+                -4.203554340165283e-07,
+                -6.291397767199669e-07,
+            ],
+        ),
+        (
+            "mi-1.mi",
+            LinesReversed,
+            [
+                -4.986900329589845e-07,
+                -4.888579559326172e-07,
+                -5.91961898803711e-07,
+            ],
+        ),
+        (
+            "top-1.top",
+            Turned,
+            [
+                1.1550383360739981e-07,
+                1.1544560616649539e-07,
+                1.2233585334018502e-07,
+            ],
+        ),
+        (
+            "stp-1.stp",
+            Turned,
+            [
+                7.677747254128065e-11,
+                -5.3942068085049756e-11,
+                3.5704202406718084e-09,
+            ],
+        ),
+    ];
+    for (name, orientation, expected) in cases {
+        let map = read(name);
+        let (nx, ny) = (map.nx(), map.ny());
+        for ((x, y), want) in [(0, 0), (17, 5), (200, 100)].into_iter().zip(expected) {
+            let (ix, iy) = match orientation {
+                LinesReversed => (x, ny - 1 - y),
+                Turned => (nx - 1 - x, ny - 1 - y),
+            };
+            let got = map.get(ix, iy).unwrap();
+            // WSxM int16: SurfaceTopography normalises with the header's rounded span, gonio
+            // with the data's; here they are equal, so the values agree to rounding.
+            assert!(
+                rel(got, want) < 1e-9,
+                "{name} ({x}, {y}): {got:e} m, expected {want:e} m"
+            );
+        }
+    }
+}
