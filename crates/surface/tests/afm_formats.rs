@@ -438,3 +438,24 @@ fn heights_match_surface_topography_point_by_point() {
         }
     }
 }
+
+#[test]
+fn nanoscope_32_bit_storage_is_refused() {
+    // di-3.di made to look like a version 9.2 file whose first block holds 4 bytes per point
+    // while Bytes/pixel says 2 (same lengths, so every offset stays valid).
+    let mut patched = std::fs::read(fixture("di-3.di")).unwrap();
+    for (from, to) in [
+        (&b"\\Version: 0x09010201"[..], &b"\\Version: 0x09200000"[..]),
+        (b"\\Data length: 131072", b"\\Data length: 262144"),
+    ] {
+        let at = patched.windows(from.len()).position(|w| w == from).unwrap();
+        patched[at..at + to.len()].copy_from_slice(to);
+    }
+    let e = io::read_bytes(std::path::Path::new("di-3.di"), &patched)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("di-3.di") && e.contains("4 bytes per point"),
+        "{e}"
+    );
+}

@@ -14,7 +14,8 @@
 //! its numerator (nm) is the unit of the channel, and its denominator must be the unit of the
 //! Z scale value; a soft scale without a unit (`V 1.000000`) keeps the Z scale's unit. A
 //! channel without a length unit (phase in º, amplitude in mV) is listed but is not a height
-//! channel. Lines are kept in their stored order (SurfaceTopography and
+//! channel. From version 9.2 the data may be int32 although `Bytes/pixel` says 2; such blocks
+//! are refused (no test file). Lines are kept in their stored order (SurfaceTopography and
 //! Gwyddion show them bottom-up, so their first row is the file's last line).
 
 use crate::channel::{Channel, ChannelSelector, select};
@@ -28,6 +29,8 @@ use std::path::Path;
 pub(crate) const NAME: &str = "Nanoscope";
 
 const MAGIC: &[u8] = b"\\*File list";
+/// First version that may store 32-bit data in blocks whose header says 2 bytes per pixel.
+const VERSION_32BIT: u32 = 0x0920_0000;
 const END: &[u8] = b"\\*File list end";
 const IMAGE_SECTIONS: [&str; 4] = [
     "ciao image list",
@@ -155,7 +158,8 @@ fn image(
         _ => name_text.trim_start_matches('S').trim().trim_matches('"'),
     };
     let grid = b.grid(integer("samps/line")?, integer("number of lines")?)?;
-    let bytes_per_pixel = match integer("bytes/pixel")? {
+    // Files that omit it store 2 bytes per pixel (SurfaceTopography's and Gwyddion's default).
+    let bytes_per_pixel = match get(s, "bytes/pixel").map_or(Ok(2), |_| integer("bytes/pixel"))? {
         2 => 2,
         4 => 4,
         other => return Err(b.err(format!("{other} bytes per pixel is not 2 or 4"))),
@@ -245,6 +249,13 @@ pub(crate) fn parse(
     if images.is_empty() {
         return Err(b.err("the header describes no image"));
     }
+    let file_list = sections
+        .first()
+        .map(|(_, e)| e.as_slice())
+        .unwrap_or_default();
+    let version = get(file_list, "version")
+        .and_then(|v| u32::from_str_radix(v.trim_start_matches("0x"), 16).ok())
+        .unwrap_or(0);
     // Every channel's block must be in the file, not only the one read: a file cut short is
     // damaged, whichever channel is asked for.
     for image in &images {
@@ -255,6 +266,14 @@ pub(crate) fn parse(
             return Err(b.err(format!(
                 "{what}: {nx} × {ny} points of {} bytes do not fit its {} bytes",
                 image.bytes_per_pixel, image.length
+            )));
+        }
+        // From version 9.2 the data may be stored as int32 whatever Bytes/pixel says; how such
+        // values are scaled has not been checked on a file, so they are refused, not guessed.
+        if version >= VERSION_32BIT && image.bytes_per_pixel == 2 && image.length >= 4 * nx * ny {
+            return Err(b.err(format!(
+                "{what} holds 4 bytes per point although Bytes/pixel is 2 (the 32-bit storage of \
+                 version 9.2 and later), which is not read"
             )));
         }
     }
