@@ -136,6 +136,15 @@ mod tests {
     }
 
     #[test]
+    fn rq_equals_the_areal_sq_of_the_one_row_map() {
+        // The areal statistics level a one-row map with its least-squares line too.
+        let (p, _) = tilted_sine(2e-8, 3.5, 999, 1e-7);
+        let rq = profile_statistics(&p).unwrap().rq;
+        let (sq, ..) = crate::stats::height_parameters(&crate::ops::level(&p).unwrap());
+        assert!((rq / sq - 1.0).abs() < 1e-12, "Rq {rq}, Sq {sq}");
+    }
+
+    #[test]
     fn a_straight_line_is_removed_entirely() {
         let z = (0..100).map(|i| 2e-9 * i as f64 - 5e-8).collect();
         let s = profile_statistics(&HeightMap::profile(z, 1e-6).unwrap()).unwrap();

@@ -127,7 +127,7 @@ struct Image {
     bytes_per_pixel: usize,
     grid: (usize, usize),
     size: (f64, f64),
-    /// Heights per count in the channel's unit, and that unit in metres.
+    /// Value of one count: metres for a height channel, the channel's unit for any other.
     scale: f64,
 }
 
