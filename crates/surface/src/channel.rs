@@ -34,7 +34,8 @@ impl fmt::Display for Channel {
 /// Which channel of a file to read.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum ChannelSelector {
-    /// The channel of this name, compared without regard to case.
+    /// The channel of this name, compared without regard to case; the first one when several
+    /// channels share the name.
     Name(String),
     /// The channel at this 0-based index.
     Index(usize),

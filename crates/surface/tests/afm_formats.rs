@@ -459,3 +459,21 @@ fn nanoscope_32_bit_storage_is_refused() {
         "{e}"
     );
 }
+
+#[test]
+fn opdx_uneven_positions_are_refused() {
+    // The PositionArray of opdx-3.opdx (f64 values from byte 24308 + 5) is evenly spaced at
+    // 0.016655562954266 µm; moving point 10 by a tenth of a step makes it uneven.
+    let mut bytes = std::fs::read(fixture("opdx-3.opdx")).unwrap();
+    let at = 24308 + 5 + 8 * 10;
+    let x = f64::from_le_bytes(bytes[at..at + 8].try_into().unwrap());
+    assert!(rel(x, 10.0 * 0.016655562954266) < 1e-9);
+    bytes[at..at + 8].copy_from_slice(&(x + 0.0016655).to_le_bytes());
+    let e = io::read_bytes(std::path::Path::new("opdx-3.opdx"), &bytes)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("opdx-3.opdx") && e.contains("not evenly spaced"),
+        "{e}"
+    );
+}

@@ -14,7 +14,8 @@
 //! `/1D_Data/C/NumPoints`, `Extent` (the distance from the first to the last point, with its
 //! unit), `DataScale` (the height of one stored unit, with its unit), `DataKind` and `Array`
 //! (5 bytes, then `NumPoints` f64). A height is the stored value times the data scale; the
-//! spacing is the extent over `NumPoints − 1`. Areal maps (`Surface Height`, `/2D_Data`) are
+//! spacing is the extent over `NumPoints − 1`, and the points' positions (`PositionArray`),
+//! when stored, must be evenly spaced. Areal maps (`Surface Height`, `/2D_Data`) are
 //! recognised but not read.
 
 use crate::channel::{Channel, ChannelSelector, select};
@@ -286,6 +287,9 @@ pub(crate) fn parse(
         Some(Value::Integer(n)) => b.grid(n, 1)?.0,
         _ => return Err(missing(&format!("{prefix}/NumPoints"))),
     };
+    if n < 2 {
+        return Err(b.err("a profile of one point has no spacing"));
+    }
     let Some(Value::Array(start, len)) = get(&format!("{prefix}/Array")) else {
         return Err(missing(&format!("{prefix}/Array")));
     };
@@ -296,6 +300,7 @@ pub(crate) fn parse(
             DOUBLE_ARRAY_EXTRA + values.len()
         )));
     }
+    check_even_spacing(&b, get(&format!("{prefix}/PositionArray")), n)?;
     let (scale, unit) = quantity(&format!("{prefix}/DataScale"))?;
     let scale = scale * unit_scale(path, NAME, "height", &unit)?;
     let heights = values
@@ -307,9 +312,6 @@ pub(crate) fn parse(
         .collect();
     let (extent, unit) = quantity(&format!("{prefix}/Extent"))?;
     let extent = extent * unit_scale(path, NAME, "extent", &unit)?;
-    if n < 2 {
-        return Err(b.err("a profile of one point has no spacing"));
-    }
     let dx = b.spacing(extent / (n - 1) as f64, "spacing (m)")?;
     let mut map = HeightMap::profile(heights, dx).map_err(|e| b.err(e.to_string()))?;
     map.meta.channel = index;
@@ -324,4 +326,33 @@ pub(crate) fn parse(
         map.meta.date = Some(format!("{date} {time}"));
     }
     Ok(map)
+}
+
+/// The profile is read on an even grid; when the file also stores each point's position (a
+/// `PositionArray` of f64), those positions must be evenly spaced (to 1 part in 10^6 of the
+/// step), or the profile is refused rather than misplaced.
+fn check_even_spacing(b: &Binary, positions: Option<Value>, n: usize) -> Result<()> {
+    let Some(Value::Array(start, len)) = positions else {
+        return Ok(());
+    };
+    let bytes = b.array(start + DOUBLE_ARRAY_EXTRA, n, 8, "profile positions")?;
+    if DOUBLE_ARRAY_EXTRA + bytes.len() != len {
+        return Err(b.err(format!(
+            "the position array holds {len} bytes, not the {} of {n} points",
+            DOUBLE_ARRAY_EXTRA + bytes.len()
+        )));
+    }
+    let x: Vec<f64> = bytes.chunks_exact(8).map(Le::read_f64).collect();
+    let step = (x[n - 1] - x[0]) / (n - 1) as f64;
+    let uneven = x
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .find(|d| !((d - step).abs() <= 1e-6 * step.abs() && step > 0.0));
+    match uneven {
+        Some(d) => Err(b.err(format!(
+            "the profile's points are not evenly spaced (a step of {d} where the mean step is \
+             {step}): uneven profiles are not read"
+        ))),
+        None => Ok(()),
+    }
 }
