@@ -155,7 +155,12 @@ fn image(
         .unwrap_or("");
     let name = match (name_text.find('['), name_text.find(']')) {
         (Some(a), Some(z)) if a < z => name_text[a + 1..z].trim(),
-        _ => name_text.trim_start_matches('S').trim().trim_matches('"'),
+        // `S "Name"` without a bracket, or a bare name (`\Image data: Height`).
+        _ => name_text
+            .strip_prefix("S ")
+            .unwrap_or(name_text)
+            .trim()
+            .trim_matches('"'),
     };
     let grid = b.grid(integer("samps/line")?, integer("number of lines")?)?;
     // Files that omit it store 2 bytes per pixel (SurfaceTopography's and Gwyddion's default).
