@@ -16,7 +16,8 @@
 //!   flipping any other header byte gives an error naming the file or a valid map (a byte of a
 //!   date or a comment may change harmlessly), never a panic;
 //! - a header whose grid fields are patched to 40000 × 40000 points (under the crate's point
-//!   limit, so only the check against the file's size can stop it) gives an error;
+//!   limit, so only the check against the file's size can stop it), or a profile's length to
+//!   40000 points, gives an error;
 //! - no mutation leads to a single allocation larger than 16 × the file size + 1 MiB.
 
 mod fixture_tools;
@@ -360,6 +361,48 @@ cases! {
     matrix_header: text("matrix-4.txt", HEADER_MATRIX_HEADER, Lie::Text(&[
         ("h=305 w=75", "h=40000 w=40000"),
     ]));
+    // Nanoscope: a text header up to the first data block (Data offset 40960); the first image
+    // section's grid is the first `Samps/line` directly followed by `Number of lines`.
+    nanoscope_4_channels: binary("di-1.di", 40960, Lie::Text(&[(
+        "\\Samps/line: 512\r\n\\Number of lines: 512",
+        "\\Samps/line: 40000\r\n\\Number of lines: 40000",
+    )]));
+    nanoscope_zsensor: binary("di-3.di", 40960, Lie::Text(&[(
+        "\\Samps/line: 256\r\n\\Number of lines: 256",
+        "\\Samps/line: 40000\r\n\\Number of lines: 40000",
+    )]));
+    // Nanosurf: an INI header ended by `#!` at 30746; the first data set's grid.
+    nid: binary("nid-1.nid", 30748, Lie::Text(&[(
+        "Points=256\r\nLines=256\r\n",
+        "Points=40000\r\nLines=40000\r\n",
+    )]));
+    // PicoView: a text header ended by its `data` line (5073 bytes), then four int32 buffers.
+    picoview: binary("mi-1.mi", 5073, Lie::Text(&[
+        ("xPixels       256", "xPixels       40000"),
+        ("yPixels       256", "yPixels       40000"),
+    ]));
+    // WSxM: a text header of the size its third line states (2245 and 4607 bytes), then the
+    // image (int16 and f64).
+    wsxm_int16: binary("top-1.top", 2245, Lie::Text(&[
+        ("Number of columns: 256", "Number of columns: 40000"),
+        ("Number of rows: 256", "Number of rows: 40000"),
+    ]));
+    wsxm_double: binary("stp-1.stp", 4607, Lie::Text(&[
+        ("Number of columns: 256", "Number of columns: 40000"),
+        ("Number of rows: 256", "Number of rows: 40000"),
+    ]));
+    // Igor binary wave: a 64-byte binary header and a 320-byte wave header, whose nDim[0] and
+    // nDim[1] (256, 256) are little-endian i32 at 64 + 68 and 64 + 72. The sections the header
+    // sizes (wave record, note, labels of the layers) end at 2112969; the 131578 bytes Asylum
+    // appends after them have no stated size, so the cuts are made before that point.
+    ibw: Case {
+        data_end: Some(2_112_969),
+        ..binary("spot_1-1000nm.ibw", 384, Lie::U32Le(&[132, 136]))
+    };
+    // OPDx: a tree of items; the profile's values start at 48561 (its Array item at 48556 and
+    // 5 leading bytes). NumPoints (3001) is a little-endian u64 at 48397; its low half is
+    // patched.
+    opdx_profile: binary("opdx-3.opdx", 48561, Lie::U32Le(&[48397]));
 }
 
 /// Length of matrix-4.txt's four header lines (`h=305 w=75` to the conversion factor).
@@ -389,6 +432,14 @@ fn every_fixture_is_covered() {
         "tmd-1.tmd",
         "xyz-1.txt",
         "matrix-4.txt",
+        "di-1.di",
+        "di-3.di",
+        "nid-1.nid",
+        "mi-1.mi",
+        "top-1.top",
+        "stp-1.stp",
+        "spot_1-1000nm.ibw",
+        "opdx-3.opdx",
     ];
     for entry in std::fs::read_dir(fixture("")).unwrap() {
         let name = entry.unwrap().file_name().into_string().unwrap();

@@ -130,11 +130,20 @@ fn every_fixture_reads_as_surfacetopography_reads_it() {
             .iter()
             .map(|v| v.as_u64().unwrap())
             .collect();
-        let ours_grid = vec![map.nx() as u64, map.ny() as u64];
+        // A line profile is one-dimensional in SurfaceTopography, one row here.
+        let (ours_grid, ours_size) = if map.is_profile() {
+            (vec![map.nx() as u64], vec![map.nx() as f64 * map.dx()])
+        } else {
+            (
+                vec![map.nx() as u64, map.ny() as u64],
+                vec![map.nx() as f64 * map.dx(), map.ny() as f64 * map.dy()],
+            )
+        };
         if grid != ours_grid {
-            failures.push(format!(
-                "{name}: grid {ours_grid:?}, SurfaceTopography {grid:?}"
-            ));
+            disagree(
+                "grid",
+                format!("grid {ours_grid:?}, SurfaceTopography {grid:?}"),
+            );
             continue;
         }
         let size: Vec<f64> = theirs["size_m"]
@@ -143,19 +152,22 @@ fn every_fixture_reads_as_surfacetopography_reads_it() {
             .iter()
             .map(|v| v.as_f64().unwrap())
             .collect();
-        let ours_size = [map.nx() as f64 * map.dx(), map.ny() as f64 * map.dy()];
         for (axis, (a, b)) in ours_size.iter().zip(&size).enumerate() {
             if rel(*a, *b) > SIZE_TOLERANCE {
-                failures.push(format!(
-                    "{name}: size along axis {axis} {a} m, SurfaceTopography {b} m"
-                ));
+                disagree(
+                    "size",
+                    format!("size along axis {axis} {a} m, SurfaceTopography {b} m"),
+                );
             }
         }
         let valid = theirs["valid_fraction"].as_f64().unwrap();
         if (map.valid_fraction() - valid).abs() > VALID_TOLERANCE {
             disagree(
                 "valid fraction",
-                format!("valid fraction {}, SurfaceTopography {valid}", map.valid_fraction()),
+                format!(
+                    "valid fraction {}, SurfaceTopography {valid}",
+                    map.valid_fraction()
+                ),
             );
         }
         let sq = theirs["sq_m"].as_f64().unwrap();

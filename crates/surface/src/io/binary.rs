@@ -30,6 +30,11 @@ impl<'a> Binary<'a> {
         }
     }
 
+    /// The file's name, for messages.
+    pub(crate) fn path(&self) -> &'a Path {
+        self.path
+    }
+
     /// Length of the file in bytes.
     pub(crate) fn len(&self) -> usize {
         self.bytes.len()

@@ -135,6 +135,9 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
         })
         .collect();
     let mut map = b.height_map(heights, (nx, ny), (dx, dy))?;
+    if kind == TYPE_PROFILE && ny == 1 {
+        map = map.into_profile()?;
+    }
 
     let meta = &mut map.meta;
     let inversion = b.u16::<Le>(290, "inversion")?;
