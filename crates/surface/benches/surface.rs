@@ -1,5 +1,6 @@
 //! Benchmarks of the surface crate on a 4096 × 4096 map: reading it from X3P and GSF files,
-//! plane levelling, the ISO 25178-2 statistics, facet normals and synthesis.
+//! plane levelling, the ISO 25178-2 statistics, facet normals and synthesis; and the time to read
+//! each instrument file of the test fixtures (one per format, from the file to a `HeightMap`).
 //! Run with `cargo bench -p gonio-surface --bench surface`; figures go into docs/performance.md.
 
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -61,5 +62,43 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench);
+/// One real file of each format read from disk (the test fixtures, tests/data).
+fn fixtures(c: &mut Criterion) {
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    let mut g = c.benchmark_group("read fixture");
+    g.sample_size(20)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3));
+    for name in [
+        "x3p-2.x3p",
+        "sdf-1.sdf",
+        "matrix-3.txt",
+        "metropro-1.dat",
+        "opd-1.opd",
+        "plu-1.plu",
+        "sur-2.sur",
+        "al3d-1.al3d",
+        "di-1.di",
+        "nid-1.nid",
+        "spot_1-1000nm.ibw",
+        "mi-1.mi",
+        "top-1.top",
+        "stp-1.stp",
+        "frt-1.frt",
+        "mnt-1.mnt",
+        "nms-1.nms",
+        "tmd-1.tmd",
+        "matrix-4.txt",
+        "xyz-1.txt",
+        "opdx-3.opdx",
+    ] {
+        let path = data.join(name);
+        g.bench_function(name, |b| {
+            b.iter(|| io::read(black_box(&path)).expect("read"))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, fixtures);
 criterion_main!(benches);

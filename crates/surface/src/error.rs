@@ -22,7 +22,7 @@ pub enum SurfaceError {
     },
     /// No reader recognised the file's content or extension.
     #[error(
-        "{path}: unknown height-map format (supported: X3P, SDF, GSF, Gwyddion ASCII, Zygo .dat, Wyko .opd, Sensofar .plu, Digital Surf .sur, Alicona .al3d)"
+        "{path}: unknown height-map format (supported: X3P, SDF, GSF, Gwyddion ASCII, Zygo .dat, Wyko .opd, Sensofar .plu, Digital Surf .sur, Alicona .al3d, FRT .frt, MountainsMap .mnt, NanoFocus .nms, TrueMap .tmd, Nanoscope .spm/.di, Nanosurf .nid, Igor .ibw, PicoView .mi, WSxM .top/.stp, Bruker .opdx, h= w= text matrix, x y z text list)"
     )]
     UnknownFormat { path: PathBuf },
     /// A height map that breaks the invariants of [`crate::HeightMap`] (bad spacing, NaN, size).

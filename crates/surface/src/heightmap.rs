@@ -1,6 +1,7 @@
 //! The [`HeightMap`] type: a regular grid of surface heights in metres with its spacings, a mask
 //! of measured points and the metadata the instrument file carried.
 
+use crate::channel::Channel;
 use crate::error::{Result, SurfaceError};
 use ndarray::Array2;
 use std::path::PathBuf;
@@ -18,6 +19,10 @@ pub struct Metadata {
     pub format: Option<String>,
     /// Any other key/value pairs worth showing to a person (comments, operator, ...).
     pub extra: Vec<(String, String)>,
+    /// The channels the file holds (one for single-channel formats).
+    pub channels: Vec<Channel>,
+    /// Index in `channels` of the channel this map was read from.
+    pub channel: usize,
 }
 
 /// Key under which readers record warnings in [`Metadata::extra`] (e.g. a checksum mismatch).
@@ -47,12 +52,16 @@ pub const MAX_POINTS: usize = 1 << 31;
 /// Heights are stored row-major with shape `(ny, nx)`, indexed `[iy, ix]`; point `(ix, iy)` lies
 /// at `x = ix·dx`, `y = iy·dy`. Points the instrument did not measure are invalid: their height is
 /// NaN and the mask (when present) is false there. Every valid height is finite.
+///
+/// A line profile (a file holding one measured line) is a map of one row marked as a profile
+/// ([`HeightMap::is_profile`]); its `dy` equals `dx` and means nothing.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HeightMap {
     heights: Array2<f64>,
     valid: Option<Array2<bool>>,
     dx: f64,
     dy: f64,
+    profile: bool,
     /// Where the map came from.
     pub meta: Metadata,
 }
@@ -91,8 +100,34 @@ impl HeightMap {
             valid,
             dx,
             dy,
+            profile: false,
             meta: Metadata::default(),
         })
+    }
+
+    /// A line profile: heights in metres at spacing `dx` along the line, NaN where not measured.
+    pub fn profile(heights: Vec<f64>, dx: f64) -> Result<Self> {
+        let n = heights.len();
+        let row = Array2::from_shape_vec((1, n), heights)
+            .map_err(|e| SurfaceError::Invalid(format!("profile of {n} points: {e}")))?;
+        HeightMap::with_invalid(row, dx, dx)?.into_profile()
+    }
+
+    /// This one-row map marked as a line profile; an error when it has more than one row.
+    pub fn into_profile(mut self) -> Result<Self> {
+        if self.ny() != 1 {
+            return Err(SurfaceError::Invalid(format!(
+                "a line profile has one row, not {}",
+                self.ny()
+            )));
+        }
+        self.profile = true;
+        Ok(self)
+    }
+
+    /// Whether this map is a line profile (one measured line) rather than an areal map.
+    pub fn is_profile(&self) -> bool {
+        self.profile
     }
 
     /// Number of points along x (columns).
@@ -152,6 +187,7 @@ impl HeightMap {
     /// Replace the heights (same shape), keeping spacing and metadata; NaN marks invalid points.
     pub fn with_heights(&self, heights: Array2<f64>) -> Result<Self> {
         let mut map = HeightMap::with_invalid(heights, self.dx, self.dy)?;
+        map.profile = self.profile && map.ny() == 1;
         map.meta = self.meta.clone();
         Ok(map)
     }
@@ -207,5 +243,21 @@ mod tests {
         assert!(HeightMap::with_invalid(array![[0.0, f64::INFINITY]], 1.0, 1.0).is_err());
         assert!(HeightMap::new(Array2::zeros((0, 3)), 1.0, 1.0).is_err());
         assert!(HeightMap::new(h, 1.0, 1.0).unwrap().mask().is_none());
+    }
+
+    #[test]
+    fn profiles_are_one_marked_row() {
+        let p = HeightMap::profile(vec![0.0, 1e-9, f64::NAN], 1e-6).unwrap();
+        assert!(p.is_profile());
+        assert_eq!((p.nx(), p.ny(), p.dy()), (3, 1, 1e-6));
+        assert!(
+            p.with_heights(array![[1.0, 2.0, 3.0]])
+                .unwrap()
+                .is_profile()
+        );
+        let areal = HeightMap::new(array![[0.0], [1.0]], 1.0, 1.0).unwrap();
+        assert!(!areal.is_profile());
+        assert!(areal.into_profile().is_err());
+        assert!(HeightMap::profile(vec![], 1e-6).is_err());
     }
 }

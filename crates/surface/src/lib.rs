@@ -1,5 +1,6 @@
 //! Surface topography for gonio: height maps read from instrument files or synthesised, their
-//! levelling, cropping and rotation, ISO 25178-2 statistics and facet normals.
+//! levelling, cropping and rotation, ISO 25178-2 statistics, ISO 21920-2 statistics of line
+//! profiles and facet normals.
 //!
 //! ```no_run
 //! let map = gonio_surface::io::read(std::path::Path::new("sample.x3p"))?;
@@ -7,15 +8,18 @@
 //! # Ok::<(), gonio_surface::SurfaceError>(())
 //! ```
 
+pub mod channel;
 pub mod error;
 mod fft2;
 pub mod heightmap;
 pub mod io;
 pub mod normals;
 pub mod ops;
+pub mod profile_stats;
 pub mod spline;
 pub mod stats;
 pub mod synth;
 
+pub use channel::{Channel, ChannelSelector};
 pub use error::{Result, SurfaceError};
 pub use heightmap::{HeightMap, Metadata};

@@ -9,13 +9,15 @@
 //!   short) give an error that names the file. Text fixtures are cut relative to their content
 //!   without trailing whitespace, since a lost final newline is not damage; PLU files relative to
 //!   the end of their heights, since what follows them has no stated size. Gwyddion's ASCII
-//!   matrix states no point count, so a cut that leaves whole rows of whole numbers cannot be
-//!   told from a smaller file: there a read may succeed, but never with more points;
+//!   matrix and x y z lists state no point count, so a cut that leaves whole rows of whole
+//!   numbers cannot be told from a smaller file: there a read may succeed, but never with more
+//!   points; the same holds for a text file cut between two digits of a number;
 //! - flipping the first bytes (the magic or first header field) gives an error naming the file;
 //!   flipping any other header byte gives an error naming the file or a valid map (a byte of a
 //!   date or a comment may change harmlessly), never a panic;
 //! - a header whose grid fields are patched to 40000 × 40000 points (under the crate's point
-//!   limit, so only the check against the file's size can stop it) gives an error;
+//!   limit, so only the check against the file's size can stop it), or a profile's length to
+//!   40000 points, gives an error;
 //! - no mutation leads to a single allocation larger than 16 × the file size + 1 MiB.
 
 mod fixture_tools;
@@ -61,7 +63,7 @@ static ALLOCATOR: CountingAllocator = CountingAllocator;
 
 /// How to make a fixture's header lie about the size of its grid.
 enum Lie {
-    /// Gwyddion's ASCII matrix states no grid size.
+    /// The format states no grid size (Gwyddion's ASCII matrix, x y z lists).
     NoSizeField,
     /// Big-endian u16 fields at these offsets.
     U16Be(&'static [usize]),
@@ -114,10 +116,20 @@ fn damaged_copies(case: &Case, bytes: &[u8]) -> Vec<(String, Vec<u8>, Expect)> {
         header + (content - header) / 2,
         content - 1,
     ] {
+        // A text file cut between two digits of its last number still ends in a number, which
+        // no reader can tell from an intact one; the header still fixes the grid size.
+        let inside_number = case.text
+            && cut > 0
+            && bytes[cut - 1].is_ascii_digit()
+            && bytes.get(cut).is_some_and(u8::is_ascii_digit);
         out.push((
             format!("truncated to {cut} bytes"),
             bytes[..cut].to_vec(),
-            truncate_expect,
+            if inside_number {
+                Expect::ErrOrNoLarger
+            } else {
+                truncate_expect
+            },
         ));
     }
     let mut magic = bytes.to_vec();
@@ -331,7 +343,70 @@ cases! {
     // Alicona: 52-byte tag records; the values of "Cols" (200) and "Rows" (296) start at 141
     // and 713. The depth image starts at 1261 (DepthImageOffset).
     al3d: binary("al3d-1.al3d", 1261, Lie::PaddedDecimal(&[141, 713]));
+    // FRT: blocks 0x0065, 0x0077, 0x0066 (columns and rows as little-endian u32 at 38 and 42),
+    // 0x0067, 0x006c, then the counts of block 0x000b from 124.
+    frt: binary("frt-1.frt", 124, Lie::U32Le(&[38, 42]));
+    // MountainsMap document: a compound file (512-byte header); the x and y point counts (960,
+    // 600) of the measured surface are u32 entries of the ScopedContents stream, which lie at
+    // 160440 and 160647 of the file.
+    mnt: binary("mnt-1.mnt", 512, Lie::U32Le(&[160_440, 160_647]));
+    // NanoFocus NMS: 3468-byte header with columns and rows (512) as little-endian u32 at 1368
+    // and 1372. Its version string sits at 32, so flipping the first bytes hits the data type.
+    nms: binary("nms-1.nms", 3468, Lie::U32Le(&[1368, 1372]));
+    // TrueMap TMD: 32-byte magic, 24-byte comment, columns and rows (300) as little-endian u32
+    // at 56 and 60, the heights from 80.
+    tmd: binary("tmd-1.tmd", 80, Lie::U32Le(&[56, 60]));
+    // The x y z list states no point count; its "header" is the first line.
+    xyz: text("xyz-1.txt", 6, Lie::NoSizeField);
+    matrix_header: text("matrix-4.txt", HEADER_MATRIX_HEADER, Lie::Text(&[
+        ("h=305 w=75", "h=40000 w=40000"),
+    ]));
+    // Nanoscope: a text header up to the first data block (Data offset 40960); the first image
+    // section's grid is the first `Samps/line` directly followed by `Number of lines`.
+    nanoscope_4_channels: binary("di-1.di", 40960, Lie::Text(&[(
+        "\\Samps/line: 512\r\n\\Number of lines: 512",
+        "\\Samps/line: 40000\r\n\\Number of lines: 40000",
+    )]));
+    nanoscope_zsensor: binary("di-3.di", 40960, Lie::Text(&[(
+        "\\Samps/line: 256\r\n\\Number of lines: 256",
+        "\\Samps/line: 40000\r\n\\Number of lines: 40000",
+    )]));
+    // Nanosurf: an INI header ended by `#!` at 30746; the first data set's grid.
+    nid: binary("nid-1.nid", 30748, Lie::Text(&[(
+        "Points=256\r\nLines=256\r\n",
+        "Points=40000\r\nLines=40000\r\n",
+    )]));
+    // PicoView: a text header ended by its `data` line (5073 bytes), then four int32 buffers.
+    picoview: binary("mi-1.mi", 5073, Lie::Text(&[
+        ("xPixels       256", "xPixels       40000"),
+        ("yPixels       256", "yPixels       40000"),
+    ]));
+    // WSxM: a text header of the size its third line states (2245 and 4607 bytes), then the
+    // image (int16 and f64).
+    wsxm_int16: binary("top-1.top", 2245, Lie::Text(&[
+        ("Number of columns: 256", "Number of columns: 40000"),
+        ("Number of rows: 256", "Number of rows: 40000"),
+    ]));
+    wsxm_double: binary("stp-1.stp", 4607, Lie::Text(&[
+        ("Number of columns: 256", "Number of columns: 40000"),
+        ("Number of rows: 256", "Number of rows: 40000"),
+    ]));
+    // Igor binary wave: a 64-byte binary header and a 320-byte wave header, whose nDim[0] and
+    // nDim[1] (256, 256) are little-endian i32 at 64 + 68 and 64 + 72. The sections the header
+    // sizes (wave record, note, labels of the layers) end at 2112969; the 131578 bytes Asylum
+    // appends after them have no stated size, so the cuts are made before that point.
+    ibw: Case {
+        data_end: Some(2_112_969),
+        ..binary("spot_1-1000nm.ibw", 384, Lie::U32Le(&[132, 136]))
+    };
+    // OPDx: a tree of items; the profile's values start at 48561 (its Array item at 48556 and
+    // 5 leading bytes). NumPoints (3001) is a little-endian u64 at 48397; its low half is
+    // patched.
+    opdx_profile: binary("opdx-3.opdx", 48561, Lie::U32Le(&[48397]));
 }
+
+/// Length of matrix-4.txt's four header lines (`h=305 w=75` to the conversion factor).
+const HEADER_MATRIX_HEADER: usize = 96;
 
 /// Every file in tests/data has a case above.
 #[test]
@@ -351,6 +426,20 @@ fn every_fixture_is_covered() {
         "plu-1.plu",
         "sur-2.sur",
         "al3d-1.al3d",
+        "frt-1.frt",
+        "mnt-1.mnt",
+        "nms-1.nms",
+        "tmd-1.tmd",
+        "xyz-1.txt",
+        "matrix-4.txt",
+        "di-1.di",
+        "di-3.di",
+        "nid-1.nid",
+        "mi-1.mi",
+        "top-1.top",
+        "stp-1.stp",
+        "spot_1-1000nm.ibw",
+        "opdx-3.opdx",
     ];
     for entry in std::fs::read_dir(fixture("")).unwrap() {
         let name = entry.unwrap().file_name().into_string().unwrap();

@@ -402,7 +402,7 @@ fn gwyddion_ascii_export_with_units() {
 
 #[test]
 fn gwyddion_ascii_errors_say_what_is_missing() {
-    let err = read_bytes_err("bare.txt", b"1 2 3\n4 5 6\n");
+    let err = read_bytes_err("bare.txt", b"1 2 3 4\n5 6 7 8\n");
     assert!(err.contains("bare.txt") && err.contains("Width"), "{err}");
     let err = read_bytes_err(
         "ragged.txt",

@@ -13,7 +13,7 @@
 
 use crate::error::Result;
 use crate::heightmap::HeightMap;
-use crate::io::binary::{Binary, latin1};
+use crate::io::binary::{Binary, header_text};
 use std::path::Path;
 
 pub(crate) const NAME: &str = "Alicona AL3D";
@@ -157,13 +157,13 @@ fn header(b: &Binary) -> Result<Header> {
     let tag = |k: usize| -> Result<(String, String)> {
         let at = MAGIC.len() + k * TAG_SIZE;
         let raw = b.slice(at, TAG_SIZE, &format!("header tag {k}"))?;
-        let key = latin1(&raw[..KEY_SIZE]);
+        let key = header_text(&raw[..KEY_SIZE]);
         if raw[TAG_SIZE - 2..] != *b"\r\n" || key.is_empty() {
             return Err(b.err(format!(
                 "header tag {k} ('{key}') is corrupt: empty key or no CRLF terminator"
             )));
         }
-        Ok((key, latin1(&raw[KEY_SIZE..KEY_SIZE + VALUE_SIZE])))
+        Ok((key, header_text(&raw[KEY_SIZE..KEY_SIZE + VALUE_SIZE])))
     };
     let version = tag(0)?;
     let count = tag(1)?;
@@ -182,7 +182,7 @@ fn header(b: &Binary) -> Result<Header> {
             ))
         })?;
     let comment_at = MAGIC.len() + (n + 2) * TAG_SIZE;
-    let comment = latin1(b.slice(comment_at, COMMENT_SIZE, "comment")?);
+    let comment = header_text(b.slice(comment_at, COMMENT_SIZE, "comment")?);
     let mut tags = vec![version];
     for k in 0..n {
         tags.push(tag(k + 2)?);

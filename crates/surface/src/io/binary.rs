@@ -7,7 +7,12 @@ use crate::error::{Result, SurfaceError};
 use crate::heightmap::HeightMap;
 use crate::io::common::{build_map, data_bytes, grid_points};
 use byteorder::{BigEndian, ByteOrder, LittleEndian};
+use std::io::Read;
 use std::path::Path;
+
+/// Largest ratio of inflated to deflated size zlib can reach (1032:1, zlib technical details,
+/// <https://zlib.net/zlib_tech.html>): a header claiming more is lying.
+pub(crate) const MAX_ZLIB_RATIO: usize = 1032;
 
 /// The bytes of one file together with its name and format, for error messages.
 pub(crate) struct Binary<'a> {
@@ -23,6 +28,11 @@ impl<'a> Binary<'a> {
             format,
             bytes,
         }
+    }
+
+    /// The file's name, for messages.
+    pub(crate) fn path(&self) -> &'a Path {
+        self.path
     }
 
     /// Length of the file in bytes.
@@ -79,7 +89,7 @@ impl<'a> Binary<'a> {
 
     /// A fixed-size text field: up to the first NUL, Latin-1 decoded, surrounding blanks removed.
     pub(crate) fn text(&self, offset: usize, len: usize, what: &str) -> Result<String> {
-        Ok(latin1(self.slice(offset, len, what)?))
+        Ok(header_text(self.slice(offset, len, what)?))
     }
 
     /// The `points` values of `bytes_per_point` bytes each at `offset`, after checking (before
@@ -123,6 +133,36 @@ impl<'a> Binary<'a> {
         }
     }
 
+    /// Inflate the zlib stream `input` (part of this file) onto `out`; it must give exactly
+    /// `raw` bytes. A claim beyond zlib's largest expansion is refused before inflating, and
+    /// inflation stops one byte past `raw`, so a lying size cannot make it allocate more.
+    pub(crate) fn inflate(
+        &self,
+        input: &[u8],
+        raw: usize,
+        out: &mut Vec<u8>,
+        what: &str,
+    ) -> Result<()> {
+        if raw > input.len().saturating_mul(MAX_ZLIB_RATIO) {
+            return Err(self.err(format!(
+                "{what}: {} compressed bytes cannot inflate to the {raw} bytes claimed",
+                input.len()
+            )));
+        }
+        let before = out.len();
+        flate2::read::ZlibDecoder::new(input)
+            .take(raw as u64 + 1)
+            .read_to_end(out)
+            .map_err(|e| self.err(format!("{what}: {e}")))?;
+        if out.len() - before != raw {
+            return Err(self.err(format!(
+                "{what} inflates to {} bytes, not the {raw} its header states",
+                out.len() - before
+            )));
+        }
+        Ok(())
+    }
+
     /// The height map of `ny` rows of `nx` heights in metres (NaN = not measured).
     pub(crate) fn height_map(
         &self,
@@ -147,15 +187,22 @@ pub(crate) type Be = BigEndian;
 /// Little-endian byte order (Wyko, Sensofar, Digital Surf, Alicona).
 pub(crate) type Le = LittleEndian;
 
-/// Latin-1 text up to the first NUL, with surrounding blanks removed.
-pub(crate) fn latin1(bytes: &[u8]) -> String {
+/// Text of a fixed-size header field up to the first NUL, with surrounding blanks removed:
+/// UTF-8 where the bytes are valid UTF-8 (other software writes `µm` as the two bytes `c2 b5`),
+/// else Latin-1 (the instruments' own `b5` for `µ`). A Latin-1 string is valid UTF-8 only when it
+/// is ASCII or holds a run like `Âµ`, which no header field means, so the choice is unambiguous.
+pub(crate) fn header_text(bytes: &[u8]) -> String {
     let end = bytes.iter().position(|&b| b == 0).unwrap_or(bytes.len());
-    bytes[..end]
-        .iter()
-        .map(|&b| char::from(b))
-        .collect::<String>()
-        .trim()
-        .to_string()
+    let bytes = &bytes[..end];
+    match std::str::from_utf8(bytes) {
+        Ok(text) => text.trim().to_string(),
+        Err(_) => bytes
+            .iter()
+            .map(|&b| char::from(b))
+            .collect::<String>()
+            .trim()
+            .to_string(),
+    }
 }
 
 /// A time as `YYYY-MM-DDThh:mm:ssZ` (UTC, whole seconds; the civil date comes from `jiff`).
@@ -204,8 +251,11 @@ mod tests {
     }
 
     #[test]
-    fn latin1_stops_at_nul_and_trims() {
-        assert_eq!(latin1(b" 20X  Mirau\0junk"), "20X  Mirau");
-        assert_eq!(latin1(&[0xb5, b'm', b' ', b' ']), "µm");
+    fn header_text_stops_at_nul_and_trims_and_reads_latin1_or_utf8() {
+        assert_eq!(header_text(b" 20X  Mirau\0junk"), "20X  Mirau");
+        assert_eq!(header_text(&[0xb5, b'm', b' ', b' ']), "µm");
+        assert_eq!(header_text(&[0xc2, 0xb5, b'm', 0, 0xb5]), "µm");
+        assert_eq!(header_text(&[0xc5, 0]), "Å");
+        assert_eq!(header_text("Å".as_bytes()), "Å");
     }
 }

@@ -3,80 +3,125 @@
 //! header" Gwyddion writes `# Channel: name`, `# Width: 12.34 µm`, `# Height: 5678.9 nm` (the
 //! physical size of the whole field) and `# Value units: m`.
 //!
+//! Gwyddion translates the keys into the language of its user interface (`# Breite:`,
+//! `# Höhe:` in German, `# Largeur:`, `# Hauteur:` in French, ...). The keys of the languages in
+//! [`KEYS`] are read by name; any other header is read by position and value, in the order
+//! Gwyddion writes it: the first length (`number unit`) is the width, the second the height, a
+//! bare length unit is the value unit, and a line before them that is neither is the channel name.
+//!
 //! The matrix itself carries no spacing, so a file without the `# Width:` and `# Height:` lines
 //! is an error that says how to re-export it. Width, height and value units may be m, mm, µm
 //! (um), nm, pm or Å; values in any other unit are an error. Numbers may use a decimal comma;
 //! `nan` marks a point that was not measured.
 
-use super::common::{build_map, parse_number, unit_scale};
+use super::common::{build_map, metres_per_unit, parse_number, unit_scale};
+use super::text::{looks_like_gwyddion, matrix_rows, numbered_lines, utf8};
 use crate::error::{Result, SurfaceError};
 use crate::heightmap::HeightMap;
 use std::path::Path;
 
 pub(crate) const NAME: &str = "Gwyddion ASCII matrix";
 
-/// A text file whose first line is one of the comment lines of Gwyddion's header.
+/// A text file whose first non-blank line is a `#` comment.
 pub(crate) fn sniff(bytes: &[u8]) -> bool {
-    [&b"# Channel:"[..], b"# Width:", b"# Height:"]
-        .iter()
-        .any(|m| bytes.starts_with(m))
+    looks_like_gwyddion(bytes)
+}
+
+/// What a header line of Gwyddion's export states.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Key {
+    Channel,
+    Width,
+    Height,
+    ValueUnits,
+}
+
+/// Gwyddion's header keys in the languages of its translations that a user is likely to meet
+/// (English, German, French, Czech, Spanish, Italian, Portuguese), compared case-insensitively.
+const KEYS: &[(&str, Key)] = &[
+    ("channel", Key::Channel),
+    ("kanal", Key::Channel),
+    ("canal", Key::Channel),
+    ("kanál", Key::Channel),
+    ("canale", Key::Channel),
+    ("width", Key::Width),
+    ("breite", Key::Width),
+    ("largeur", Key::Width),
+    ("šířka", Key::Width),
+    ("anchura", Key::Width),
+    ("ancho", Key::Width),
+    ("larghezza", Key::Width),
+    ("largura", Key::Width),
+    ("height", Key::Height),
+    ("höhe", Key::Height),
+    ("hauteur", Key::Height),
+    ("výška", Key::Height),
+    ("altura", Key::Height),
+    ("altezza", Key::Height),
+    ("value units", Key::ValueUnits),
+    ("werteinheiten", Key::ValueUnits),
+    ("einheiten der werte", Key::ValueUnits),
+    ("unités des valeurs", Key::ValueUnits),
+    ("unités de valeur", Key::ValueUnits),
+    ("jednotky hodnot", Key::ValueUnits),
+    ("unidades de valor", Key::ValueUnits),
+    ("unità dei valori", Key::ValueUnits),
+];
+
+/// Which header entry a `# key: value` line is: by its key where the key is known, else by its
+/// value and by the entries already seen (Gwyddion writes channel, width, height, value units).
+fn classify(key: &str, value: &str, seen: &[Key]) -> Option<Key> {
+    let lower = key.trim().to_lowercase();
+    if let Some(&(_, k)) = KEYS.iter().find(|(name, _)| *name == lower) {
+        return Some(k);
+    }
+    if is_length(value) {
+        return [Key::Width, Key::Height]
+            .into_iter()
+            .find(|k| !seen.contains(k));
+    }
+    if metres_per_unit(value).is_some() {
+        return (!seen.contains(&Key::ValueUnits)).then_some(Key::ValueUnits);
+    }
+    (seen.is_empty()).then_some(Key::Channel)
+}
+
+/// Whether `value` reads as `number unit` with a length unit.
+fn is_length(value: &str) -> bool {
+    value
+        .split_once(char::is_whitespace)
+        .is_some_and(|(n, u)| parse_number(n).is_some() && metres_per_unit(u).is_some())
 }
 
 pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
     let fail = |m: String| SurfaceError::format(path, NAME, m);
-    let text = std::str::from_utf8(bytes).map_err(|e| fail(format!("not UTF-8 text: {e}")))?;
+    let text = utf8(path, NAME, bytes)?;
     let (mut width, mut height, mut z_unit, mut channel) = (None, None, "m", None);
-    let mut heights = Vec::new();
-    let mut nx = 0;
-    for (number, line) in text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())) {
-        if let Some(comment) = line.strip_prefix('#') {
-            if !heights.is_empty() {
-                return Err(fail(format!(
-                    "line {number}: a comment among the data rows"
-                )));
-            }
-            let Some((key, value)) = comment.split_once(':') else {
-                continue;
-            };
-            let value = value.trim();
-            match key.trim() {
-                "Width" => width = Some(length(path, "Width", value)?),
-                "Height" => height = Some(length(path, "Height", value)?),
-                "Value units" => z_unit = value,
-                "Channel" => channel = Some(value),
-                _ => {}
-            }
+    let mut seen = Vec::new();
+    let mut lines = numbered_lines(text).peekable();
+    while let Some((_, comment)) = lines.next_if(|(_, l)| l.starts_with('#')) {
+        let Some((key, value)) = comment[1..].split_once(':') else {
             continue;
-        }
-        if line.is_empty() {
+        };
+        let value = value.trim();
+        let Some(entry) = classify(key, value, &seen) else {
             continue;
-        }
-        let start = heights.len();
-        for token in line.split_whitespace() {
-            let v = parse_number(token)
-                .ok_or_else(|| fail(format!("line {number}: '{token}' is not a number")))?;
-            if v.is_infinite() {
-                return Err(fail(format!("line {number}: infinite value")));
-            }
-            heights.push(v);
-        }
-        let columns = heights.len() - start;
-        if start == 0 {
-            nx = columns;
-        } else if columns != nx {
-            return Err(fail(format!(
-                "line {number} holds {columns} values, the first data row {nx}: the file is \
-                 truncated or not a matrix"
-            )));
+        };
+        seen.push(entry);
+        let key = key.trim();
+        match entry {
+            Key::Width => width = Some(length(path, key, value)?),
+            Key::Height => height = Some(length(path, key, value)?),
+            Key::ValueUnits => z_unit = value,
+            Key::Channel => channel = Some(value),
         }
     }
-    if heights.is_empty() {
-        return Err(fail("the file holds no data rows".into()));
-    }
+    let (mut heights, nx) = matrix_rows(path, NAME, lines)?;
     let (Some(width), Some(height)) = (width, height) else {
         return Err(fail(
-            "no '# Width:' and '# Height:' lines state the field size, so the spacing is \
-             unknown: export from Gwyddion with \"Add informational comment header\" checked"
+            "no '# Width:' and '# Height:' lines (or their translations) state the field size, so \
+             the spacing is unknown: export from Gwyddion with \"Add informational comment \
+             header\" checked"
                 .into(),
         ));
     };

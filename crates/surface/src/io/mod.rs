@@ -4,16 +4,31 @@
 
 mod al3d;
 mod binary;
+mod cfb;
 mod common;
+mod frt;
 mod gsf;
 mod gwyddion_ascii;
+mod header_matrix;
+mod ibw;
+mod mnt;
+mod nanoscope;
+mod nid;
+mod nms;
+mod opdx;
+mod picoview;
 mod plu;
 mod sdf;
 mod sur;
+mod text;
+mod tmd;
+mod wsxm;
 mod wyko;
 mod x3p;
+mod xyz;
 mod zygo;
 
+use crate::channel::{Channel, ChannelSelector, select};
 use crate::error::{Result, SurfaceError};
 use crate::heightmap::HeightMap;
 use atomic_write_file::AtomicWriteFile;
@@ -42,6 +57,47 @@ pub enum Format {
     Sur,
     /// Alicona `.al3d`.
     Al3d,
+    /// FRT MicroProf `.frt`.
+    Frt,
+    /// Digital Surf MountainsMap document `.mnt`.
+    Mnt,
+    /// NanoFocus µsurf `.nms`.
+    Nms,
+    /// TrueMap / GelSight `.tmd`.
+    Tmd,
+    /// Text matrix with an `h= w= pixel size=` header.
+    HeaderMatrix,
+    /// Text `x y z` point list on a regular grid.
+    XyzList,
+    /// Bruker / Veeco / Digital Instruments Nanoscope (`.spm`, `.di`, `.000`, ...).
+    Nanoscope,
+    /// Nanosurf `.nid`.
+    Nid,
+    /// Agilent / Molecular Imaging PicoView `.mi`.
+    PicoView,
+    /// Nanotec WSxM (`.top`, `.stp`, ...).
+    Wsxm,
+    /// Igor binary wave `.ibw` (Asylum Research).
+    Ibw,
+    /// Bruker Vision64 `.opdx` (Dektak profiles).
+    Opdx,
+}
+
+/// How a file is to be read.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct ReadOptions {
+    /// The channel to read; by default the file's first height channel.
+    pub channel: Option<ChannelSelector>,
+}
+
+/// A format's parser.
+#[derive(Clone, Copy)]
+enum Parse {
+    /// A format that stores one height channel.
+    Single(fn(&Path, &[u8]) -> Result<HeightMap>),
+    /// A format that stores several channels: the parser lists them in the map's metadata and
+    /// reads the one selected (by default the first height channel).
+    Channels(fn(&Path, &[u8], Option<&ChannelSelector>) -> Result<HeightMap>),
 }
 
 /// A format's reader: its name, a content test and the parser.
@@ -50,73 +106,161 @@ struct Reader {
     name: &'static str,
     extensions: &'static [&'static str],
     sniff: fn(&[u8]) -> bool,
-    parse: fn(&Path, &[u8]) -> Result<HeightMap>,
+    parse: Parse,
 }
 
 /// Binary formats with magic bytes come first; the text formats, whose tests are looser, last.
+/// Each text layout has its own content test (see `text`); a `.txt` file that passes none is
+/// read as a Gwyddion matrix, the first reader listing that extension.
 const READERS: &[Reader] = &[
     Reader {
         format: Format::X3p,
         name: x3p::NAME,
         extensions: &["x3p"],
         sniff: x3p::sniff,
-        parse: x3p::parse,
+        parse: Parse::Single(x3p::parse),
     },
     Reader {
         format: Format::Zygo,
         name: zygo::NAME,
         extensions: &["dat"],
         sniff: zygo::sniff,
-        parse: zygo::parse,
+        parse: Parse::Single(zygo::parse),
     },
     Reader {
         format: Format::Wyko,
         name: wyko::NAME,
         extensions: &["opd"],
         sniff: wyko::sniff,
-        parse: wyko::parse,
+        parse: Parse::Single(wyko::parse),
     },
     Reader {
         format: Format::Plu,
         name: plu::NAME,
         extensions: &["plu", "apx"],
         sniff: plu::sniff,
-        parse: plu::parse,
+        parse: Parse::Single(plu::parse),
     },
     Reader {
         format: Format::Sur,
         name: sur::NAME,
         extensions: &["sur"],
         sniff: sur::sniff,
-        parse: sur::parse,
+        parse: Parse::Single(sur::parse),
     },
     Reader {
         format: Format::Al3d,
         name: al3d::NAME,
         extensions: &["al3d"],
         sniff: al3d::sniff,
-        parse: al3d::parse,
+        parse: Parse::Single(al3d::parse),
+    },
+    Reader {
+        format: Format::Nanoscope,
+        name: nanoscope::NAME,
+        extensions: &[
+            "spm", "di", "000", "001", "002", "003", "004", "005", "006", "007", "008", "009",
+        ],
+        sniff: nanoscope::sniff,
+        parse: Parse::Channels(nanoscope::parse),
+    },
+    Reader {
+        format: Format::Nid,
+        name: nid::NAME,
+        extensions: &["nid"],
+        sniff: nid::sniff,
+        parse: Parse::Channels(nid::parse),
+    },
+    Reader {
+        format: Format::PicoView,
+        name: picoview::NAME,
+        extensions: &["mi"],
+        sniff: picoview::sniff,
+        parse: Parse::Channels(picoview::parse),
+    },
+    Reader {
+        format: Format::Wsxm,
+        name: wsxm::NAME,
+        extensions: &["top", "stp"],
+        sniff: wsxm::sniff,
+        parse: Parse::Channels(wsxm::parse),
+    },
+    Reader {
+        format: Format::Ibw,
+        name: ibw::NAME,
+        extensions: &["ibw"],
+        sniff: ibw::sniff,
+        parse: Parse::Channels(ibw::parse),
+    },
+    Reader {
+        format: Format::Opdx,
+        name: opdx::NAME,
+        extensions: &["opdx"],
+        sniff: opdx::sniff,
+        parse: Parse::Channels(opdx::parse),
+    },
+    Reader {
+        format: Format::Frt,
+        name: frt::NAME,
+        extensions: &["frt"],
+        sniff: frt::sniff,
+        parse: Parse::Single(frt::parse),
+    },
+    Reader {
+        format: Format::Mnt,
+        name: mnt::NAME,
+        extensions: &["mnt"],
+        sniff: mnt::sniff,
+        parse: Parse::Single(mnt::parse),
+    },
+    Reader {
+        format: Format::Nms,
+        name: nms::NAME,
+        extensions: &["nms"],
+        sniff: nms::sniff,
+        parse: Parse::Single(nms::parse),
+    },
+    Reader {
+        format: Format::Tmd,
+        name: tmd::NAME,
+        extensions: &["tmd"],
+        sniff: tmd::sniff,
+        parse: Parse::Single(tmd::parse),
     },
     Reader {
         format: Format::Gsf,
         name: gsf::NAME,
         extensions: &["gsf"],
         sniff: gsf::sniff,
-        parse: gsf::parse,
+        parse: Parse::Single(gsf::parse),
     },
     Reader {
         format: Format::Sdf,
         name: sdf::NAME,
         extensions: &["sdf"],
         sniff: sdf::sniff,
-        parse: sdf::parse,
+        parse: Parse::Single(sdf::parse),
     },
     Reader {
         format: Format::GwyddionAscii,
         name: gwyddion_ascii::NAME,
         extensions: &["txt", "asc", "csv"],
         sniff: gwyddion_ascii::sniff,
-        parse: gwyddion_ascii::parse,
+        parse: Parse::Single(gwyddion_ascii::parse),
+    },
+    Reader {
+        format: Format::HeaderMatrix,
+        name: header_matrix::NAME,
+        extensions: &[],
+        sniff: header_matrix::sniff,
+        parse: Parse::Single(header_matrix::parse),
+    },
+    Reader {
+        format: Format::XyzList,
+        name: xyz::NAME,
+        extensions: &["xyz"],
+        sniff: xyz::sniff,
+        parse: Parse::Single(xyz::parse),
     },
 ];
 
@@ -134,18 +278,62 @@ fn pick(path: &Path, bytes: &[u8]) -> Option<&'static Reader> {
     })
 }
 
-/// Read a height map from a file of any supported format.
+/// Read a height map from a file of any supported format (its first height channel).
 pub fn read(path: &Path) -> Result<HeightMap> {
+    read_with(path, &ReadOptions::default())
+}
+
+/// Read a height map from a file of any supported format, as `options` say.
+pub fn read_with(path: &Path, options: &ReadOptions) -> Result<HeightMap> {
     let bytes = std::fs::read(path).map_err(|e| SurfaceError::io(path, e))?;
-    read_bytes(path, &bytes)
+    read_bytes_with(path, &bytes, options)
+}
+
+/// Read the bytes of a file as `format`, without detection (one reader alone, as the fuzz
+/// targets drive them); `path` names the file in messages.
+pub fn read_bytes_as(format: Format, path: &Path, bytes: &[u8]) -> Result<HeightMap> {
+    let reader = READERS
+        .iter()
+        .find(|r| r.format == format)
+        .expect("every Format has a reader");
+    finish_read(reader, path, bytes, None)
 }
 
 /// Read a height map from the bytes of a file; `path` names it in messages and picks the format
 /// by extension when the content does not.
 pub fn read_bytes(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
+    read_bytes_with(path, bytes, &ReadOptions::default())
+}
+
+/// [`read_bytes`] as `options` say.
+pub fn read_bytes_with(path: &Path, bytes: &[u8], options: &ReadOptions) -> Result<HeightMap> {
     let reader =
         pick(path, bytes).ok_or_else(|| SurfaceError::UnknownFormat { path: path.into() })?;
-    let mut map = (reader.parse)(path, bytes)?;
+    finish_read(reader, path, bytes, options.channel.as_ref())
+}
+
+fn finish_read(
+    reader: &Reader,
+    path: &Path,
+    bytes: &[u8],
+    selector: Option<&ChannelSelector>,
+) -> Result<HeightMap> {
+    let mut map = match reader.parse {
+        Parse::Single(parse) => {
+            // The one channel of the format, checked like any other before the file is read.
+            let only = [Channel {
+                index: 0,
+                name: "Height".into(),
+                unit: None,
+                is_height: true,
+            }];
+            select(path, reader.name, &only, selector)?;
+            let mut map = parse(path, bytes)?;
+            map.meta.channels = only.to_vec();
+            map
+        }
+        Parse::Channels(parse) => parse(path, bytes, selector)?,
+    };
     map.meta.source = Some(path.to_path_buf());
     map.meta.format = Some(reader.name.to_string());
     Ok(map)

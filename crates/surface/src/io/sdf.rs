@@ -9,7 +9,9 @@
 //! trailer. Heights are value × Zscale metres; the spacings are Xscale and Yscale metres.
 //! DataType codes follow Gwyddion's `sdfile.c`: 0 uint8, 1 uint16, 2 uint32, 3 float32, 4 int8,
 //! 5 int16, 6 int32, 7 float64. Binary integers at the extreme of their type (uint16/uint32
-//! maximum, int16/int32 minimum) and NaN floats mark non-measured points.
+//! maximum, int16/int32 minimum) and NaN floats mark non-measured points; in ASCII files the
+//! word `BAD` does (ISO 25178-71's marker for a non-measured point, which MountainsMap writes
+//! whatever the DataType).
 
 use super::common::{build_map, data_bytes, grid_points};
 use crate::error::{Result, SurfaceError};
@@ -124,6 +126,10 @@ fn parse_ascii(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
             return Err(fail(format!(
                 "the data holds more than the {n} values the header states"
             )));
+        }
+        if token.eq_ignore_ascii_case("BAD") {
+            heights.push(f64::NAN);
+            continue;
         }
         let value: f64 = token
             .parse()

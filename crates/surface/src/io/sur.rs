@@ -12,10 +12,9 @@
 
 use crate::error::Result;
 use crate::heightmap::HeightMap;
-use crate::io::binary::{Binary, Le};
+use crate::io::binary::{Binary, Le, MAX_ZLIB_RATIO};
 use crate::io::common::unit_scale;
 use std::borrow::Cow;
-use std::io::Read;
 use std::path::Path;
 
 pub(crate) const NAME: &str = "Digital Surf";
@@ -30,9 +29,6 @@ const TYPE_PROFILE: u16 = 1;
 const TYPE_SURFACE: u16 = 2;
 /// Most zlib streams a compressed file may hold (RosettaSciIO writes 1 to 8).
 const MAX_STREAMS: usize = 64;
-/// Largest ratio of inflated to deflated size zlib can reach (1032:1, zlib technical details,
-/// <https://zlib.net/zlib_tech.html>): a header claiming more is lying.
-const MAX_ZLIB_RATIO: usize = 1032;
 
 /// Acquisition types (header offset 82), from Gwyddion's `surffile.c`.
 const ACQUISITION: [&str; 11] = [
@@ -139,6 +135,9 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
         })
         .collect();
     let mut map = b.height_map(heights, (nx, ny), (dx, dy))?;
+    if kind == TYPE_PROFILE && ny == 1 {
+        map = map.into_profile()?;
+    }
 
     let meta = &mut map.meta;
     let inversion = b.u16::<Le>(290, "inversion")?;
@@ -224,20 +223,13 @@ fn inflate(b: &Binary, offset: usize, expected: usize) -> Result<Vec<u8>> {
     let mut out = Vec::with_capacity(expected);
     let mut at = 0;
     for (k, (raw, zipped)) in sizes.into_iter().enumerate() {
-        let what = format!("compressed stream {k}");
-        let input = &input[at..at + zipped];
+        b.inflate(
+            &input[at..at + zipped],
+            raw,
+            &mut out,
+            &format!("compressed stream {k}"),
+        )?;
         at += zipped;
-        let before = out.len();
-        flate2::read::ZlibDecoder::new(input)
-            .take(raw as u64 + 1)
-            .read_to_end(&mut out)
-            .map_err(|e| b.err(format!("{what}: {e}")))?;
-        if out.len() - before != raw {
-            return Err(b.err(format!(
-                "{what} inflates to {} bytes, not the {raw} its header states",
-                out.len() - before
-            )));
-        }
     }
     Ok(out)
 }

@@ -7,13 +7,15 @@
 //! contents follow the directory, in the order of the entries. The height data is the first
 //! array block (type 3) named `OPD`, `SAMPLE_DATA`, `RAW_DATA`, `RAW DATA` or `Raw`: three u16
 //! (nx, ny, element size) then the values column by column, each column from the last row to the
-//! first. Float values of 1e10 or more in magnitude (Vision writes 1.7e38) mark points that were
-//! not measured, as do 16-bit values of 32766 or more. Scalars: `Wavelength` (nm), `Pixel_size`
+//! first. Element sizes: 1 (unsigned bytes), 2 (signed little-endian int16) or 4 (float32). Float
+//! values of 1e10 or more in magnitude (Vision writes 1.7e38) mark points that were not measured,
+//! as do 16-bit values of 32766 and 32767 (the two largest; negative values are real heights
+//! below the reference, as Gwyddion's `opdfile.c` and SurfaceTopography's `OPD.py` read them). Scalars: `Wavelength` (nm), `Pixel_size`
 //! (mm), optional `Mult` (counts per wavelength unit, default 1) and `Aspect` (dy / dx, default 1).
 
 use crate::error::Result;
 use crate::heightmap::HeightMap;
-use crate::io::binary::{Binary, Le, latin1};
+use crate::io::binary::{Binary, Le, header_text};
 use std::path::Path;
 
 pub(crate) const NAME: &str = "Wyko OPD";
@@ -38,8 +40,8 @@ const HEIGHT_BLOCKS: [&str; 5] = ["OPD", "SAMPLE_DATA", "RAW_DATA", "RAW DATA", 
 
 /// Float values at or above this magnitude mark points that were not measured.
 const BAD_FLOAT: f32 = 1e10;
-/// Unsigned 16-bit values at or above this mark points that were not measured.
-const BAD_INT16: u16 = 32766;
+/// Signed 16-bit values at or above this mark points that were not measured.
+const BAD_INT16: i16 = 32766;
 
 pub(crate) fn sniff(bytes: &[u8]) -> bool {
     bytes.starts_with(MAGIC)
@@ -114,7 +116,7 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
                 }
             }
             2 => {
-                let v = u16::from_le_bytes([v[0], v[1]]);
+                let v = i16::from_le_bytes([v[0], v[1]]);
                 if v >= BAD_INT16 {
                     f64::NAN
                 } else {
@@ -166,7 +168,7 @@ fn directory(b: &Binary) -> Result<Vec<Block>> {
     let mut offset = 2 + dir_size;
     let mut blocks = Vec::new();
     for entry in (2 + ENTRY_SIZE..2 + dir_size).step_by(ENTRY_SIZE) {
-        let name = latin1(b.slice(entry, NAME_SIZE, "directory entry")?);
+        let name = header_text(b.slice(entry, NAME_SIZE, "directory entry")?);
         let kind = b.u16::<Le>(entry + NAME_SIZE, "directory entry")?;
         let size = b.u32::<Le>(entry + NAME_SIZE + 2, "directory entry")? as usize;
         if size == 0 {
@@ -207,8 +209,8 @@ fn scalar_value(b: &Binary, blk: &Block) -> Result<f64> {
 fn text_value(b: &Binary, blk: &Block) -> Option<String> {
     let content = b.slice(blk.offset, blk.size, "text block").ok()?;
     let text = match (blk.kind, content) {
-        (TYPE_TEXT, _) => latin1(content),
-        (TYPE_VARIANT, [0x12, 0x01, len, rest @ ..]) => latin1(rest.get(..usize::from(*len))?),
+        (TYPE_TEXT, _) => header_text(content),
+        (TYPE_VARIANT, [0x12, 0x01, len, rest @ ..]) => header_text(rest.get(..usize::from(*len))?),
         _ => return None,
     };
     (!text.is_empty()).then_some(text)
@@ -220,6 +222,11 @@ mod tests {
 
     /// A minimal OPD file: directory, Wavelength, Pixel_size and a 2 × 3 float array.
     fn tiny(values: [f32; 6]) -> Vec<u8> {
+        tiny_array(4, &values.map(f32::to_le_bytes).concat())
+    }
+
+    /// A minimal OPD file whose 2 × 3 array has elements of `elem` bytes, given as `raw` bytes.
+    fn tiny_array(elem: u16, raw: &[u8]) -> Vec<u8> {
         let entry = |name: &str, kind: u16, size: u32| {
             let mut e = vec![0u8; NAME_SIZE];
             e[..name.len()].copy_from_slice(name.as_bytes());
@@ -233,16 +240,32 @@ mod tests {
         f[2 + NAME_SIZE + 6..2 + ENTRY_SIZE].copy_from_slice(&0xffffu16.to_le_bytes());
         f.extend(entry("Wavelength", 7, 4));
         f.extend(entry("Pixel_size", 7, 4));
-        f.extend(entry("RAW_DATA", 3, 6 + 24));
+        f.extend(entry("RAW_DATA", 3, 6 + raw.len() as u32));
         f.extend(600.0f32.to_le_bytes());
         f.extend(0.002f32.to_le_bytes());
-        for n in [2u16, 3, 4] {
+        for n in [2u16, 3, elem] {
             f.extend(n.to_le_bytes());
         }
-        for v in values {
-            f.extend(v.to_le_bytes());
-        }
+        f.extend(raw);
         f
+    }
+
+    #[test]
+    fn int16_heights_are_signed_and_only_the_two_largest_values_are_invalid() {
+        // Two columns from the last row up: (-5, 32766, -32768) and (32767, 100, 32765).
+        let raw: Vec<u8> = [-5i16, 32766, -32768, 32767, 100, 32765]
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
+        let map = parse(Path::new("t.opd"), &tiny_array(2, &raw)).unwrap();
+        let h = |ix, iy| map.get(ix, iy).map(|v| (v / 600e-9).round() as i32);
+        assert_eq!(h(0, 2), Some(-5));
+        assert_eq!(h(0, 1), None);
+        assert_eq!(h(0, 0), Some(-32768));
+        assert_eq!(h(1, 2), None);
+        assert_eq!(h(1, 1), Some(100));
+        assert_eq!(h(1, 0), Some(32765));
+        assert_eq!(map.valid_count(), 4);
     }
 
     #[test]

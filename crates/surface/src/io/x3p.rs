@@ -5,9 +5,15 @@
 //! Read: matrix data (`<MatrixDimension>`, one layer) of int16, int32, float32 or float64 (`I`,
 //! `L`, `F`, `D`), incremental or absolute x and y axes (absolute ones must lie on a regular
 //! grid), invalid points from `valid.bin` (bit i, least significant first, of byte i / 8), from
-//! empty `<Datum/>` elements and from non-finite floats. A checksum that does not match is a
-//! warning in [`crate::Metadata::warnings`], not an error. Written: float64 binary data, a
-//! `valid.bin` where points are missing, and the checksums.
+//! empty `<Datum/>` elements and from non-finite floats. Every member's zip CRC-32 is verified:
+//! a mismatch is an error naming the member. An MD5 checksum that does not match is a warning in
+//! [`crate::Metadata::warnings`], not an error (the zip CRC already guards the bytes).
+//!
+//! Variants other writers produce are read with a warning: every member under one folder
+//! (`name/main.xml`, `name/bindata/data.bin`, as the R package x3ptools writes), a root element
+//! outside the ISO 5436-2 namespace, and an empty `<Offset/>` (taken as 0).
+//!
+//! Written: float64 binary data, a `valid.bin` where points are missing, and the checksums.
 
 use super::common::{build_map, data_bytes, grid_points, md5_hex};
 use crate::error::{Result, SurfaceError};
@@ -102,13 +108,31 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
             "the file does not start with a zip local header (PK\\3\\4)".into(),
         ));
     }
-    let mut zip = ZipArchive::new(Cursor::new(bytes))
+    let zip = ZipArchive::new(Cursor::new(bytes))
         .map_err(|e| fail(format!("not a readable zip container: {e}")))?;
-    let xml_bytes = read_entry(path, &mut zip, "main.xml", None)?;
+    let mut meta = Metadata::default();
+    let mut zip = Container::open(path, zip, &mut meta)?;
+    let xml_bytes = zip.read_entry(path, "main.xml", None)?;
     let xml =
         std::str::from_utf8(&xml_bytes).map_err(|e| fail(format!("main.xml is not UTF-8: {e}")))?;
-    let doc = Document::parse(xml.trim_start_matches('\u{feff}'))
-        .map_err(|e| fail(format!("main.xml is not well-formed XML: {e}")))?;
+    let xml = xml.trim_start_matches('\u{feff}');
+    let declared;
+    let doc = match Document::parse(xml) {
+        Ok(doc) => doc,
+        Err(roxmltree::Error::UnknownNamespace(prefix, _)) => {
+            // A prefixed root (`<p:ISO5436_2>`) whose prefix nobody declared: bind it to the
+            // ISO 5436-2 namespace, which is what the writer meant.
+            declared = declare_prefix(xml, &prefix)
+                .ok_or_else(|| fail(format!("main.xml uses the undeclared prefix '{prefix}'")))?;
+            meta.warn(format!(
+                "main.xml uses the namespace prefix '{prefix}' without declaring it; read as the \
+                 ISO 5436-2 namespace"
+            ));
+            Document::parse(&declared)
+                .map_err(|e| fail(format!("main.xml is not well-formed XML: {e}")))?
+        }
+        Err(e) => return Err(fail(format!("main.xml is not well-formed XML: {e}"))),
+    };
     let root = doc.root_element();
     if root.tag_name().name() != "ISO5436_2" {
         return Err(fail(format!(
@@ -116,7 +140,12 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
             root.tag_name().name()
         )));
     }
-    let mut meta = Metadata::default();
+    if root.tag_name().namespace() != Some(NAMESPACE) {
+        meta.warn(format!(
+            "the root element <ISO5436_2> is not in the ISO 5436-2 namespace ({NAMESPACE}); \
+             read as if it were"
+        ));
+    }
 
     let record1 = child(path, root, "Record1")?;
     let feature = text_of(path, record1, "FeatureType")?;
@@ -127,7 +156,7 @@ pub(crate) fn parse(path: &Path, bytes: &[u8]) -> Result<HeightMap> {
         )));
     }
     let axes = child(path, record1, "Axes")?;
-    let [cx, cy, cz] = ["CX", "CY", "CZ"].map(|name| axis(path, axes, name));
+    let [cx, cy, cz] = ["CX", "CY", "CZ"].map(|name| axis(path, axes, name, &mut meta));
     let (cx, cy, cz) = (cx?, cy?, cz?);
     if !cz.absolute {
         return Err(fail("the z axis (CZ) must be absolute (AxisType A)".into()));
@@ -211,7 +240,7 @@ struct Points {
 
 fn read_binary_points(
     path: &Path,
-    zip: &mut ZipArchive<Cursor<&[u8]>>,
+    zip: &mut Container,
     link: Node,
     columns: &[Axis; 3],
     n: usize,
@@ -223,12 +252,12 @@ fn read_binary_points(
         .map(|a| a.data_type.size())
         .sum();
     let data_name = text_of(path, link, "PointDataLink")?;
-    let data = read_entry(path, zip, data_name, Some((n, point_size)))?;
+    let data = zip.read_entry(path, data_name, Some((n, point_size)))?;
     let valid_name = element(link, "ValidPointsLink")
         .and_then(|e| e.text())
         .map(str::trim);
     let valid = match valid_name {
-        Some(name) => Some(read_entry(path, zip, name, Some((n.div_ceil(8), 1)))?),
+        Some(name) => Some(zip.read_entry(path, name, Some((n.div_ceil(8), 1)))?),
         None => None,
     };
     // The checksums take as long as decoding: compute them on another thread.
@@ -433,15 +462,11 @@ fn compare_md5(meta: &mut Metadata, name: &str, actual: &str, expected: &str) {
 
 /// Compare main.xml with the checksum file (`<hex digest> *main.xml`); a mismatch or a missing
 /// checksum file is a warning.
-fn check_main_checksum(
-    zip: &mut ZipArchive<Cursor<&[u8]>>,
-    name: &str,
-    xml: &[u8],
-    meta: &mut Metadata,
-) {
+fn check_main_checksum(zip: &mut Container, name: &str, xml: &[u8], meta: &mut Metadata) {
     let mut text = String::new();
     let read = zip
-        .by_name(name)
+        .archive
+        .by_name(&zip.member(name))
         .map(|f| f.take(1024).read_to_string(&mut text));
     match read {
         Ok(Ok(_)) => {
@@ -452,51 +477,134 @@ fn check_main_checksum(
     }
 }
 
-/// The bytes of a zip entry. With `expected = Some((count, size))` the entry must hold exactly
-/// `count` values of `size` bytes; that size, and any size the entry declares, is checked against
-/// what its compressed bytes can hold before anything is allocated.
-fn read_entry(
-    path: &Path,
-    zip: &mut ZipArchive<Cursor<&[u8]>>,
-    name: &str,
-    expected: Option<(usize, usize)>,
-) -> Result<Vec<u8>> {
-    let fail = |m: String| SurfaceError::format(path, NAME, m);
-    let name = name.trim();
-    let entry = zip
-        .by_name(name)
-        .map_err(|e| fail(format!("entry {name}: {e}")))?;
-    let declared = entry.size();
-    let compressed = entry.compressed_size();
-    let bound = compressed
-        .saturating_mul(MAX_DEFLATE_RATIO)
-        .saturating_add(64);
-    if declared > bound {
-        return Err(fail(format!(
-            "entry {name} declares {declared} bytes but holds only {compressed} compressed bytes"
-        )));
+/// The zip archive and the folder its members live in: `""` for the standard layout, `"name/"`
+/// when every member sits under one folder (x3ptools).
+struct Container<'a> {
+    archive: ZipArchive<Cursor<&'a [u8]>>,
+    folder: String,
+}
+
+impl<'a> Container<'a> {
+    /// Find `main.xml`: at the root, or else in exactly one folder of the archive (a warning).
+    fn open(
+        path: &Path,
+        archive: ZipArchive<Cursor<&'a [u8]>>,
+        meta: &mut Metadata,
+    ) -> Result<Self> {
+        if archive.index_for_name("main.xml").is_some() {
+            return Ok(Container {
+                archive,
+                folder: String::new(),
+            });
+        }
+        let mut folders: Vec<String> = archive
+            .file_names()
+            .filter_map(|n| n.ok()?.strip_suffix("main.xml").map(str::to_string))
+            .filter(|f| f.ends_with('/'))
+            .collect();
+        folders
+            .sort_unstable_by(|a, b| (a.matches('/').count(), a).cmp(&(b.matches('/').count(), b)));
+        let folder = match folders.as_slice() {
+            [] => {
+                return Err(SurfaceError::format(
+                    path,
+                    NAME,
+                    "the archive holds no main.xml: not an X3P file",
+                ));
+            }
+            [one] => one.clone(),
+            [first, second, ..] => {
+                return Err(SurfaceError::format(
+                    path,
+                    NAME,
+                    format!(
+                        "the archive holds several main.xml ({first}main.xml, \
+                         {second}main.xml, ...): which surface to read is ambiguous"
+                    ),
+                ));
+            }
+        };
+        meta.warn(format!(
+            "every member lies under the folder '{folder}' (as x3ptools writes), not at the \
+             archive's root as ISO 25178-72 places them"
+        ));
+        Ok(Container { archive, folder })
     }
-    let declared = usize::try_from(declared).map_err(|_| fail(format!("entry {name} too big")))?;
-    if let Some((count, size)) = expected {
-        let needed = data_bytes(path, NAME, count, size, declared)?;
-        if needed != declared {
+
+    /// The archive name of a member that `main.xml` names relative to itself.
+    fn member(&self, name: &str) -> String {
+        format!("{}{}", self.folder, name.trim())
+    }
+
+    /// The bytes of a member, its zip CRC-32 verified. With `expected = Some((count, size))` the
+    /// member must hold exactly `count` values of `size` bytes; that size, and any size the member
+    /// declares, is checked against what its compressed bytes can hold before anything is
+    /// allocated.
+    fn read_entry(
+        &mut self,
+        path: &Path,
+        name: &str,
+        expected: Option<(usize, usize)>,
+    ) -> Result<Vec<u8>> {
+        let fail = |m: String| SurfaceError::format(path, NAME, m);
+        let name = self.member(name);
+        let entry = self
+            .archive
+            .by_name(&name)
+            .map_err(|e| fail(format!("member {name}: {e}")))?;
+        let declared = entry.size();
+        let compressed = entry.compressed_size();
+        let crc = entry.crc32();
+        let bound = compressed
+            .saturating_mul(MAX_DEFLATE_RATIO)
+            .saturating_add(64);
+        if declared > bound {
             return Err(fail(format!(
-                "entry {name} holds {declared} bytes, main.xml describes {needed}"
+                "member {name} declares {declared} bytes but holds only {compressed} compressed \
+                 bytes"
             )));
         }
+        let declared =
+            usize::try_from(declared).map_err(|_| fail(format!("member {name} too big")))?;
+        if let Some((count, size)) = expected {
+            let needed = data_bytes(path, NAME, count, size, declared)?;
+            if needed != declared {
+                return Err(fail(format!(
+                    "member {name} holds {declared} bytes, main.xml describes {needed}"
+                )));
+            }
+        }
+        let mut out = Vec::with_capacity(declared);
+        entry
+            .take(declared as u64)
+            .read_to_end(&mut out)
+            .map_err(|e| fail(format!("member {name}: {e}")))?;
+        if out.len() != declared {
+            return Err(fail(format!(
+                "member {name} holds {} bytes, its header declares {declared}",
+                out.len()
+            )));
+        }
+        let actual = crc32fast::hash(&out);
+        if actual != crc {
+            return Err(fail(format!(
+                "member {name} is damaged: its CRC-32 is {actual:08x}, the archive records \
+                 {crc:08x}"
+            )));
+        }
+        Ok(out)
     }
-    let mut out = Vec::with_capacity(declared);
-    entry
-        .take(declared as u64)
-        .read_to_end(&mut out)
-        .map_err(|e| fail(format!("entry {name}: {e}")))?;
-    if out.len() != declared {
-        return Err(fail(format!(
-            "entry {name} holds {} bytes, its header declares {declared}",
-            out.len()
-        )));
-    }
-    Ok(out)
+}
+
+/// `xml` with `xmlns:{prefix}` bound to the ISO 5436-2 namespace on its root element.
+fn declare_prefix(xml: &str, prefix: &str) -> Option<String> {
+    let open = format!("<{prefix}:ISO5436_2");
+    let at = xml.find(&open)? + open.len();
+    let mut out = String::with_capacity(xml.len() + 64);
+    out.push_str(&xml[..at]);
+    out.push_str(&format!(" xmlns:{prefix}=\"{NAMESPACE}\""));
+    out.push_str(&xml[at..]);
+    Some(out)
 }
 
 fn element<'a, 'input>(node: Node<'a, 'input>, name: &str) -> Option<Node<'a, 'input>> {
@@ -518,7 +626,7 @@ fn text_of<'a>(path: &Path, node: Node<'a, '_>, name: &str) -> Result<&'a str> {
     Ok(child(path, node, name)?.text().unwrap_or("").trim())
 }
 
-fn axis(path: &Path, axes: Node, name: &str) -> Result<Axis> {
+fn axis(path: &Path, axes: Node, name: &str, meta: &mut Metadata) -> Result<Axis> {
     let fail = |m: String| SurfaceError::format(path, NAME, m);
     let node = child(path, axes, name)?;
     let absolute = match text_of(path, node, "AxisType")? {
@@ -542,7 +650,13 @@ fn axis(path: &Path, axes: Node, name: &str) -> Result<Axis> {
             .transpose()
     };
     let increment = number("Increment")?;
-    let offset = number("Offset")?.unwrap_or(0.0);
+    let offset = match element(node, "Offset") {
+        Some(e) if e.text().is_none_or(|t| t.trim().is_empty()) => {
+            meta.warn(format!("{name}/Offset is empty; taken as 0"));
+            0.0
+        }
+        _ => number("Offset")?.unwrap_or(0.0),
+    };
     let data_type = match element(node, "DataType")
         .and_then(|e| e.text())
         .map(str::trim)
