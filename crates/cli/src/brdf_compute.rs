@@ -80,7 +80,7 @@ pub fn run(a: ComputeArgs) -> Result<()> {
     if !(a.index.is_finite() && a.index > 0.0) {
         bail!("--index {}: the refractive index must be positive", a.index);
     }
-    let map = gonio_surface::io::read(&a.surface)
+    let map = crate::surface::read(&a.surface)
         .with_context(|| format!("cannot read the height map {}", a.surface.display()))?;
     let method = match a.method {
         ComputeMethod::Ray => "ray",

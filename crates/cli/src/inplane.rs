@@ -280,7 +280,7 @@ fn ray_curves(
         bail!("--method ray needs a height map: gonio inplane SURFACE --method ray ...");
     };
     progress.set_message(format!("reading {}", path.display()));
-    let map = gonio_surface::io::read(path)?;
+    let map = crate::surface::read(path)?;
     // The ray curves are judged at the longest wavelength given (the smallest Rayleigh
     // roughness), 550 nm when none is.
     let wavelength = args
@@ -353,7 +353,7 @@ fn kirchhoff_curves(
     };
     let wavelengths = wavelengths_m(args, "--method kirchhoff")?;
     progress.set_message(format!("reading {}", path.display()));
-    let map = gonio_surface::io::read(path)?;
+    let map = crate::surface::read(path)?;
     let spots = match (args.spot_um, args.spots) {
         (None, 1) => vec![Spot::largest(&map)],
         (None, _) => bail!(

@@ -29,6 +29,11 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Channel of a multi-channel instrument file to read (AFM files store height, phase,
+    /// amplitude, trace and retrace): a name, compared without regard to case, or a 0-based
+    /// index. Default: the file's first height channel. `gonio surface info FILE` lists them.
+    #[arg(long, global = true, value_name = "NAME|INDEX")]
+    channel: Option<gonio_surface::ChannelSelector>,
 }
 
 #[derive(Subcommand)]
@@ -66,6 +71,9 @@ fn main() -> ExitCode {
     die_quietly_on_closed_stdout();
     let matches = accept_negative_numbers(Cli::command()).get_matches();
     let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
+    if let Some(selector) = cli.channel {
+        surface::choose_channel(selector);
+    }
     let result: anyhow::Result<()> = match cli.command {
         Command::Surface(cmd) => surface::run(cmd),
         Command::Compare(args) => compare::run(args),

@@ -6,19 +6,24 @@ use crate::plot::{self, Raster};
 use crate::units::length;
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
+use gonio_surface::profile_stats::profile_statistics;
 use gonio_surface::stats::{self, Statistics};
 use gonio_surface::synth::{Acf, GaussianSurface};
-use gonio_surface::{HeightMap, io, ops};
+use gonio_surface::{ChannelSelector, HeightMap, io, ops};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 use std::time::Duration;
 
 /// Height maps: statistics, synthesis and editing.
 ///
-/// Formats read: X3P, SDF, Gwyddion GSF and ASCII, Zygo .dat, Wyko .opd, Sensofar .plu,
-/// Digital Surf .sur, Alicona .al3d (detected from the content). Written: .x3p and .gsf, chosen
-/// by the output file's extension.
+/// Formats read (detected from the content): X3P, SDF, Gwyddion GSF and ASCII, Zygo .dat,
+/// Wyko .opd, Sensofar .plu, Digital Surf .sur, MountainsMap .mnt, Alicona .al3d, FRT .frt,
+/// NanoFocus .nms, TrueMap .tmd, Bruker Nanoscope .spm/.di, Nanosurf .nid, Igor .ibw, PicoView
+/// .mi, WSxM .top/.stp, Bruker .opdx profiles, text x y z lists and h= w= matrices
+/// (docs/formats.md). Multi-channel files: `--channel NAME|INDEX`. Written: .x3p and .gsf,
+/// chosen by the output file's extension.
 #[derive(Subcommand)]
 pub enum SurfaceCommand {
     /// Print the grid, metadata, the rms height as read and the ISO 25178-2 statistics after
@@ -182,11 +187,41 @@ pub fn run(cmd: SurfaceCommand) -> Result<()> {
     }
 }
 
-/// Read a height map, printing the reader's warnings (e.g. a checksum mismatch) to stderr.
-pub fn read(path: &Path) -> Result<HeightMap> {
-    let map = io::read(path)?;
+/// The channel that the global `--channel` flag chose for every file read; unset, each file's
+/// first height channel is read.
+static CHANNEL: OnceLock<ChannelSelector> = OnceLock::new();
+
+/// Read every file's channel `selector` (`main` calls this once, from `--channel`).
+pub fn choose_channel(selector: ChannelSelector) {
+    // Set once, before any file is read; a second call could only repeat the same flag.
+    let _ = CHANNEL.set(selector);
+}
+
+/// Read a height map or line profile in the channel `--channel` chose, printing the reader's
+/// warnings (e.g. a checksum mismatch) to stderr.
+fn read_any(path: &Path) -> Result<HeightMap> {
+    let options = io::ReadOptions {
+        channel: CHANNEL.get().cloned(),
+    };
+    let map = io::read_with(path, &options)?;
     for w in map.meta.warnings() {
         eprintln!("warning: {w}");
+    }
+    Ok(map)
+}
+
+/// Read an areal height map ([`read_any`]); a file that holds a line profile is refused with a
+/// message that says so, since scattering, gloss and rendering need an areal map.
+pub fn read(path: &Path) -> Result<HeightMap> {
+    let map = read_any(path)?;
+    if map.is_profile() {
+        bail!(
+            "{}: the file holds a line profile ({} points), not an areal height map; this \
+             command needs an areal map (`gonio surface info` gives the profile's ISO 21920-2 \
+             statistics)",
+            path.display(),
+            map.nx()
+        );
     }
     Ok(map)
 }
@@ -209,7 +244,10 @@ fn busy<T>(message: &str, work: impl FnOnce() -> T) -> T {
 }
 
 fn info(a: &InfoArgs) -> Result<()> {
-    let map = read(&a.file)?;
+    let map = read_any(&a.file)?;
+    if map.is_profile() {
+        return profile_info(a, &map);
+    }
     let st = busy("computing statistics", || stats::statistics(&map))
         .with_context(|| format!("{}: statistics", a.file.display()))?;
     let raw = rms_as_read(&map);
@@ -265,9 +303,100 @@ fn info_json(map: &HeightMap, st: &Statistics, rms_as_read: f64) -> Value {
         "instrument": meta.instrument,
         "date": meta.date,
         "source": meta.source.as_ref().map(|p| p.display().to_string()),
+        "channels": channels_json(map),
+        "channel": meta.channel,
         "metadata": extra,
         "warnings": meta.warnings().collect::<Vec<_>>(),
     })
+}
+
+/// The file's channels as JSON objects (index, name, unit, whether it holds heights).
+fn channels_json(map: &HeightMap) -> Value {
+    map.meta
+        .channels
+        .iter()
+        .map(
+            |c| json!({"index": c.index, "name": c.name, "unit": c.unit, "is_height": c.is_height}),
+        )
+        .collect()
+}
+
+/// The file's channels, one line, the one read marked; nothing for a single-channel file.
+fn channels_text(map: &HeightMap) -> String {
+    let channels = &map.meta.channels;
+    if channels.len() < 2 {
+        return String::new();
+    }
+    let list: Vec<String> = channels
+        .iter()
+        .map(|c| {
+            let mark = if c.index == map.meta.channel {
+                " ← read"
+            } else {
+                ""
+            };
+            format!("{c}{mark}")
+        })
+        .collect();
+    format!(
+        "  channels    {} (choose with --channel NAME|INDEX)\n",
+        list.join(", ")
+    )
+}
+
+/// `surface info` of a line profile: its ISO 21920-2 statistics after removing the
+/// least-squares line.
+fn profile_info(a: &InfoArgs, map: &HeightMap) -> Result<()> {
+    let st =
+        profile_statistics(map).with_context(|| format!("{}: statistics", a.file.display()))?;
+    let meta = &map.meta;
+    let length_m = map.dx() * map.nx() as f64;
+    if a.json {
+        let out = json!({
+            "profile": true,
+            "n": map.nx(),
+            "dx_m": map.dx(),
+            "length_m": length_m,
+            "valid_fraction": map.valid_fraction(),
+            "rq_m": num(st.rq),
+            "ra_m": num(st.ra),
+            "rsk": num(st.rsk),
+            "rku": num(st.rku),
+            "rdq": num(st.rdq),
+            "format": meta.format,
+            "instrument": meta.instrument,
+            "date": meta.date,
+            "source": meta.source.as_ref().map(|p| p.display().to_string()),
+            "channels": channels_json(map),
+            "channel": meta.channel,
+            "warnings": meta.warnings().collect::<Vec<_>>(),
+        });
+        println!("{}", serde_json::to_string_pretty(&out)?);
+        return Ok(());
+    }
+    let line =
+        |name: &str, value: String, meaning: &str| format!("  {name:<4}{value:>14}   {meaning}\n");
+    let mut s = format!("{}\n", a.file.display());
+    s += &format!("  format      {}\n", meta.format.as_deref().unwrap_or("?"));
+    s += &channels_text(map);
+    s += &format!(
+        "  profile     {} points, spacing {}, length {}\n",
+        map.nx(),
+        length(map.dx()),
+        length(length_m)
+    );
+    s += &format!(
+        "  valid       {:.2}% of points\n",
+        100.0 * map.valid_fraction()
+    );
+    s += "  after removing the least-squares line (ISO 21920-2, no λc filter):\n";
+    s += &line("Rq", length(st.rq), "rms height");
+    s += &line("Ra", length(st.ra), "mean absolute height");
+    s += &line("Rsk", format!("{:.4}", st.rsk), "skewness");
+    s += &line("Rku", format!("{:.4}", st.rku), "kurtosis");
+    s += &line("Rdq", format!("{:.5}", st.rdq), "rms slope");
+    print!("{s}");
+    Ok(())
 }
 
 fn info_text(path: &Path, map: &HeightMap, st: &Statistics, rms_as_read: f64) -> String {
@@ -278,6 +407,7 @@ fn info_text(path: &Path, map: &HeightMap, st: &Statistics, rms_as_read: f64) ->
         |name: &str, value: String, meaning: &str| format!("  {name:<4}{value:>14}   {meaning}\n");
     let mut s = format!("{}\n", path.display());
     s += &format!("  format      {}\n", meta.format.as_deref().unwrap_or("?"));
+    s += &channels_text(map);
     if let Some(i) = &meta.instrument {
         s += &format!("  instrument  {i}\n");
     }
