@@ -284,7 +284,7 @@ fn info_json(map: &HeightMap, st: &Statistics, rms_as_read: f64) -> Value {
         .filter(|(k, _)| k != gonio_surface::heightmap::WARNING_KEY)
         .map(|(k, v)| (k.clone(), json!(v)))
         .collect();
-    json!({
+    let out = json!({
         "nx": map.nx(),
         "ny": map.ny(),
         "dx_m": map.dx(),
@@ -299,26 +299,35 @@ fn info_json(map: &HeightMap, st: &Statistics, rms_as_read: f64) -> Value {
         "sal_m": st.sal.map_or(Value::Null, num),
         "str": st.str.map_or(Value::Null, num),
         "str_upper_bound": st.str_is_upper_bound,
-        "format": meta.format,
-        "instrument": meta.instrument,
-        "date": meta.date,
-        "source": meta.source.as_ref().map(|p| p.display().to_string()),
-        "channels": channels_json(map),
-        "channel": meta.channel,
         "metadata": extra,
-        "warnings": meta.warnings().collect::<Vec<_>>(),
-    })
+    });
+    with_file_fields(out, map)
 }
 
-/// The file's channels as JSON objects (index, name, unit, whether it holds heights).
-fn channels_json(map: &HeightMap) -> Value {
-    map.meta
+/// `out` with what the file says of itself: format, instrument, date, source, its channels and
+/// the one read, the reader's warnings.
+fn with_file_fields(mut out: Value, map: &HeightMap) -> Value {
+    let meta = &map.meta;
+    let channels: Vec<Value> = meta
         .channels
         .iter()
         .map(
             |c| json!({"index": c.index, "name": c.name, "unit": c.unit, "is_height": c.is_height}),
         )
-        .collect()
+        .collect();
+    let fields = json!({
+        "format": meta.format,
+        "instrument": meta.instrument,
+        "date": meta.date,
+        "source": meta.source.as_ref().map(|p| p.display().to_string()),
+        "channels": channels,
+        "channel": meta.channel,
+        "warnings": meta.warnings().collect::<Vec<_>>(),
+    });
+    if let (Some(out), Value::Object(fields)) = (out.as_object_mut(), fields) {
+        out.extend(fields);
+    }
+    out
 }
 
 /// The file's channels, one line, the one read marked; nothing for a single-channel file.
@@ -363,15 +372,11 @@ fn profile_info(a: &InfoArgs, map: &HeightMap) -> Result<()> {
             "rsk": num(st.rsk),
             "rku": num(st.rku),
             "rdq": num(st.rdq),
-            "format": meta.format,
-            "instrument": meta.instrument,
-            "date": meta.date,
-            "source": meta.source.as_ref().map(|p| p.display().to_string()),
-            "channels": channels_json(map),
-            "channel": meta.channel,
-            "warnings": meta.warnings().collect::<Vec<_>>(),
         });
-        println!("{}", serde_json::to_string_pretty(&out)?);
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&with_file_fields(out, map))?
+        );
         return Ok(());
     }
     let line =
