@@ -1,30 +1,20 @@
 //! From scattered measurements to a full table: a smoothing interpolation fitted to the samples
 //! and resampled on the table's grid (as NIST did with the painted-sample tables of Davidson).
 //!
-//! Each sample `(wi, wo, f)` is placed at four coordinates in which an isotropic BRDF is smooth
-//! and which are regular at the specular direction: `u = sqrt(theta_h / 90°)` (the table's own
-//! spacing, which spreads the specular peak), `t = theta_d / 90°`, and
-//! `(u² t cos p, u² t sin p)` with `p = phi_d` folded into [0, 180°] by mirror symmetry about
-//! the plane of incidence (`phi_d ~ 360° - phi_d`), which an isotropic surface has. At the
-//! specular direction (`u = 0`) every `phi_d` is the same pair of directions turned about the
-//! normal, and the embedding maps them all to one point `(0, t, 0, 0)`: the table cannot depend
-//! on `phi_d` there. Near it the `phi_d` coordinates shrink as `u²`, so the kernel is nearly
-//! round about the specular direction (a ring 0.2° from it spans at most `2 u² t = 0.0044` in
-//! them, a fifth of the bandwidth cross-validation picks for Cayman, 0.02) unless the data
-//! there differ with `phi_d`;
-//! `theta_d = 0` (retro-reflection) is one point as well. (With `u t` instead of `u² t` the
-//! Cayman ring 0.2° from specular varied by 26-780% against 16-132%.)
+//! Each sample `(wi, wo, f)` is placed at three coordinates in which an isotropic BRDF is smooth:
+//! `u = sqrt(theta_h / 90°)` (the table's own spacing, which spreads the specular peak), and
+//! `(t cos p, t sin p)` with `t = theta_d / 90°` and `p = phi_d` folded into [0, 180°] by mirror
+//! symmetry about the plane of incidence (`phi_d ~ 360° - phi_d`), which an isotropic surface
+//! has. The polar form keeps `theta_d = 0`, where phi_d is undefined, a single point.
 //! Reciprocity is not assumed: folding the Cornell paints by it as well
 //! (`phi_d ~ phi_d + 180°`) tripled the held-out error, so those measurements are not
 //! reciprocal within their scatter.
 //! At any point the value is the local linear regression (locally weighted least squares of a
 //! plane, W. S. Cleveland, "Robust locally weighted regression and smoothing scatterplots",
 //! JASA 74, 1979) of `ln(f + eps)` on the samples, with Gaussian weights of per-coordinate
-//! bandwidths and a small ridge on the slopes. Where the plane leaves the range of the samples
-//! that weigh in it is extrapolating where samples are sparse, and the kernel-weighted mean
-//! (the local constant, inside that range) is taken instead; clamping the plane to the range
-//! pinned whole regions to its end, the file's largest value among them. `eps` (1% of the
-//! channel's median) keeps zeros finite. Unless given, the bandwidths are chosen by
+//! bandwidths and a small ridge on the slopes, clamped to the range of the samples that weigh
+//! in (so that a plane never extrapolates into a spike where samples are sparse). `eps` (1% of
+//! the channel's median) keeps zeros finite. Unless given, the bandwidths are chosen by
 //! leave-one-out cross-validation of the channel mean from a small grid. The fit residual at
 //! the measured points is reported.
 
@@ -61,15 +51,12 @@ pub struct FitResidual {
 /// Cornell files print 6 decimals and their smallest values scatter by tens of per cent.
 pub const NOISE_FLOOR_PER_SR: f64 = 1e-3;
 
-/// Bandwidths of the kernel: in `u`, in `t`, and in each of `(u t cos p, u t sin p)`.
+/// Bandwidths of the kernel in the (u, t cos p, t sin p) coordinates.
 pub type Bandwidths = [f64; 3];
-
-/// Number of regression coordinates.
-const DIM: usize = 4;
 
 /// A smoothing interpolant of scattered samples.
 pub struct ScatteredFit {
-    points: Vec<[f64; DIM]>,
+    points: Vec<[f64; 3]>,
     /// `logs[i * nc + c]`: ln(f + eps_c) of sample i, channel c.
     logs: Vec<f64>,
     eps: Vec<f64>,
@@ -78,28 +65,31 @@ pub struct ScatteredFit {
     log_range: (f64, f64),
 }
 
-/// The `(u, t, u t cos p, u t sin p)` coordinates of a pair of directions.
-pub fn coordinates(wi: DVec3, wo: DVec3) -> Option<[f64; DIM]> {
+/// The (u, t cos p, t sin p) coordinates of a pair of directions.
+pub fn coordinates(wi: DVec3, wo: DVec3) -> Option<[f64; 3]> {
     let a = HalfDiff::from_dirs(wi, wo)?;
     Some(coordinates_of(&a))
 }
 
-fn coordinates_of(a: &HalfDiff) -> [f64; DIM] {
+fn coordinates_of(a: &HalfDiff) -> [f64; 3] {
     let mut p = a.phi_d.rem_euclid(2.0 * PI);
     if p > PI {
         p = 2.0 * PI - p;
     }
     let t = a.theta_d / FRAC_PI_2;
-    let u = (a.theta_h.max(0.0) / FRAC_PI_2).sqrt();
-    [u, t, u * u * t * p.cos(), u * u * t * p.sin()]
+    [
+        (a.theta_h.max(0.0) / FRAC_PI_2).sqrt(),
+        t * p.cos(),
+        t * p.sin(),
+    ]
 }
 
 /// Gaussian kernel weight, cut at 3.5 bandwidths.
 #[inline]
-fn kernel(x: &[f64; DIM], y: &[f64; DIM], bw: &Bandwidths) -> f64 {
+fn kernel(x: &[f64; 3], y: &[f64; 3], bw: &Bandwidths) -> f64 {
     let mut q = 0.0;
-    for k in 0..DIM {
-        let d = (x[k] - y[k]) / bw[k.min(2)];
+    for k in 0..3 {
+        let d = (x[k] - y[k]) / bw[k];
         q += d * d;
     }
     if q > 12.25 { 0.0 } else { (-0.5 * q).exp() }
@@ -186,13 +176,11 @@ impl ScatteredFit {
     /// Leave-one-out choice of bandwidths on `z` = ln(mean f + eps), the channel mean.
     fn cross_validated_bandwidths(&self, z: &[f64]) -> Bandwidths {
         let mut best = ([0.1; 3], f64::INFINITY);
-        for hu in [0.02, 0.03, 0.05, 0.08] {
-            for ht in [0.05, 0.08, 0.13, 0.2] {
-                for hp in [0.002, 0.005, 0.01, 0.02] {
+        for hu in [0.03, 0.05, 0.08, 0.12] {
+            for ht in [0.05, 0.08, 0.13] {
+                for hp in [0.05, 0.1, 0.2] {
                     let bw = [hu, ht, hp];
-                    // Errors computed in parallel, summed serially in sample order: the same
-                    // choice for any thread count (a parallel sum's order depends on it).
-                    let errors: Vec<f64> = (0..self.points.len())
+                    let err: f64 = (0..self.points.len())
                         .into_par_iter()
                         .map(|i| {
                             let mut out = [0.0];
@@ -209,8 +197,7 @@ impl ScatteredFit {
                                 z[i].abs()
                             }
                         })
-                        .collect();
-                    let err: f64 = errors.iter().sum();
+                        .sum();
                     if err < best.1 {
                         best = (bw, err);
                     }
@@ -224,17 +211,17 @@ impl ScatteredFit {
     /// `skip`; false when no sample is near.
     fn local_linear<'a>(
         &self,
-        x: &[f64; DIM],
+        x: &[f64; 3],
         bw: &Bandwidths,
         skip: Option<usize>,
         z: impl Fn(usize) -> &'a [f64],
         out: &mut [f64],
     ) -> bool {
         let m = out.len();
-        // Normal equations of z ≈ b0 + b·(y - x)/bw, accumulated as a 5×5 matrix and 5×m right
+        // Normal equations of z ≈ b0 + b·(y - x)/bw, accumulated as a 4×4 matrix and 4×m right
         // sides.
-        let mut a = [[0.0f64; DIM + 1]; DIM + 1];
-        let mut rhs = vec![0.0f64; (DIM + 1) * m];
+        let mut a = [[0.0f64; 4]; 4];
+        let mut rhs = vec![0.0f64; 4 * m];
         let mut wsum = 0.0;
         // Range of the values of the well-weighted samples: the plane may not extrapolate
         // beyond it.
@@ -254,7 +241,6 @@ impl ScatteredFit {
                 (y[0] - x[0]) / bw[0],
                 (y[1] - x[1]) / bw[1],
                 (y[2] - x[2]) / bw[2],
-                (y[3] - x[3]) / bw[2],
             ];
             for (row, dr) in a.iter_mut().zip(d) {
                 for (x, dc) in row.iter_mut().zip(d) {
@@ -262,7 +248,7 @@ impl ScatteredFit {
                 }
             }
             for (k, zk) in z(j).iter().enumerate() {
-                for r in 0..=DIM {
+                for r in 0..4 {
                     rhs[r * m + k] += w * d[r] * zk;
                 }
                 if w > 0.05 {
@@ -278,16 +264,11 @@ impl ScatteredFit {
         for (r, row) in a.iter_mut().enumerate().skip(1) {
             row[r] += 0.05 * wsum;
         }
-        // The local constant (kernel-weighted mean), inside the samples' range by construction.
-        let mean: Vec<f64> = rhs[..m].iter().map(|v| v / wsum).collect();
-        match solve(a, &mut rhs, m) {
+        match solve4(a, &mut rhs, m) {
             Some(()) => {
                 for (k, o) in out.iter_mut().enumerate() {
-                    // Where the plane leaves the range of its well-weighted samples it is
-                    // extrapolating: the weighted mean is used instead of pinning the value to
-                    // the range's end (which made whole regions equal to the file's maximum).
-                    *o = if lo[k] <= hi[k] && !(lo[k]..=hi[k]).contains(&rhs[k]) {
-                        mean[k]
+                    *o = if lo[k] <= hi[k] {
+                        rhs[k].clamp(lo[k], hi[k])
                     } else {
                         rhs[k]
                     };
@@ -310,7 +291,7 @@ impl ScatteredFit {
         }
     }
 
-    fn predict_at(&self, x: &[f64; DIM], out: &mut [f64]) {
+    fn predict_at(&self, x: &[f64; 3], out: &mut [f64]) {
         let nc = self.nc;
         // Widen the kernel where the samples are sparse (up to 8 times).
         let mut bw = self.bw;
@@ -358,7 +339,7 @@ impl ScatteredFit {
 /// Import measured samples read from `path`: smooth them with a [`ScatteredFit`] and resample it
 /// on an isotropic table. The table's `provenance` gains the fit's residual at the measured
 /// points (`fit_median_relative_residual`, `fit_rms_relative_residual`), its bandwidths
-/// (`fit_bandwidths_u_t_ut`) and the sample count (`samples`); the residual is also returned.
+/// (`fit_bandwidths_u_t_p`) and the sample count (`samples`); the residual is also returned.
 pub fn import_samples(
     path: &Path,
     samples: &[Sample],
@@ -375,7 +356,7 @@ pub fn import_samples(
             residual.median_relative.into(),
         ),
         ("fit_rms_relative_residual", residual.rms_relative.into()),
-        ("fit_bandwidths_u_t_ut", fit.bandwidths().to_vec().into()),
+        ("fit_bandwidths_u_t_p", fit.bandwidths().to_vec().into()),
         ("samples", samples.len().into()),
     ];
     provenance
@@ -412,11 +393,11 @@ pub fn residual_of(
     }
 }
 
-/// Solve the symmetric N×N system `a x = rhs` for `m` right-hand sides stored row-wise in `rhs`
+/// Solve the symmetric 4×4 system `a x = rhs` for `m` right-hand sides stored row-wise in `rhs`
 /// (`rhs[r * m + k]`), in place, by Gaussian elimination with partial pivoting.
-fn solve<const N: usize>(mut a: [[f64; N]; N], rhs: &mut [f64], m: usize) -> Option<()> {
-    for col in 0..N {
-        let piv = (col..N).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
+fn solve4(mut a: [[f64; 4]; 4], rhs: &mut [f64], m: usize) -> Option<()> {
+    for col in 0..4 {
+        let piv = (col..4).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
         if a[piv][col].abs() < 1e-12 {
             return None;
         }
@@ -426,7 +407,7 @@ fn solve<const N: usize>(mut a: [[f64; N]; N], rhs: &mut [f64], m: usize) -> Opt
                 rhs.swap(piv * m + k, col * m + k);
             }
         }
-        for r in col + 1..N {
+        for r in col + 1..4 {
             let f = a[r][col] / a[col][col];
             if f == 0.0 {
                 continue;
@@ -440,10 +421,10 @@ fn solve<const N: usize>(mut a: [[f64; N]; N], rhs: &mut [f64], m: usize) -> Opt
             }
         }
     }
-    for col in (0..N).rev() {
+    for col in (0..4).rev() {
         for k in 0..m {
             let mut v = rhs[col * m + k];
-            for c in col + 1..N {
+            for c in col + 1..4 {
                 v -= a[col][c] * rhs[c * m + k];
             }
             rhs[col * m + k] = v / a[col][col];
@@ -494,52 +475,8 @@ mod tests {
         );
     }
 
-    /// At the specular direction every phi_d is the same pair of directions turned about the
-    /// normal: the coordinates must be one point. A mirror image about the plane of incidence
-    /// has the coordinates of the original.
     #[test]
-    fn coordinates_are_regular_at_the_specular_direction() {
-        let at = |phi_d: f64| {
-            coordinates_of(&HalfDiff {
-                theta_h: 0.0,
-                phi_h: 0.3,
-                theta_d: 0.6,
-                phi_d,
-            })
-        };
-        let x0 = at(0.0);
-        for k in 1..24 {
-            assert_eq!(at(k as f64 * PI / 12.0), x0);
-        }
-        // Through directions, theta_h = acos(h.z) carries round-off of sqrt(2 * 1.1e-16)
-        // = 1.5e-8 rad at the pole, so u = sqrt(theta_h / 90°) is up to 1e-4, the phi_d
-        // coordinates u² t up to 1e-8, and t (theta_d from the same rotations) is off by up to
-        // 1.5e-8 / 90° = 1e-8.
-        for k in 0..24 {
-            let (wi, wo) = HalfDiff {
-                theta_h: 0.0,
-                phi_h: 0.3,
-                theta_d: 0.6,
-                phi_d: k as f64 * PI / 12.0,
-            }
-            .to_dirs();
-            let x = coordinates(wi, wo).unwrap();
-            assert!(x[0] < 1e-4 && (x[1] - x0[1]).abs() < 1e-8, "{x:?}");
-            assert!(x[2].abs() < 1e-8 && x[3].abs() < 1e-8, "{x:?}");
-        }
-        let mirror = |w: DVec3| DVec3::new(w.x, -w.y, w.z);
-        let (wi, wo) = (dir(0.5, 0.2), dir(0.7, 2.9));
-        let (a, b) = (
-            coordinates(wi, wo).unwrap(),
-            coordinates(mirror(wi), mirror(wo)).unwrap(),
-        );
-        for (a, b) in a.iter().zip(&b) {
-            assert!((a - b).abs() < 1e-12, "{a} vs {b}");
-        }
-    }
-
-    #[test]
-    fn solve_solves() {
+    fn solve4_solves() {
         let a = [
             [4.0, 1.0, 0.0, 0.5],
             [1.0, 3.0, 0.2, 0.0],
@@ -550,7 +487,7 @@ mod tests {
         let mut rhs: Vec<f64> = (0..4)
             .map(|r| (0..4).map(|c| a[r][c] * x[c]).sum())
             .collect();
-        solve(a, &mut rhs, 1).unwrap();
+        solve4(a, &mut rhs, 1).unwrap();
         for k in 0..4 {
             assert!((rhs[k] - x[k]).abs() < 1e-12);
         }
