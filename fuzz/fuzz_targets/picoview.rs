@@ -1,0 +1,2 @@
+#![no_main]
+gonio_fuzz::reader_target!(PicoView);
