@@ -353,6 +353,12 @@ fn channels_text(map: &HeightMap) -> String {
     )
 }
 
+/// One line of `surface info`: a parameter's name, its value (lengths in the unit that suits
+/// them) and what it means, in aligned columns.
+fn line(name: &str, value: String, meaning: &str) -> String {
+    format!("  {name:<4}{value:>14}   {meaning}\n")
+}
+
 /// `surface info` of a line profile: its ISO 21920-2 statistics after removing the
 /// least-squares line.
 fn profile_info(a: &InfoArgs, map: &HeightMap) -> Result<()> {
@@ -379,8 +385,6 @@ fn profile_info(a: &InfoArgs, map: &HeightMap) -> Result<()> {
         );
         return Ok(());
     }
-    let line =
-        |name: &str, value: String, meaning: &str| format!("  {name:<4}{value:>14}   {meaning}\n");
     let mut s = format!("{}\n", a.file.display());
     s += &format!("  format      {}\n", meta.format.as_deref().unwrap_or("?"));
     s += &channels_text(map);
@@ -407,9 +411,6 @@ fn profile_info(a: &InfoArgs, map: &HeightMap) -> Result<()> {
 fn info_text(path: &Path, map: &HeightMap, st: &Statistics, rms_as_read: f64) -> String {
     let meta = &map.meta;
     let opt = |v: Option<f64>, f: &dyn Fn(f64) -> String| v.map_or("undefined".into(), f);
-    // One line per parameter: name, value (lengths with the unit that suits them), meaning.
-    let line =
-        |name: &str, value: String, meaning: &str| format!("  {name:<4}{value:>14}   {meaning}\n");
     let mut s = format!("{}\n", path.display());
     s += &format!("  format      {}\n", meta.format.as_deref().unwrap_or("?"));
     s += &channels_text(map);
