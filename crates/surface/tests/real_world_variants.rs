@@ -6,9 +6,8 @@
 
 mod fixture_tools;
 
-use fixture_tools::{fixture, rel};
+use fixture_tools::{fixture, members, rel, zip_of};
 use gonio_surface::{HeightMap, io};
-use std::io::{Cursor, Read, Write};
 use std::path::Path;
 
 fn read_bytes(name: &str, bytes: &[u8]) -> HeightMap {
@@ -29,35 +28,6 @@ fn read_bytes_err(name: &str, bytes: &[u8]) -> String {
         Ok(_) => panic!("{name}: read although it is broken"),
         Err(e) => e.to_string(),
     }
-}
-
-/// The members of a zip archive: name, content and compression method.
-fn members(bytes: &[u8]) -> Vec<(String, Vec<u8>, zip::CompressionMethod)> {
-    let mut archive = zip::ZipArchive::new(Cursor::new(bytes)).expect("fixture is a zip");
-    (0..archive.len())
-        .map(|i| {
-            let mut entry = archive.by_index(i).expect("entry");
-            let mut content = Vec::new();
-            entry.read_to_end(&mut content).expect("entry content");
-            let method = entry.compression();
-            (entry.name().expect("name").to_string(), content, method)
-        })
-        .collect()
-}
-
-/// A zip archive of `members`, each written with its own compression method.
-fn zip_of(members: &[(String, Vec<u8>, zip::CompressionMethod)]) -> Vec<u8> {
-    let mut out = zip::ZipWriter::new(Cursor::new(Vec::new()));
-    for (name, content, method) in members {
-        let options = zip::write::SimpleFileOptions::default().compression_method(*method);
-        if name.ends_with('/') {
-            out.add_directory(name.as_str(), options).expect("folder");
-        } else {
-            out.start_file(name.as_str(), options).expect("start entry");
-            out.write_all(content).expect("write entry");
-        }
-    }
-    out.finish().expect("finish zip").into_inner()
 }
 
 /// x3p-2.x3p with every member moved under `folder/`, as x3ptools writes its archives.

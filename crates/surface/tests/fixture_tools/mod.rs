@@ -43,19 +43,44 @@ pub fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs()
 }
 
-/// A copy of the zip archive `bytes` in which `edit(name, content)` replaces each entry.
-pub fn rezip(bytes: &[u8], edit: impl Fn(&str, Vec<u8>) -> Vec<u8>) -> Vec<u8> {
+/// The members of a zip archive: name, content and compression method.
+pub fn members(bytes: &[u8]) -> Vec<(String, Vec<u8>, zip::CompressionMethod)> {
     let mut archive = zip::ZipArchive::new(Cursor::new(bytes)).expect("fixture is a zip");
+    (0..archive.len())
+        .map(|i| {
+            let mut entry = archive.by_index(i).expect("entry");
+            let mut content = Vec::new();
+            entry.read_to_end(&mut content).expect("entry content");
+            let method = entry.compression();
+            (entry.name().expect("name").to_string(), content, method)
+        })
+        .collect()
+}
+
+/// A zip archive of `members`, each written with its own compression method.
+pub fn zip_of(members: &[(String, Vec<u8>, zip::CompressionMethod)]) -> Vec<u8> {
     let mut out = zip::ZipWriter::new(Cursor::new(Vec::new()));
-    for i in 0..archive.len() {
-        let mut entry = archive.by_index(i).expect("entry");
-        let name = entry.name().expect("entry name").to_string();
-        let mut content = Vec::new();
-        entry.read_to_end(&mut content).expect("entry content");
-        let options = zip::write::SimpleFileOptions::default()
-            .compression_method(zip::CompressionMethod::Deflated);
-        out.start_file(name.as_str(), options).expect("start entry");
-        out.write_all(&edit(&name, content)).expect("write entry");
+    for (name, content, method) in members {
+        let options = zip::write::SimpleFileOptions::default().compression_method(*method);
+        if name.ends_with('/') {
+            out.add_directory(name.as_str(), options).expect("folder");
+        } else {
+            out.start_file(name.as_str(), options).expect("start entry");
+            out.write_all(content).expect("write entry");
+        }
     }
     out.finish().expect("finish zip").into_inner()
+}
+
+/// A copy of the zip archive `bytes` in which `edit(name, content)` replaces each entry, every
+/// one deflated.
+pub fn rezip(bytes: &[u8], edit: impl Fn(&str, Vec<u8>) -> Vec<u8>) -> Vec<u8> {
+    let edited: Vec<_> = members(bytes)
+        .into_iter()
+        .map(|(name, content, _)| {
+            let content = edit(&name, content);
+            (name, content, zip::CompressionMethod::Deflated)
+        })
+        .collect();
+    zip_of(&edited)
 }
