@@ -40,9 +40,12 @@ fn held_out_geometries_are_reproduced() {
         fit.bandwidths()
     );
     assert!(per_band.count > 1000, "{per_band:?}");
-    assert!(per_band.median_relative < 0.10, "{per_band:?}");
+    // No regression: the figures of the fit before issue 14's change of coordinates (3.12% per
+    // band, 2.82% band mean; deterministic for any thread count) rounded up to the next 0.1%.
+    // After it: 2.88% and 2.58%.
+    assert!(per_band.median_relative <= 0.032, "{per_band:?}");
     assert!(
-        band_mean_median < 0.10,
+        band_mean_median <= 0.029,
         "band-mean median relative error {band_mean_median}"
     );
 }

@@ -12,6 +12,7 @@
 use glam::{DVec2, DVec3};
 use gonio_brdf::Brdf;
 use gonio_brdf::formats::mitsuba::{self, MitsubaOptions, TensorBrdf};
+use gonio_brdf::formats::scattered::NOISE_FLOOR_PER_SR;
 use gonio_brdf::models::{Model, Ward};
 use gonio_brdf::table::{BrdfTable, Provenance, Resolution};
 use gonio_brdf::validate::{SamplerCheck, check_sampler};
@@ -312,13 +313,9 @@ fn mitsuba3_loads_and_renders_the_spectral_cayman_file() {
     let (file, table) = common::cayman_table();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("cayman.bsdf");
-    // 128² value grids: the default 64² holds this peaked paint's albedo at 60° to 7%, 128² to
+    // The default 128² value grids: 64² holds this peaked paint's albedo at 60° to 7%, 128² to
     // 3%, 256² to 2% (docs/brdf-tables.md).
-    let opts = MitsubaOptions {
-        values: 128,
-        ..Default::default()
-    };
-    mitsuba::write(&table, &path, opts).unwrap();
+    mitsuba::write(&table, &path, MitsubaOptions::default()).unwrap();
     let pairs = direction_pairs(&table);
     let tensor = TensorBrdf::read(&path).unwrap();
     let Some(report) = mitsuba3("scalar_spectral", &path, &pairs) else {
@@ -342,7 +339,8 @@ fn mitsuba3_loads_and_renders_the_spectral_cayman_file() {
     let (mut checked, mut errors, mut file) = (0, vec![], buf.clone());
     for (k, &(wo, wi)) in pairs.iter().enumerate() {
         let want = at_550(wo, wi, &mut buf);
-        if want < 0.01 * peak {
+        // Below the instrument's noise floor (1e-3 1/sr) the table's faint tail is not data.
+        if want < (1e-3 * peak).max(NOISE_FLOOR_PER_SR) {
             continue;
         }
         checked += 1;
@@ -356,7 +354,10 @@ fn mitsuba3_loads_and_renders_the_spectral_cayman_file() {
         );
         errors.push((got - want).abs() / want);
     }
-    assert!(checked >= 50, "only {checked} pairs above 1% of the peak");
+    assert!(
+        checked >= 40,
+        "only {checked} pairs above 0.1% of the peak and the noise floor"
+    );
     // How well the file holds the table: a 64² value grid per incidence node reproduces the
     // measured-paint lobe to about 1% typically, and loses a few percent at the very peak
     // and in the faint tail (measured 0.5% median, 11% worst when this test was written).
@@ -367,7 +368,9 @@ fn mitsuba3_loads_and_renders_the_spectral_cayman_file() {
         median < 0.02 && worst < 0.15,
         "median {median}, worst {worst}"
     );
-    // A measured metallic paint: the file's 128² value grids hold its albedo to about 3%.
+    // A measured metallic paint: the file's 128² value grids hold its albedo to 1.1% at 60°
+    // (measured; 64² grids: 7% on the earlier import, whose peak was a thin in-plane streak).
+    // 5%: the bound on a measured paint's rim, which the albedo integrates.
     check_render_and_albedo(
         &report,
         (&table, &tensor),

@@ -117,10 +117,10 @@ pub struct ExportArgs {
     /// pabopto: incidence angles in degrees, one file each.
     #[arg(long, value_delimiter = ',', default_values_t = pabopto::DEFAULT_THETA_I_DEG)]
     incidence_deg: Vec<f64>,
-    /// mitsuba: nodes per axis of each incidence's value grid. 64 keeps smooth lobes within
-    /// about 1%; 128 (4× the file size) holds a sharply peaked measured paint's albedo to 3%
-    /// instead of 7% (docs/brdf-tables.md).
-    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u16).range(8..=512))]
+    /// mitsuba: nodes per axis of each incidence's value grid. The default 128 holds a sharply
+    /// peaked measured paint's albedo to 3% (64: 7%, a quarter of the file size; enough for
+    /// smooth lobes, within about 1%) (docs/brdf-tables.md).
+    #[arg(long, default_value_t = 128, value_parser = clap::value_parser!(u16).range(8..=512))]
     value_grid: u16,
 }
 

@@ -4,6 +4,7 @@
 
 pub mod astm;
 pub mod csv;
+pub mod lobe_model;
 pub mod merl;
 pub mod mitsuba;
 pub mod pabopto;

@@ -1,23 +1,37 @@
 //! From scattered measurements to a full table: a smoothing interpolation fitted to the samples
-//! and resampled on the table's grid (as NIST did with the painted-sample tables of Davidson).
+//! and resampled on the table's grid (as NIST did with the painted-sample tables of Davidson),
+//! on top of a physically based model of the same data ([`super::lobe_model`]) that the table
+//! follows where the measurement says nothing.
 //!
-//! Each sample `(wi, wo, f)` is placed at three coordinates in which an isotropic BRDF is smooth:
-//! `u = sqrt(theta_h / 90°)` (the table's own spacing, which spreads the specular peak), and
-//! `(t cos p, t sin p)` with `t = theta_d / 90°` and `p = phi_d` folded into [0, 180°] by mirror
-//! symmetry about the plane of incidence (`phi_d ~ 360° - phi_d`), which an isotropic surface
-//! has. The polar form keeps `theta_d = 0`, where phi_d is undefined, a single point.
+//! The smoothed quantity is the log-ratio of data to model, `ln((f + eps) / (model + eps))`
+//! (`eps` 1% of the band's median keeps zeros finite), at four coordinates in which an
+//! isotropic BRDF is smooth and which are regular at the specular direction:
+//! `u = sqrt((δ + 2°)/180°) − sqrt(2°/180°)` with `δ` the angle between `wo` and the mirror
+//! direction of `wi` (square-root steps away from the peak, linear within the round core
+//! below), `t = θ_d / 90°`, and `(s cos p, s sin p)` with `s = t · max(0, δ − 2°)/180°` and
+//! `p = φ_d` folded into [0, 180°] by mirror symmetry about the plane of incidence (which an
+//! isotropic surface has). Rings about the specular direction are rings of constant `u`; within
+//! [`ROUND_CORE`] of it the `φ_d` coordinates vanish, so the correction is round there, and at
+//! the specular direction itself every `φ_d` (the same pair of directions turned about the
+//! normal) is one point. Retro-reflection (`θ_d = 0`) is one point as well.
 //! Reciprocity is not assumed: folding the Cornell paints by it as well
-//! (`phi_d ~ phi_d + 180°`) tripled the held-out error, so those measurements are not
-//! reciprocal within their scatter.
-//! At any point the value is the local linear regression (locally weighted least squares of a
-//! plane, W. S. Cleveland, "Robust locally weighted regression and smoothing scatterplots",
-//! JASA 74, 1979) of `ln(f + eps)` on the samples, with Gaussian weights of per-coordinate
-//! bandwidths and a small ridge on the slopes, clamped to the range of the samples that weigh
-//! in (so that a plane never extrapolates into a spike where samples are sparse). `eps` (1% of
-//! the channel's median) keeps zeros finite. Unless given, the bandwidths are chosen by
-//! leave-one-out cross-validation of the channel mean from a small grid. The fit residual at
-//! the measured points is reported.
+//! (`φ_d ~ φ_d + 180°`) tripled the held-out error, so those measurements are not reciprocal
+//! within their scatter.
+//!
+//! At any point the correction is the local linear regression (locally weighted least squares
+//! of a plane, W. S. Cleveland, "Robust locally weighted regression and smoothing
+//! scatterplots", JASA 74, 1979) of the log-ratios, with Gaussian weights of per-coordinate
+//! bandwidths and a small ridge on the slopes. Where the plane leaves the range of the samples
+//! that weigh in it is extrapolating where samples are sparse, and the kernel-weighted mean is
+//! taken instead. Where no sample is within reach the kernel is widened (up to 8 times), so
+//! beyond the measured angles the nearest data's ratio continues and the table has the model's
+//! shape; with no sample even then, the table is the model. Every value is then softly capped
+//! at the largest measured value near it (a `tanh` knee from 90% of it), so that no cell holds
+//! a peak the nearby data do not show. Unless given, the bandwidths are chosen by leave-one-out
+//! cross-validation of the channel mean from a small grid. The fit residual at the measured
+//! points is reported, overall and per band.
 
+use super::lobe_model::LobeModel;
 use crate::error::{BrdfError, Result};
 use crate::table::{BrdfTable, Channels, HalfDiff, Provenance, Resolution, TableBuilder};
 use glam::DVec3;
@@ -51,45 +65,64 @@ pub struct FitResidual {
 /// Cornell files print 6 decimals and their smallest values scatter by tens of per cent.
 pub const NOISE_FLOOR_PER_SR: f64 = 1e-3;
 
-/// Bandwidths of the kernel in the (u, t cos p, t sin p) coordinates.
+/// Bandwidths of the kernel: in `u`, in `t`, and in each of `(s cos p, s sin p)`.
 pub type Bandwidths = [f64; 3];
+
+/// Number of regression coordinates.
+const DIM: usize = 4;
 
 /// A smoothing interpolant of scattered samples.
 pub struct ScatteredFit {
-    points: Vec<[f64; 3]>,
-    /// `logs[i * nc + c]`: ln(f + eps_c) of sample i, channel c.
+    points: Vec<[f64; DIM]>,
+    /// `logs[i * nc + c]`: the log-ratio `ln((f + eps_c) / (model + eps_c))` of sample i,
+    /// channel c.
     logs: Vec<f64>,
+    /// `values[i * nc + c]`: the measured f of sample i, channel c (negative readings as 0).
+    values: Vec<f64>,
     eps: Vec<f64>,
     nc: usize,
     bw: Bandwidths,
-    log_range: (f64, f64),
+    model: LobeModel,
 }
 
-/// The (u, t cos p, t sin p) coordinates of a pair of directions.
-pub fn coordinates(wi: DVec3, wo: DVec3) -> Option<[f64; 3]> {
+/// The `(u, t, s cos p, s sin p)` coordinates of a pair of directions (module docs).
+pub fn coordinates(wi: DVec3, wo: DVec3) -> Option<[f64; DIM]> {
     let a = HalfDiff::from_dirs(wi, wo)?;
-    Some(coordinates_of(&a))
+    Some(coordinates_of(&a, mirror_angle(wi, wo)))
 }
 
-fn coordinates_of(a: &HalfDiff) -> [f64; 3] {
+/// The angle between `wo` and the mirror direction of `wi` (radians; the same with `wi` and
+/// `wo` exchanged, the mirror being an isometry and its own inverse).
+pub fn mirror_angle(wi: DVec3, wo: DVec3) -> f64 {
+    let wr = DVec3::new(-wi.x, -wi.y, wi.z);
+    wo.cross(wr).length().atan2(wo.dot(wr))
+}
+
+fn coordinates_of(a: &HalfDiff, delta: f64) -> [f64; DIM] {
     let mut p = a.phi_d.rem_euclid(2.0 * PI);
     if p > PI {
         p = 2.0 * PI - p;
     }
     let t = a.theta_d / FRAC_PI_2;
-    [
-        (a.theta_h.max(0.0) / FRAC_PI_2).sqrt(),
-        t * p.cos(),
-        t * p.sin(),
-    ]
+    let d = delta.max(0.0);
+    let u = ((d + ROUND_CORE) / PI).sqrt() - (ROUND_CORE / PI).sqrt();
+    let s = ((d - ROUND_CORE) / PI).max(0.0) * t;
+    [u, t, s * p.cos(), s * p.sin()]
 }
+
+/// Angle from the mirror direction (radians) below which the fit cannot depend on `phi_d`: the
+/// core of the specular peak is round. 2°: the Cornell paint files have one geometry per
+/// incidence within 2° of the specular direction (in the plane of incidence, on one side of
+/// the peak), so nothing in them tells the azimuths about it apart; and a peak narrower than
+/// the instrument's circular aperture is measured as the aperture's round image.
+pub const ROUND_CORE: f64 = 2.0 * PI / 180.0;
 
 /// Gaussian kernel weight, cut at 3.5 bandwidths.
 #[inline]
-fn kernel(x: &[f64; 3], y: &[f64; 3], bw: &Bandwidths) -> f64 {
+fn kernel(x: &[f64; DIM], y: &[f64; DIM], bw: &Bandwidths) -> f64 {
     let mut q = 0.0;
-    for k in 0..3 {
-        let d = (x[k] - y[k]) / bw[k];
+    for k in 0..DIM {
+        let d = (x[k] - y[k]) / bw[k.min(2)];
         q += d * d;
     }
     if q > 12.25 { 0.0 } else { (-0.5 * q).exp() }
@@ -128,33 +161,31 @@ impl ScatteredFit {
                 (0.01 * v[v.len() / 2]).max(1e-9)
             })
             .collect();
-        let logs: Vec<f64> = kept
-            .iter()
-            .flat_map(|s| {
-                s.values
-                    .iter()
-                    .zip(&eps)
-                    .map(|(v, e)| (v.max(0.0) + e).ln())
-            })
-            .collect();
-        let lo = logs.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = logs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        // The channel mean, on which the bandwidths are cross-validated.
-        let means: Vec<f64> = kept
-            .iter()
-            .map(|s| s.values.iter().map(|v| v.max(0.0)).sum::<f64>() / nc as f64)
-            .collect();
-        let mut sorted = means.clone();
-        sorted.sort_by(f64::total_cmp);
-        let eps_mean = (0.01 * sorted[sorted.len() / 2]).max(1e-9);
-        let z_mean: Vec<f64> = means.iter().map(|m| (m + eps_mean).ln()).collect();
+        let kept: Vec<Sample> = kept.into_iter().cloned().collect();
+        let model = LobeModel::fit(&kept);
+        let mut values = Vec::with_capacity(kept.len() * nc);
+        let mut logs = Vec::with_capacity(kept.len() * nc);
+        // The channel mean's log-ratio, on which the bandwidths are cross-validated.
+        let mut z_mean = Vec::with_capacity(kept.len());
+        let eps_mean = eps.iter().sum::<f64>() / nc as f64;
+        let mut m = vec![0.0; nc];
+        for s in &kept {
+            model.eval(s.wi, s.wo, &mut m);
+            for ((v, mc), e) in s.values.iter().zip(&m).zip(&eps) {
+                values.push(v.max(0.0));
+                logs.push(((v.max(0.0) + e) / (mc + e)).ln());
+            }
+            let mean = |v: &[f64]| v.iter().map(|v| v.max(0.0)).sum::<f64>() / nc as f64;
+            z_mean.push(((mean(&s.values) + eps_mean) / (mean(&m) + eps_mean)).ln());
+        }
         let mut fit = ScatteredFit {
             points,
             logs,
+            values,
             eps,
             nc,
             bw: [0.1; 3],
-            log_range: (lo, hi),
+            model,
         };
         fit.bw = match bandwidths {
             Some(b) => b,
@@ -173,31 +204,35 @@ impl ScatteredFit {
         self.nc
     }
 
-    /// Leave-one-out choice of bandwidths on `z` = ln(mean f + eps), the channel mean.
+    /// Leave-one-out choice of bandwidths on `z`, the log-ratio of the channel mean to the
+    /// model's.
     fn cross_validated_bandwidths(&self, z: &[f64]) -> Bandwidths {
         let mut best = ([0.1; 3], f64::INFINITY);
-        for hu in [0.03, 0.05, 0.08, 0.12] {
-            for ht in [0.05, 0.08, 0.13] {
-                for hp in [0.05, 0.1, 0.2] {
+        for hu in [0.02, 0.03, 0.05, 0.08] {
+            for ht in [0.05, 0.08, 0.13, 0.2] {
+                for hp in [0.002, 0.005, 0.01, 0.02] {
                     let bw = [hu, ht, hp];
-                    let err: f64 = (0..self.points.len())
+                    // Errors computed in parallel, summed serially in sample order: the same
+                    // choice for any thread count (a parallel sum's order depends on it).
+                    let errors: Vec<f64> = (0..self.points.len())
                         .into_par_iter()
                         .map(|i| {
                             let mut out = [0.0];
-                            let ok = self.local_linear(
+                            let near = self.local_linear(
                                 &self.points[i],
                                 &bw,
                                 Some(i),
                                 |j| &z[j..j + 1],
                                 &mut out,
                             );
-                            if ok {
-                                (out[0] - z[i]).abs()
-                            } else {
-                                z[i].abs()
+                            // With no sample near, the prediction is the model (ratio 0).
+                            if near.is_none() {
+                                out[0] = 0.0;
                             }
+                            (out[0] - z[i]).abs()
                         })
-                        .sum();
+                        .collect();
+                    let err: f64 = errors.iter().sum();
                     if err < best.1 {
                         best = (bw, err);
                     }
@@ -208,20 +243,20 @@ impl ScatteredFit {
     }
 
     /// Local linear regression at `x` of the per-sample vectors `z(j)`, leaving out sample
-    /// `skip`; false when no sample is near.
+    /// `skip`: the weight sum of the samples that count, `None` when no sample is near.
     fn local_linear<'a>(
         &self,
-        x: &[f64; 3],
+        x: &[f64; DIM],
         bw: &Bandwidths,
         skip: Option<usize>,
         z: impl Fn(usize) -> &'a [f64],
         out: &mut [f64],
-    ) -> bool {
+    ) -> Option<f64> {
         let m = out.len();
-        // Normal equations of z ≈ b0 + b·(y - x)/bw, accumulated as a 4×4 matrix and 4×m right
+        // Normal equations of z ≈ b0 + b·(y - x)/bw, accumulated as a 5×5 matrix and 5×m right
         // sides.
-        let mut a = [[0.0f64; 4]; 4];
-        let mut rhs = vec![0.0f64; 4 * m];
+        let mut a = [[0.0f64; DIM + 1]; DIM + 1];
+        let mut rhs = vec![0.0f64; (DIM + 1) * m];
         let mut wsum = 0.0;
         // Range of the values of the well-weighted samples: the plane may not extrapolate
         // beyond it.
@@ -241,6 +276,7 @@ impl ScatteredFit {
                 (y[0] - x[0]) / bw[0],
                 (y[1] - x[1]) / bw[1],
                 (y[2] - x[2]) / bw[2],
+                (y[3] - x[3]) / bw[2],
             ];
             for (row, dr) in a.iter_mut().zip(d) {
                 for (x, dc) in row.iter_mut().zip(d) {
@@ -248,7 +284,7 @@ impl ScatteredFit {
                 }
             }
             for (k, zk) in z(j).iter().enumerate() {
-                for r in 0..4 {
+                for r in 0..=DIM {
                     rhs[r * m + k] += w * d[r] * zk;
                 }
                 if w > 0.05 {
@@ -258,25 +294,30 @@ impl ScatteredFit {
             }
         }
         if wsum < 1e-6 {
-            return false;
+            return None;
         }
         // Ridge on the slopes: a plane only where the samples support one.
         for (r, row) in a.iter_mut().enumerate().skip(1) {
             row[r] += 0.05 * wsum;
         }
-        match solve4(a, &mut rhs, m) {
-            Some(()) => {
-                for (k, o) in out.iter_mut().enumerate() {
-                    *o = if lo[k] <= hi[k] {
-                        rhs[k].clamp(lo[k], hi[k])
-                    } else {
-                        rhs[k]
-                    };
-                }
-                true
-            }
-            None => false,
+        // The local constant (kernel-weighted mean), inside the samples' range by construction.
+        let mean: Vec<f64> = rhs[..m].iter().map(|v| v / wsum).collect();
+        if solve(a, &mut rhs, m).is_none() {
+            // Samples on a line or a point: no plane, the local constant.
+            out.copy_from_slice(&mean);
+            return Some(wsum);
         }
+        for (k, o) in out.iter_mut().enumerate() {
+            // Where the plane leaves the range of its well-weighted samples it is
+            // extrapolating: the weighted mean is used instead of pinning the value to the
+            // range's end (which made whole regions equal to the file's maximum).
+            *o = if lo[k] <= hi[k] && !(lo[k]..=hi[k]).contains(&rhs[k]) {
+                mean[k]
+            } else {
+                rhs[k]
+            };
+        }
+        Some(wsum)
     }
 
     /// The smoothed f (1/sr) per channel at a pair of directions; zero below the horizon and far
@@ -287,25 +328,66 @@ impl ScatteredFit {
             return;
         }
         if let Some(x) = coordinates(wi, wo) {
-            self.predict_at(&x, out);
+            self.predict_at(&x, wi, wo, out);
         }
     }
 
-    fn predict_at(&self, x: &[f64; 3], out: &mut [f64]) {
+    /// The fitted f at the coordinates `x` of the pair `(wi, wo)`: the model times the
+    /// smoothed correction, softly capped at the largest measured value near the pair.
+    fn predict_at(&self, x: &[f64; DIM], wi: DVec3, wo: DVec3, out: &mut [f64]) {
         let nc = self.nc;
-        // Widen the kernel where the samples are sparse (up to 8 times).
+        let mut model = vec![0.0; nc];
+        self.model.eval(wi, wo, &mut model);
+        self.correction(x, out);
+        let cap = self.nearby_maximum(x);
+        for (((o, m), e), c) in out.iter_mut().zip(&model).zip(&self.eps).zip(cap) {
+            *o = soft_cap(((m + e) * o.exp() - e).max(0.0), c);
+        }
+    }
+
+    /// The smoothed log-ratio of data to model at `x` for prediction. Where no sample is within
+    /// the kernel's reach it is widened (up to 8 times): beyond the measured angles the
+    /// correction of the nearest data continues as a constant ratio, i.e. the table follows the
+    /// model's shape scaled to the edge of the measurement; with no sample even then, the table
+    /// is the model.
+    fn correction(&self, x: &[f64; DIM], out: &mut [f64]) {
+        let nc = self.nc;
         let mut bw = self.bw;
         for _ in 0..4 {
-            if self.local_linear(x, &bw, None, |j| &self.logs[j * nc..(j + 1) * nc], out) {
-                let (lo, hi) = self.log_range;
-                for (o, e) in out.iter_mut().zip(&self.eps) {
-                    *o = (o.clamp(lo, hi).exp() - e).max(0.0);
-                }
+            if self
+                .local_linear(x, &bw, None, |j| &self.logs[j * nc..(j + 1) * nc], out)
+                .is_some()
+            {
                 return;
             }
             bw = bw.map(|b| 2.0 * b);
         }
         out.fill(0.0);
+    }
+
+    /// Per channel, the largest measured value among the samples within twice the kernel's
+    /// reach of `x` (the file's largest where none is): the data's own bound on the peak there.
+    fn nearby_maximum(&self, x: &[f64; DIM]) -> Vec<f64> {
+        let nc = self.nc;
+        let wide = self.bw.map(|b| 2.0 * b);
+        let mut cap = vec![0.0f64; nc];
+        let mut any = false;
+        for (j, y) in self.points.iter().enumerate() {
+            if kernel(x, y, &wide) > 0.0 {
+                any = true;
+                for (c, v) in cap.iter_mut().zip(&self.values[j * nc..(j + 1) * nc]) {
+                    *c = c.max(*v);
+                }
+            }
+        }
+        if !any {
+            for (j, _) in self.points.iter().enumerate() {
+                for (c, v) in cap.iter_mut().zip(&self.values[j * nc..(j + 1) * nc]) {
+                    *c = c.max(*v);
+                }
+            }
+        }
+        cap
     }
 
     /// Relative residuals of the fit at the samples it was fitted to (each predicted with all
@@ -314,6 +396,36 @@ impl ScatteredFit {
         residual_of(samples, NOISE_FLOOR_PER_SR, |s, out| {
             self.predict(s.wi, s.wo, out)
         })
+    }
+
+    /// Per channel, the median relative residual at the samples (values of at least
+    /// [`NOISE_FLOOR_PER_SR`]; NaN for a channel with none).
+    pub fn residual_per_band(&self, samples: &[Sample]) -> Vec<f64> {
+        let predictions: Vec<Vec<f64>> = samples
+            .par_iter()
+            .map(|s| {
+                let mut out = vec![0.0; self.nc];
+                self.predict(s.wi, s.wo, &mut out);
+                out
+            })
+            .collect();
+        (0..self.nc)
+            .map(|c| {
+                let mut rel: Vec<f64> = samples
+                    .iter()
+                    .zip(&predictions)
+                    .filter(|(s, _)| s.values[c] >= NOISE_FLOOR_PER_SR)
+                    .map(|(s, p)| ((p[c] - s.values[c]) / s.values[c]).abs())
+                    .collect();
+                rel.sort_by(f64::total_cmp);
+                rel.get(rel.len() / 2).copied().unwrap_or(f64::NAN)
+            })
+            .collect()
+    }
+
+    /// The physically based model under the correction.
+    pub fn model(&self) -> &LobeModel {
+        &self.model
     }
 
     /// Resample on a table grid (isotropic) with the given channels.
@@ -331,7 +443,10 @@ impl ScatteredFit {
             )));
         }
         let mut b = TableBuilder::new(res, channels)?.with_provenance(provenance);
-        b.fill(|cell, out| self.predict_at(&coordinates_of(&cell.angles), out));
+        b.fill(|cell, out| {
+            let x = coordinates_of(&cell.angles, mirror_angle(cell.wi, cell.wo));
+            self.predict_at(&x, cell.wi, cell.wo, out)
+        });
         b.build()
     }
 }
@@ -339,7 +454,7 @@ impl ScatteredFit {
 /// Import measured samples read from `path`: smooth them with a [`ScatteredFit`] and resample it
 /// on an isotropic table. The table's `provenance` gains the fit's residual at the measured
 /// points (`fit_median_relative_residual`, `fit_rms_relative_residual`), its bandwidths
-/// (`fit_bandwidths_u_t_p`) and the sample count (`samples`); the residual is also returned.
+/// (`fit_bandwidths_u_t_ut`) and the sample count (`samples`); the residual is also returned.
 pub fn import_samples(
     path: &Path,
     samples: &[Sample],
@@ -350,19 +465,44 @@ pub fn import_samples(
     let fit =
         ScatteredFit::new(samples, None).map_err(|e| BrdfError::format(path, e.to_string()))?;
     let residual = fit.residual(samples);
-    let extra: [(&str, serde_json::Value); 4] = [
+    let model = fit.model();
+    let extra: [(&str, serde_json::Value); 6] = [
         (
             "fit_median_relative_residual",
             residual.median_relative.into(),
         ),
         ("fit_rms_relative_residual", residual.rms_relative.into()),
+        (
+            "fit_median_relative_residual_per_band",
+            fit.residual_per_band(samples).into(),
+        ),
         ("fit_bandwidths_u_t_p", fit.bandwidths().to_vec().into()),
+        (
+            "model_per_band",
+            serde_json::to_value(&model.bands).unwrap_or_default(),
+        ),
         ("samples", samples.len().into()),
     ];
     provenance
         .extra
         .extend(extra.map(|(key, value)| (key.to_string(), value)));
     Ok((fit.to_table(res, channels, provenance)?, residual))
+}
+
+/// `v` limited to `cap` with a smooth knee: unchanged up to 90% of the cap, then rising as
+/// `tanh` toward the cap (slope 1 at the knee), so a capped peak keeps a rounded top instead of
+/// a flat box and never exceeds the data's bound.
+fn soft_cap(v: f64, cap: f64) -> f64 {
+    const KNEE: f64 = 0.9;
+    if cap <= 0.0 {
+        return 0.0;
+    }
+    let x = v / cap;
+    if x <= KNEE {
+        v
+    } else {
+        cap * (KNEE + (1.0 - KNEE) * ((x - KNEE) / (1.0 - KNEE)).tanh())
+    }
 }
 
 /// Relative residuals of any prediction against samples, over the (sample, channel) values of
@@ -393,11 +533,11 @@ pub fn residual_of(
     }
 }
 
-/// Solve the symmetric 4×4 system `a x = rhs` for `m` right-hand sides stored row-wise in `rhs`
+/// Solve the symmetric N×N system `a x = rhs` for `m` right-hand sides stored row-wise in `rhs`
 /// (`rhs[r * m + k]`), in place, by Gaussian elimination with partial pivoting.
-fn solve4(mut a: [[f64; 4]; 4], rhs: &mut [f64], m: usize) -> Option<()> {
-    for col in 0..4 {
-        let piv = (col..4).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
+pub(super) fn solve<const N: usize>(mut a: [[f64; N]; N], rhs: &mut [f64], m: usize) -> Option<()> {
+    for col in 0..N {
+        let piv = (col..N).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
         if a[piv][col].abs() < 1e-12 {
             return None;
         }
@@ -407,7 +547,7 @@ fn solve4(mut a: [[f64; 4]; 4], rhs: &mut [f64], m: usize) -> Option<()> {
                 rhs.swap(piv * m + k, col * m + k);
             }
         }
-        for r in col + 1..4 {
+        for r in col + 1..N {
             let f = a[r][col] / a[col][col];
             if f == 0.0 {
                 continue;
@@ -421,10 +561,10 @@ fn solve4(mut a: [[f64; 4]; 4], rhs: &mut [f64], m: usize) -> Option<()> {
             }
         }
     }
-    for col in (0..4).rev() {
+    for col in (0..N).rev() {
         for k in 0..m {
             let mut v = rhs[col * m + k];
-            for c in col + 1..4 {
+            for c in col + 1..N {
                 v -= a[col][c] * rhs[c * m + k];
             }
             rhs[col * m + k] = v / a[col][col];
@@ -475,8 +615,55 @@ mod tests {
         );
     }
 
+    /// At the specular direction every phi_d is the same pair of directions turned about the
+    /// normal: the coordinates must be one point. A mirror image about the plane of incidence
+    /// has the coordinates of the original.
     #[test]
-    fn solve4_solves() {
+    fn coordinates_are_regular_at_the_specular_direction() {
+        let at = |phi_d: f64| {
+            coordinates_of(
+                &HalfDiff {
+                    theta_h: 0.0,
+                    phi_h: 0.3,
+                    theta_d: 0.6,
+                    phi_d,
+                },
+                0.0,
+            )
+        };
+        let x0 = at(0.0);
+        for k in 1..24 {
+            assert_eq!(at(k as f64 * PI / 12.0), x0);
+        }
+        // Through directions, δ from atan2 of the cross and dot products carries a round-off
+        // of a few 1e-16 rad; u is linear near 0 (slope 1 / (2 sqrt(π · 2°)) = 1.5 per rad),
+        // so below 1e-14; the phi_d coordinates are exactly 0 in the round core; t (theta_d
+        // from the rotations, through acos) is off by up to sqrt(2 · 1.1e-16) / 90° = 1e-8.
+        for k in 0..24 {
+            let (wi, wo) = HalfDiff {
+                theta_h: 0.0,
+                phi_h: 0.3,
+                theta_d: 0.6,
+                phi_d: k as f64 * PI / 12.0,
+            }
+            .to_dirs();
+            let x = coordinates(wi, wo).unwrap();
+            assert!(x[0] < 1e-14 && (x[1] - x0[1]).abs() < 1e-8, "{x:?}");
+            assert!(x[2] == 0.0 && x[3] == 0.0, "{x:?}");
+        }
+        let mirror = |w: DVec3| DVec3::new(w.x, -w.y, w.z);
+        let (wi, wo) = (dir(0.5, 0.2), dir(0.7, 2.9));
+        let (a, b) = (
+            coordinates(wi, wo).unwrap(),
+            coordinates(mirror(wi), mirror(wo)).unwrap(),
+        );
+        for (a, b) in a.iter().zip(&b) {
+            assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+        }
+    }
+
+    #[test]
+    fn solve_solves() {
         let a = [
             [4.0, 1.0, 0.0, 0.5],
             [1.0, 3.0, 0.2, 0.0],
@@ -487,7 +674,7 @@ mod tests {
         let mut rhs: Vec<f64> = (0..4)
             .map(|r| (0..4).map(|c| a[r][c] * x[c]).sum())
             .collect();
-        solve4(a, &mut rhs, 1).unwrap();
+        solve(a, &mut rhs, 1).unwrap();
         for k in 0..4 {
             assert!((rhs[k] - x[k]).abs() < 1e-12);
         }

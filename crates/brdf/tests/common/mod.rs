@@ -57,3 +57,15 @@ pub fn cayman_held_out() -> HeldOut {
         table,
     }
 }
+
+/// Path of tests/data/krylon_blue.astm.
+pub fn krylon_blue_path() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/krylon_blue.astm")
+}
+
+/// An ASTM file and the spectral table of the fit of all its geometries.
+pub fn astm_table(path: &Path) -> (AstmFile, BrdfTable) {
+    let file = astm::read(path).unwrap();
+    let (_, table) = fit_and_table(&file, &file.samples);
+    (file, table)
+}
