@@ -9,7 +9,7 @@ use gonio_brdf::gbrdf;
 use gonio_brdf::table::{BrdfTable, Provenance, Resolution};
 use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions};
 use gonio_scatter::ray::{RayEngine, RayOptions};
-use gonio_scatter::table::{TableOptions, kirchhoff_table, ray_table};
+use gonio_scatter::table::{self, TableOptions, kirchhoff_table, ray_table};
 use indicatif::{ProgressBar, ProgressStyle};
 use num_complex::Complex64;
 use std::path::PathBuf;
@@ -54,17 +54,15 @@ pub struct ComputeArgs {
     /// theta_d node.
     #[arg(long)]
     incidences: Option<usize>,
-    /// Anisotropic tables: number of azimuths of incidence (every 360°/N); default: one per
-    /// phi_h node.
+    /// Azimuths of incidence (every 360°/N). Isotropic tables average the surface over them,
+    /// as a sample turned at random under the instrument (default 8, or 24 when the map's
+    /// texture aspect ratio Str is below 0.3; 1 takes the surface as isotropic); anisotropic
+    /// tables interpolate between them (default: one per phi_h node).
     #[arg(long)]
     incidence_azimuths: Option<usize>,
     /// Ray method: no shadowing or masking by the height field (the original NIST method).
     #[arg(long)]
     no_shadowing: bool,
-    /// Ray method: average over this many azimuths of incidence (isotropic surfaces; turns the
-    /// source about the normal and folds the light back).
-    #[arg(long, default_value_t = 1)]
-    azimuths: usize,
     /// Print a JSON summary (file, resolution, time, albedo) instead of text.
     #[arg(long)]
     json: bool,
@@ -72,7 +70,7 @@ pub struct ComputeArgs {
 
 /// Run `gonio brdf compute`.
 pub fn run(a: ComputeArgs) -> Result<()> {
-    let options = table_options(&a)?;
+    let mut options = table_options(&a)?;
     let ior = match a.index_imag {
         Some(k) if k > 0.0 => Ior::Conductor(Complex64::new(a.index, k)),
         _ => Ior::Dielectric(a.index),
@@ -82,6 +80,16 @@ pub fn run(a: ComputeArgs) -> Result<()> {
     }
     let map = crate::surface::read(&a.surface)
         .with_context(|| format!("cannot read the height map {}", a.surface.display()))?;
+    let str_ratio = table::texture_aspect_ratio(&map);
+    if options.resolution.is_isotropic() && a.incidence_azimuths.is_none() {
+        options.incidence_azimuths = table::isotropic_turns(str_ratio);
+    }
+    let warnings: Vec<String> = table::anisotropy_warning(str_ratio, &options)
+        .into_iter()
+        .collect();
+    for w in &warnings {
+        eprintln!("warning: {}: {w}", a.surface.display());
+    }
     let method = match a.method {
         ComputeMethod::Ray => "ray",
         ComputeMethod::Kirchhoff => "kirchhoff",
@@ -120,12 +128,11 @@ pub fn run(a: ComputeArgs) -> Result<()> {
             let ray_options = RayOptions {
                 ior,
                 shadowing: !a.no_shadowing,
-                azimuths: a.azimuths,
                 ..RayOptions::default()
             };
             provenance.extra.insert(
                 "ray".into(),
-                serde_json::json!({"shadowing": !a.no_shadowing, "azimuths": a.azimuths}),
+                serde_json::json!({"shadowing": !a.no_shadowing}),
             );
             let engine = RayEngine::new(&map, ray_options)
                 .with_context(|| format!("{}", a.surface.display()))?;
@@ -148,7 +155,7 @@ pub fn run(a: ComputeArgs) -> Result<()> {
     let seconds = start.elapsed().as_secs_f64();
     gbrdf::write(&table, &a.output)
         .with_context(|| format!("cannot write {}", a.output.display()))?;
-    report(&a, &table, seconds, ior)
+    report(&a, &table, seconds, ior, &warnings)
 }
 
 /// The table and incidence options from the flags.
@@ -182,7 +189,13 @@ fn table_options(a: &ComputeArgs) -> Result<TableOptions> {
 }
 
 /// Print what was written: text, or JSON with `--json`.
-fn report(a: &ComputeArgs, table: &BrdfTable, seconds: f64, ior: Ior) -> Result<()> {
+fn report(
+    a: &ComputeArgs,
+    table: &BrdfTable,
+    seconds: f64,
+    ior: Ior,
+    warnings: &[String],
+) -> Result<()> {
     let angles = [0.0, 30.0, 60.0];
     let albedo = table.albedo_curve(&angles);
     let fresnel_r: Vec<f64> = angles
@@ -205,6 +218,7 @@ fn report(a: &ComputeArgs, table: &BrdfTable, seconds: f64, ior: Ior) -> Result<
             "channels": table.channels(),
             "seconds": seconds,
             "albedo": rows,
+            "warnings": warnings,
         });
         println!("{}", serde_json::to_string_pretty(&out)?);
         return Ok(());

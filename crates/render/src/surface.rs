@@ -10,7 +10,7 @@ use gonio_brdf::Ior;
 use gonio_brdf::gbrdf;
 use gonio_brdf::table::{BrdfTable, Provenance};
 use gonio_scatter::ray::{RayEngine, RayOptions};
-use gonio_scatter::table::{TableOptions, ray_table};
+use gonio_scatter::table::{TableOptions, isotropic_turns, ray_table, texture_aspect_ratio};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -38,7 +38,9 @@ pub struct SurfaceDesc {
     /// Refractive index of the coating (default 1.55).
     #[serde(default)]
     pub index: Option<f64>,
-    /// Azimuths of incidence the ray method averages over (default 1; isotropic surfaces).
+    /// Azimuths of incidence the table averages the surface over (default as `gonio brdf
+    /// compute`: 8, or 24 for a map whose texture aspect ratio Str is below 0.3; 1 takes the
+    /// surface as isotropic).
     #[serde(default)]
     pub azimuths: Option<usize>,
 }
@@ -64,8 +66,9 @@ pub fn table(desc: &SurfaceDesc, dir: &Path, scene: &Path, name: &str) -> Result
     if index.is_nan() || index <= 1.0 {
         return Err(bad(format!("surface `index` must exceed 1, got {index}")));
     }
-    let azimuths = desc.azimuths.unwrap_or(1);
-    if azimuths == 0 || azimuths > 64 {
+    if let Some(azimuths) = desc.azimuths
+        && (azimuths == 0 || azimuths > 64)
+    {
         return Err(bad(format!(
             "surface `azimuths` must be 1 to 64, got {azimuths}"
         )));
@@ -115,10 +118,11 @@ pub fn table(desc: &SurfaceDesc, dir: &Path, scene: &Path, name: &str) -> Result
             ));
         }
     };
-    let options = TableOptions::isotropic();
+    // The default turns depend on the map (its Str), which the key's stamp identifies.
     let key = cache_key(&format!(
-        "gonio-render surface v1|{stamp}|method=ray|index={index}|azimuths={azimuths}|{:?}",
-        options
+        "gonio-render surface v2|{stamp}|method=ray|index={index}|azimuths={:?}|{:?}",
+        desc.azimuths,
+        TableOptions::isotropic()
     ));
     let cache = dir.join(".gonio-cache").join(format!("{key:016x}.gbrdf"));
     if let Ok(table) = gbrdf::read(&cache) {
@@ -135,9 +139,14 @@ pub fn table(desc: &SurfaceDesc, dir: &Path, scene: &Path, name: &str) -> Result
         .generate()
         .map_err(|e| bad(format!("cannot synthesise the surface: {e}")))?,
     };
+    let options = TableOptions {
+        incidence_azimuths: desc
+            .azimuths
+            .unwrap_or_else(|| isotropic_turns(texture_aspect_ratio(&map))),
+        ..TableOptions::isotropic()
+    };
     let ray_options = RayOptions {
         ior: Ior::Dielectric(index),
-        azimuths,
         ..RayOptions::default()
     };
     let engine = RayEngine::new(&map, ray_options).map_err(|e| bad(format!("ray method: {e}")))?;
