@@ -7,7 +7,7 @@
 //! ```text
 //! #sample_name "name"
 //! #format: theta phi BSDF
-//! #colorimetry: CIE-XYZ          (colour tables only)
+//! #colorimetry: CIE-XYZ          (CIE-Y for a monochrome table)
 //! #upphi 90
 //! #intheta 30
 //! #inphi 0
@@ -27,14 +27,14 @@
 //! the chromaticity of each lobe of its interpolant (`bsdfrbf.c`, `create_lobe`; without the
 //! line it reads one value, the photopic Y). Radiance's white is the equal-energy white (its
 //! RGB ↔ XYZ matrices in `src/common/color.h` use x = y = 1/3), so colours are written relative
-//! to it: spectral tables are integrated with the CIE 1931 2° colour-matching functions under
+//! to it (a monochrome table says `CIE-Y`, the photopic value, which is also what
+//! `pabopto2bsdf` assumes without the line): spectral tables are integrated with the CIE 1931 2° colour-matching functions under
 //! an equal-energy illuminant (Y = the ȳ-weighted mean of the spectrum, a flat spectrum gives
 //! X = Y = Z); linear sRGB tables go to XYZ with the sRGB matrix (D65 white), then X and Z are
 //! divided by those of D65 (von Kries scaling in XYZ), which maps the sRGB white onto the
 //! equal-energy white and keeps Y, the luminance 0.2126 R + 0.7152 G + 0.0722 B: a grey table
 //! stays grey, as its monochrome export would, and every table keeps its photometry. XYZ
-//! tables are written as they are. Monochrome tables need no
-//! colorimetry line.
+//! tables are written as they are.
 //!
 //! **Sampling.** Radiance bins the samples on a 256² grid of the Shirley-Chiu square (equal
 //! solid angle per cell), builds a quadtree down to where a quadrant holds no sample, and puts a
@@ -42,10 +42,11 @@
 //! angle (`bsdfrbf.c`). Crowded samples therefore bias the lobes: the former 2° × 5° grid put 72
 //! samples on each 2° ring near the pole and gave a Lambert table back 10–23% too high there.
 //! The outgoing directions are now rings every [`SPACING_DEG`] in theta with
-//! `round(2π sin θ / spacing)` azimuths each (staggered by half a step on odd rings) and one
-//! sample at the pole: evenly spread in solid angle, the same set for every incidence, each
-//! direction once. A table with a narrow specular peak (see [`spacing_deg`]) is sampled every
-//! [`PEAKED_SPACING_DEG`] instead. docs/brdf-tables.md gives what Radiance makes of it.
+//! `round(2π sin θ / spacing)` azimuths each and one sample at the pole: evenly spread in solid
+//! angle, the same set for every incidence, each direction once. A table with a narrow
+//! specular peak (see [`spacing_deg`]) is sampled every [`PEAKED_SPACING_DEG`] instead, on
+//! rings that leave the pole out ([`directions`]). docs/brdf-tables.md gives what Radiance
+//! makes of it.
 
 use crate::error::{BrdfError, Result};
 use crate::gbrdf::write_atomic;
@@ -65,7 +66,8 @@ pub const DEFAULT_THETA_I_DEG: [f64; 9] = [0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60
 /// one sample per 2° × 2° of solid angle (5069 directions per file).
 pub const SPACING_DEG: f64 = 2.0;
 
-/// Spacing in degrees for a table with a narrow specular peak (20449 directions per file).
+/// Spacing in degrees for a table with a narrow specular peak (about 20600 directions per
+/// file).
 pub const PEAKED_SPACING_DEG: f64 = 1.0;
 
 /// A table is sampled every [`PEAKED_SPACING_DEG`] when, at some exported incidence up to 60°,
@@ -73,10 +75,10 @@ pub const PEAKED_SPACING_DEG: f64 = 1.0;
 /// and after it in the plane of incidence: a lobe whose 1/e half width in theta_o is below
 /// about 8° (a Beckmann lobe of m < 0.075). Radiance's lobes have twice the radius of their
 /// quadtree cell (`bsdfrbf.c`, `RSCA`), about the sample spacing, so 2° samples blur such a
-/// peak; with 1° samples the directional-hemispherical reflectance of a m = 0.067 lobe (the
-/// ray-method lobe of a 201 nm epoxy surface) comes back within 1.5% at 0–45° instead of 4%.
-/// Smooth tables keep 2°: at 1° Radiance's interpolant of a Lambert table ripples by 3.5%
-/// instead of 1.6% (docs/brdf-tables.md).
+/// peak: the directional-hemispherical reflectance of an m = 0.067 Beckmann lobe (the
+/// ray-method lobe of a 201 nm epoxy surface) comes back up to 3.6% high at 0–45° from 2°
+/// samples, within 1.4% from 1° ones. Smooth tables keep 2°: Radiance's interpolant of a
+/// Lambert table ripples by 1.6% with them, by 3.5–7% with 1° ones (docs/brdf-tables.md).
 pub const PEAK_RATIO: f64 = 1.25;
 
 /// Write one file per incidence angle (phi_i = 0, and for anisotropic tables also 45°, 90°,
@@ -118,9 +120,12 @@ pub fn write(
             write_atomic(&path, |w| {
                 writeln!(w, "#sample_name \"{name}\"")?;
                 writeln!(w, "#format: theta phi BSDF")?;
-                if weights.is_some() {
-                    writeln!(w, "#colorimetry: CIE-XYZ")?;
-                }
+                let colorimetry = if weights.is_some() {
+                    "CIE-XYZ"
+                } else {
+                    "CIE-Y"
+                };
+                writeln!(w, "#colorimetry: {colorimetry}")?;
                 writeln!(w, "#upphi 90")?;
                 writeln!(w, "#intheta {ti}")?;
                 writeln!(w, "#inphi {pi}")?;
@@ -258,20 +263,33 @@ pub fn spacing_deg(table: &BrdfTable, theta_i_deg: &[f64], phi_i_deg: &[f64]) ->
     SPACING_DEG
 }
 
-/// The outgoing directions for a spacing of `spacing_deg`: the pole, then rings at theta =
-/// k · spacing below 90° with `max(1, round(2π sin θ / spacing))` azimuths, rotated by half an
-/// azimuth step on odd rings. Every ring holds about one sample per spacing² of solid angle.
+/// The outgoing directions for a spacing of `spacing_deg`: rings with
+/// `max(1, round(2π sin θ / spacing))` azimuths, about one sample per spacing² of solid angle.
+/// For [`SPACING_DEG`]: the pole, then rings at theta = k · spacing below 90°, odd rings turned
+/// by half an azimuth step. For [`PEAKED_SPACING_DEG`] (any spacing below 2°): no sample at the
+/// pole, rings at theta = (k - ½) · spacing, every ring turned by a quarter step and odd ones
+/// by a further half. Both layouts were chosen by measuring what Radiance makes of them
+/// (docs/brdf-tables.md): with the first, a Lambert table comes back within 1.6%; the second
+/// keeps the reflectance of a lobe at normal incidence, which the pole sample of the first
+/// makes 3.7% low at 1°.
 pub fn directions(spacing_deg: f64) -> Vec<DVec3> {
     let step = spacing_deg.to_radians();
-    let mut out = vec![DVec3::Z];
+    let around_pole = spacing_deg >= SPACING_DEG;
+    let mut out = if around_pole { vec![DVec3::Z] } else { vec![] };
     for k in 1.. {
-        let theta = k as f64 * spacing_deg;
+        let ring = if around_pole {
+            k as f64
+        } else {
+            k as f64 - 0.5
+        };
+        let theta = ring * spacing_deg;
         if theta >= 90.0 {
             break;
         }
         let theta = theta.to_radians();
         let n = ((TAU * theta.sin() / step).round() as usize).max(1);
-        let offset = if k % 2 == 1 { 0.5 } else { 0.0 };
+        let stagger = if k % 2 == 1 { 0.5 } else { 0.0 };
+        let offset = if around_pole { stagger } else { stagger + 0.25 };
         out.extend((0..n).map(|j| dir(theta, (j as f64 + offset) * TAU / n as f64)));
     }
     out
@@ -311,13 +329,14 @@ mod tests {
         let header = [
             "#sample_name \"grey\"",
             "#format: theta phi BSDF",
+            "#colorimetry: CIE-Y",
             "#upphi 90",
             "#intheta 40",
             "#inphi 0",
         ];
-        assert_eq!(&text[..5], &header);
-        assert_eq!(text.len() - 5, directions(SPACING_DEG).len());
-        for line in &text[5..] {
+        assert_eq!(&text[..6], &header);
+        assert_eq!(text.len() - 6, directions(SPACING_DEG).len());
+        for line in &text[6..] {
             let v = numbers(line);
             assert_eq!(v.len(), 3, "{line}");
             let want = 0.2 + v[0].to_radians().cos();
@@ -329,28 +348,34 @@ mod tests {
         }
     }
 
-    /// Every outgoing direction once, spread evenly in solid angle: a ring at theta stands for
-    /// the band theta ± 1°, so the share of the directions nearer the pole than an odd angle is
-    /// the share of the sampled solid angle (up to 89°) there, to the rounding of the azimuth
-    /// counts (half a sample per ring, below 1% of the count from 31° on).
+    /// Every outgoing direction once, spread evenly in solid angle: a ring stands for the band
+    /// of half a spacing either side, so the share of the directions nearer the pole than a
+    /// band edge is the share of the sampled solid angle there (up to 89° for the 2° layout,
+    /// whose last ring is at 88°; 90° for the 1° one), to the rounding of the azimuth counts
+    /// (half a sample per ring, below 1% of the count from 30° on).
     #[test]
     fn directions_are_unique_and_evenly_spread_in_solid_angle() {
-        let d = directions(SPACING_DEG);
-        for (i, a) in d.iter().enumerate() {
-            assert!(
-                d[i + 1..].iter().all(|b| a.dot(*b) < 1.0 - 1e-9),
-                "{a} twice"
-            );
-        }
         let cap = |t: f64| 1.0 - t.to_radians().cos();
-        for theta in [31.0f64, 45.0, 61.0, 81.0] {
-            let c = theta.to_radians().cos();
-            let share = d.iter().filter(|w| w.z > c).count() as f64 / d.len() as f64;
-            let want = cap(theta) / cap(89.0);
-            assert!(
-                (share / want - 1.0).abs() < 0.01,
-                "within {theta}°: {share} of the directions, {want} of the solid angle"
-            );
+        for (spacing, edges, top) in [
+            (SPACING_DEG, [31.0f64, 45.0, 61.0, 81.0], 89.0),
+            (PEAKED_SPACING_DEG, [30.0, 45.0, 60.0, 80.0], 90.0),
+        ] {
+            let d = directions(spacing);
+            for (i, a) in d.iter().enumerate() {
+                assert!(
+                    d[i + 1..].iter().all(|b| a.dot(*b) < 1.0 - 1e-9),
+                    "{a} twice"
+                );
+            }
+            for theta in edges {
+                let c = theta.to_radians().cos();
+                let share = d.iter().filter(|w| w.z > c).count() as f64 / d.len() as f64;
+                let want = cap(theta) / cap(top);
+                assert!(
+                    (share / want - 1.0).abs() < 0.01,
+                    "{spacing}°, within {theta}°: {share} of the directions, {want} of the solid angle"
+                );
+            }
         }
     }
 
@@ -367,9 +392,7 @@ mod tests {
         for line in text[6..].iter().step_by(97) {
             let v = numbers(line);
             assert_eq!(v.len(), 5, "{line}");
-            for k in 2..5 {
-                assert!((v[k] - 0.3).abs() < 1e-4, "{line}");
-            }
+            assert!(v[2..].iter().all(|x| (x - 0.3).abs() < 1e-4), "{line}");
         }
         // The luminance of every colour is that of sRGB (IEC 61966-2-1 rounds it to 4 digits).
         let w = xyz_weights(&Channels::Rgb).unwrap().unwrap();
