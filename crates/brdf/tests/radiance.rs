@@ -210,7 +210,8 @@ fn radiance_keeps_the_reflectance_of_a_ward_table() {
     };
     // Each lobe of Radiance's interpolant carries the integral of its quadtree leaf (the mean
     // of its samples times its solid angle), so the reflectance keeps the 1-2% ripple of the
-    // lobe sums and no more (measured below 3% for a Beckmann lobe of this width); 3%.
+    // lobe sums and its floor (BSDFMIN, up to a histogram bin above the diffuse base) and no
+    // more: measured -2.3% at worst (normal incidence), -1.2% at 60°. 3%.
     check_dhr(&table, &report, 0.03, "Ward + Lambert");
 }
 
@@ -232,8 +233,9 @@ fn radiance_keeps_the_reflectance_of_a_narrow_peak() {
     let Some(report) = radiance(&table, &[], &DHR_THETA) else {
         return;
     };
-    // As for the Ward table: the lobes keep the integrals of their leaves; the 1° samples
-    // resolve the peak (with 2° ones the reflectance came back 4% high at 45°). 3%.
+    // As for the Ward table: the lobes keep the integrals of their leaves, and the 1° samples
+    // resolve the peak (measured within 1.4% up to 45°; with 2° samples up to 3.6% high, and
+    // 5% low at 60° either way, where the lobe nears the horizon). 3%.
     check_dhr(&table, &report, 0.03, "narrow peak");
 }
 
