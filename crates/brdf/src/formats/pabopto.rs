@@ -28,13 +28,13 @@
 //! line it reads one value, the photopic Y). Radiance's white is the equal-energy white (its
 //! RGB ↔ XYZ matrices in `src/common/color.h` use x = y = 1/3), so colours are written relative
 //! to it (a monochrome table says `CIE-Y`, the photopic value, which is also what
-//! `pabopto2bsdf` assumes without the line): spectral tables are integrated with the CIE 1931 2° colour-matching functions under
-//! an equal-energy illuminant (Y = the ȳ-weighted mean of the spectrum, a flat spectrum gives
-//! X = Y = Z); linear sRGB tables go to XYZ with the sRGB matrix (D65 white), then X and Z are
-//! divided by those of D65 (von Kries scaling in XYZ), which maps the sRGB white onto the
-//! equal-energy white and keeps Y, the luminance 0.2126 R + 0.7152 G + 0.0722 B: a grey table
-//! stays grey, as its monochrome export would, and every table keeps its photometry. XYZ
-//! tables are written as they are.
+//! `pabopto2bsdf` assumes without the line): spectral tables are integrated with the CIE 1931
+//! 2° colour-matching functions under an equal-energy illuminant (Y = the ȳ-weighted mean of
+//! the spectrum, a flat spectrum gives X = Y = Z); linear sRGB tables go to XYZ with the sRGB
+//! matrix (D65 white), then X and Z are divided by those of D65 (von Kries scaling in XYZ),
+//! which maps the sRGB white onto the equal-energy white and keeps Y, the luminance
+//! `0.2126 R + 0.7152 G + 0.0722 B`: a grey table stays grey, as its monochrome export would,
+//! and every table keeps its photometry. XYZ tables are written as they are.
 //!
 //! **Sampling.** Radiance bins the samples on a 256² grid of the Shirley-Chiu square (equal
 //! solid angle per cell), builds a quadtree down to where a quadrant holds no sample, and puts a
