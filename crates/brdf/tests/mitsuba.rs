@@ -141,19 +141,14 @@ struct RenderReport {
     background_max: f64,
 }
 
-/// Run Mitsuba 3 on `bsdf` with the `variant`, evaluating at `pairs`; `None` (with a note on
-/// stderr) where Python or Mitsuba is not installed.
-/// Skip the check with a reason, or fail when `GONIO_REQUIRE_ORACLES=1` (set by `.ci/run`)
-/// demands the oracle.
+/// Skip the check with a reason, or fail when `GONIO_REQUIRE_ORACLES=1` demands the oracle.
 fn oracle_missing(why: &str) -> Option<MitsubaReport> {
-    assert!(
-        std::env::var("GONIO_REQUIRE_ORACLES").as_deref() != Ok("1"),
-        "GONIO_REQUIRE_ORACLES=1 but {why}"
-    );
-    eprintln!("skipping the Mitsuba 3 check: {why}");
+    common::oracle_missing("Mitsuba 3", why);
     None
 }
 
+/// Run Mitsuba 3 on `bsdf` with the `variant`, evaluating at `pairs`; `None` (with a note on
+/// stderr) where Python or Mitsuba is not installed.
 fn mitsuba3(variant: &str, bsdf: &Path, pairs: &[(DVec3, DVec3)]) -> Option<MitsubaReport> {
     let dir = bsdf.parent().unwrap();
     let pairs_path = dir.join("pairs.txt");
