@@ -134,6 +134,11 @@ pub struct PlotArgs {
     /// Incidence angles of the in-plane curves, degrees.
     #[arg(long, value_delimiter = ',', default_values_t = [20.0, 45.0, 60.0, 75.0])]
     incidence_deg: Vec<f64>,
+    /// The measurement the table was imported from (.astm or .csv, same channels): its
+    /// geometries in the plane of incidence at the plotted incidences (within 0.5°) are drawn
+    /// as markers beside the curves.
+    #[arg(long)]
+    measured: Option<PathBuf>,
 }
 
 #[derive(Args)]
@@ -376,7 +381,22 @@ fn export(a: ExportArgs) -> Result<()> {
     let t = load(&a.table)?;
     let pb = spinner("exporting");
     match a.format {
-        ExportFormat::Merl => merl::write(&t, &a.output)?,
+        ExportFormat::Merl => {
+            let report = merl::write(&t, &a.output)?;
+            if report.out_of_gamut > 0 {
+                pb.suspend(|| {
+                    eprintln!(
+                        "warning: {}: {} of {} cells are outside the sRGB gamut, which MERL files \
+                         cannot hold (a negative value means \"not measured\" to their \
+                         readers); they were moved toward grey at constant luminance until in \
+                         gamut (docs/brdf-tables.md)",
+                        a.output.display(),
+                        report.out_of_gamut,
+                        report.cells
+                    )
+                });
+            }
+        }
         ExportFormat::Mitsuba => {
             let opts = mitsuba::MitsubaOptions {
                 values: usize::from(a.value_grid),
@@ -425,9 +445,74 @@ fn in_plane(brdf: &dyn Brdf, incidence_deg: &[f64], label: &str, markers: bool) 
         .collect()
 }
 
+/// The in-plane samples of a measurement at each plotted incidence (within 0.5°), as marker
+/// series of the table's colours: signed scattering angle (+ on the specular side) and the mean
+/// of the table's RGB of each measured spectrum, as the curves are drawn.
+fn measured_in_plane(table: &BrdfTable, path: &Path, incidence_deg: &[f64]) -> Result<Vec<Series>> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    let samples = match ext.as_str() {
+        "astm" => astm::read(path)?.samples,
+        "csv" => csv::read_samples(path)?.1,
+        _ => bail!(
+            "{}: --measured takes a Cornell .astm or a .csv of samples",
+            path.display()
+        ),
+    };
+    if samples
+        .first()
+        .is_some_and(|s| s.values.len() != table.channel_count())
+    {
+        bail!(
+            "{}: the measurement has {} channels and the table {}; plot the table imported from \
+             it without --colour",
+            path.display(),
+            samples[0].values.len(),
+            table.channel_count()
+        );
+    }
+    let tolerance = 0.5f64.to_radians();
+    Ok(incidence_deg
+        .iter()
+        .enumerate()
+        .map(|(k, &ti)| {
+            let points = samples
+                .iter()
+                .filter(|s| (s.wi.z.acos() - ti.to_radians()).abs() < tolerance)
+                .filter_map(|s| {
+                    // Turn the pair so that the source is at azimuth 180°, as `source` has it.
+                    let turn = std::f64::consts::PI - s.wi.y.atan2(s.wi.x);
+                    let (sn, cs) = turn.sin_cos();
+                    let wo =
+                        DVec3::new(cs * s.wo.x - sn * s.wo.y, sn * s.wo.x + cs * s.wo.y, s.wo.z);
+                    (wo.y.abs() < tolerance.sin()).then(|| {
+                        let rgb = table.to_rgb(&s.values);
+                        (wo.x.atan2(wo.z).to_degrees(), (rgb.x + rgb.y + rgb.z) / 3.0)
+                    })
+                })
+                .collect();
+            Series {
+                label: format!("measured {ti}°"),
+                points,
+                colour: plot::palette(k),
+                markers: true,
+            }
+        })
+        // An incidence the file did not measure gets no legend entry.
+        .filter(|s| !s.points.is_empty())
+        .collect())
+}
+
 fn plot_table(a: PlotArgs) -> Result<()> {
     let t = load(&a.table)?;
-    let curves = in_plane(&t, &a.incidence_deg, "theta_i ", false);
+    let mut curves = in_plane(&t, &a.incidence_deg, "theta_i ", false);
+    let measured = match &a.measured {
+        Some(path) => measured_in_plane(&t, path, &a.incidence_deg)?,
+        None => vec![],
+    };
     // Polar lobe view: f cos θo, normalised per curve, in the plane of incidence.
     let lobes: Vec<Series> = curves
         .iter()
@@ -463,6 +548,7 @@ fn plot_table(a: PlotArgs) -> Result<()> {
         .and_then(|s| s.to_str())
         .unwrap_or("table")
         .to_string();
+    curves.extend(measured);
     plot::render_png(&a.output, (1400, 600), |root| {
         let (left, right) = root.split_horizontally(800);
         plot::draw_line_plot(

@@ -109,3 +109,74 @@ fn tabulate_info_export_import_fit() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("missing.gbrdf"));
 }
+
+/// `brdf plot --measured` draws a measurement beside the table imported from it, and refuses,
+/// with exit status 2 and the reason, a measurement whose channels are not the table's.
+#[test]
+fn plot_beside_the_measurement() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let astm = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../brdf/tests/data/krylon_blue.astm");
+    let astm = astm.to_str().unwrap();
+    let out = gonio(&["brdf", "import", astm, "-o", "blue.gbrdf"], d);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = gonio(
+        &[
+            "brdf",
+            "plot",
+            "blue.gbrdf",
+            "-o",
+            "blue.png",
+            "--measured",
+            astm,
+        ],
+        d,
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(std::fs::metadata(d.join("blue.png")).unwrap().len() > 10_000);
+    let out = gonio(
+        &[
+            "brdf",
+            "import",
+            astm,
+            "-o",
+            "rgb.gbrdf",
+            "--colour",
+            "srgb",
+        ],
+        d,
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = gonio(
+        &[
+            "brdf",
+            "plot",
+            "rgb.gbrdf",
+            "-o",
+            "rgb.png",
+            "--measured",
+            astm,
+        ],
+        d,
+    );
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("31 channels") && err.contains("--colour"),
+        "{err}"
+    );
+    assert!(!d.join("rgb.png").exists());
+}

@@ -7,6 +7,15 @@
 //! - stored values times the channel scales 1/1500, 1.15/1500, 1.66/1500 are the BRDF in 1/sr;
 //!   negative values mark cells without a measurement.
 //!
+//! MERL readers take a negative value for a missing measurement, so colours outside the sRGB
+//! gamut (a saturated paint's linear sRGB has a negative component) cannot be written as they
+//! are: [`write`] maps each such colour into the gamut at constant luminance, moving it toward
+//! the grey of its own luminance `Y = 0.2126 R + 0.7152 G + 0.0722 B` (IEC 61966-2-1) just far
+//! enough that its smallest component is 0: `rgb' = Y + t (rgb − Y)`, `t = Y / (Y − min)`. Hue
+//! (the direction of `rgb − Y` in the chromaticity plane) and luminance are kept, chroma is
+//! reduced as little as the gamut demands; a colour of non-positive luminance (noise in a dark
+//! cell) becomes black. The export reports how many cells it mapped.
+//!
 //! theta_h node j lies at `90° (j/n)²`, theta_d node j at `90° j/n`, phi_d node j at `180° j/n`:
 //! phi_d covers half a turn because MERL assumes reciprocity (phi_d and phi_d + 180° are the
 //! same pair with wi and wo swapped). These are the nodes of gonio's own grid, so an isotropic
@@ -71,16 +80,47 @@ pub fn read(path: &Path) -> Result<BrdfTable> {
     b.build()
 }
 
+/// What [`write`] did to fit the table into the format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub struct MerlExport {
+    /// Cells written (above the horizon).
+    pub cells: usize,
+    /// Of these, cells whose colour was outside the sRGB gamut and was mapped into it.
+    pub out_of_gamut: usize,
+}
+
+/// `rgb` mapped into the sRGB gamut at constant luminance (module docs); unchanged when no
+/// component is negative.
+pub fn into_gamut(rgb: glam::DVec3) -> glam::DVec3 {
+    let min = rgb.min_element();
+    if min >= 0.0 {
+        return rgb;
+    }
+    let y = rgb.dot(glam::DVec3::new(0.2126, 0.7152, 0.0722));
+    if y <= 0.0 {
+        return glam::DVec3::ZERO;
+    }
+    let grey = glam::DVec3::splat(y);
+    // The smallest component of grey + t (rgb - grey) is y + t (min - y) = 0.
+    let t = y / (y - min);
+    (grey + t * (rgb - grey)).max(glam::DVec3::ZERO)
+}
+
 /// Write `table` as a MERL `.binary` file of the standard 90 × 90 × 180 cells: each cell holds
 /// the mean of the table at its pair of directions and at the swapped pair (MERL stores one
-/// value for both), in linear RGB; cells below the horizon hold -1.
-pub fn write(table: &BrdfTable, path: &Path) -> Result<()> {
+/// value for both), in linear sRGB mapped into its gamut ([`into_gamut`]); cells below the
+/// horizon hold -1.
+pub fn write(table: &BrdfTable, path: &Path) -> Result<MerlExport> {
     let [nh, nd, np] = DIMS;
     let res = Resolution::isotropic(nh, nd, 2 * np);
     let nc = table.channel_count();
     let n = nh * nd * np;
     let mut out = vec![-1.0f64; 3 * n];
     let mut buf = vec![0.0; nc];
+    let mut report = MerlExport {
+        cells: 0,
+        out_of_gamut: 0,
+    };
     for th in 0..nh {
         for td in 0..nd {
             for pd in 0..np {
@@ -102,6 +142,11 @@ pub fn write(table: &BrdfTable, path: &Path) -> Result<()> {
                     table.eval_angles(&HalfDiff { phi_d, ..a }, &mut buf);
                     rgb += table.to_rgb(&buf) * 0.5;
                 }
+                report.cells += 1;
+                if rgb.min_element() < 0.0 {
+                    report.out_of_gamut += 1;
+                    rgb = into_gamut(rgb);
+                }
                 let i = (th * nd + td) * np + pd;
                 for c in 0..3 {
                     out[c * n + i] = rgb[c] / SCALES[c];
@@ -117,7 +162,8 @@ pub fn write(table: &BrdfTable, path: &Path) -> Result<()> {
         out.iter()
             .for_each(|v| bytes.extend_from_slice(&v.to_le_bytes()));
         w.write_all(&bytes)
-    })
+    })?;
+    Ok(report)
 }
 
 #[cfg(test)]
@@ -156,6 +202,30 @@ mod tests {
         }
         // The only loss is f32 → f64 → f32 through the scale factors.
         assert!(worst < 1e-6, "worst relative difference {worst}");
+    }
+
+    /// The mapping keeps the luminance and the hue direction, lands on the gamut's boundary
+    /// (smallest component 0) and leaves in-gamut colours alone.
+    #[test]
+    fn out_of_gamut_colours_keep_luminance_and_hue() {
+        let lum = |c: DVec3| c.dot(DVec3::new(0.2126, 0.7152, 0.0722));
+        for rgb in [
+            DVec3::new(-0.02, 0.05, 0.3),
+            DVec3::new(0.4, -0.1, 0.05),
+            DVec3::new(0.01, 0.2, -0.03),
+        ] {
+            let m = into_gamut(rgb);
+            assert!((lum(m) - lum(rgb)).abs() < 1e-15, "{rgb} -> {m}");
+            assert!(m.min_element().abs() < 1e-15, "{m}");
+            let (d0, d1) = (rgb - lum(rgb), m - lum(m));
+            assert!(d0.cross(d1).length() < 1e-12 * d0.length(), "{d0} vs {d1}");
+            assert!(d1.length() < d0.length());
+        }
+        assert_eq!(
+            into_gamut(DVec3::new(0.1, 0.2, 0.3)),
+            DVec3::new(0.1, 0.2, 0.3)
+        );
+        assert_eq!(into_gamut(DVec3::new(-0.5, 0.01, 0.0)), DVec3::ZERO);
     }
 
     #[test]
