@@ -55,9 +55,9 @@ pub struct ComputeArgs {
     #[arg(long)]
     incidences: Option<usize>,
     /// Azimuths of incidence (every 360°/N). Isotropic tables average the surface over them,
-    /// as a sample turned at random under the instrument (default 8, or 24 when the map's
-    /// texture aspect ratio Str is below 0.3; 1 takes the surface as isotropic); anisotropic
-    /// tables interpolate between them (default: one per phi_h node).
+    /// as a sample turned at random under the instrument (default from the map's texture
+    /// aspect ratio Str: 1 from 0.5 up, 8 from 0.3 to 0.5, 24 below 0.3); anisotropic tables
+    /// interpolate between them (default: one per phi_h node).
     #[arg(long)]
     incidence_azimuths: Option<usize>,
     /// Ray method: no shadowing or masking by the height field (the original NIST method).

@@ -39,8 +39,8 @@ pub struct SurfaceDesc {
     #[serde(default)]
     pub index: Option<f64>,
     /// Azimuths of incidence the table averages the surface over (default as `gonio brdf
-    /// compute`: 8, or 24 for a map whose texture aspect ratio Str is below 0.3; 1 takes the
-    /// surface as isotropic).
+    /// compute`, from the map's texture aspect ratio Str: 1 from 0.5 up, 8 from 0.3 to 0.5, 24
+    /// below 0.3).
     #[serde(default)]
     pub azimuths: Option<usize>,
 }

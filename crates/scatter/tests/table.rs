@@ -103,6 +103,8 @@ fn table_albedo_is_the_ray_reflectance() {
 #[test]
 fn isotropic_table_of_an_anisotropic_surface_averages_the_azimuths() {
     let base = gaussian(0.4e-6, 4e-6, 128, 23);
+    // The unstretched map is isotropic: one turn is enough for it.
+    assert_eq!(isotropic_turns(texture_aspect_ratio(&base)), 1);
     let map = HeightMap::new(base.heights().clone(), 0.5e-6, 2e-6).unwrap();
     let str_ratio = texture_aspect_ratio(&map);
     println!("Str {str_ratio:?}");
