@@ -110,6 +110,14 @@ fn tabulate_info_export_import_fit() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("missing.gbrdf"));
 }
 
+fn succeeded(out: &std::process::Output) {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 /// `brdf plot --measured` draws a measurement beside the table imported from it, and refuses,
 /// with exit status 2 and the reason, a measurement whose channels are not the table's.
 #[test]
@@ -120,11 +128,7 @@ fn plot_beside_the_measurement() {
         .join("../brdf/tests/data/krylon_blue.astm");
     let astm = astm.to_str().unwrap();
     let out = gonio(&["brdf", "import", astm, "-o", "blue.gbrdf"], d);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeded(&out);
     let out = gonio(
         &[
             "brdf",
@@ -137,11 +141,7 @@ fn plot_beside_the_measurement() {
         ],
         d,
     );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeded(&out);
     assert!(std::fs::metadata(d.join("blue.png")).unwrap().len() > 10_000);
     let out = gonio(
         &[
@@ -155,11 +155,7 @@ fn plot_beside_the_measurement() {
         ],
         d,
     );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeded(&out);
     let out = gonio(
         &[
             "brdf",

@@ -33,6 +33,16 @@ fn gaussian(sq: f64, corr: f64, n: usize, seed: u64) -> HeightMap {
 
 fn no_progress(_: usize, _: usize) {}
 
+/// The reflectance the engine's rays carry for light from `theta_i`, averaged over the source
+/// azimuths `phis` (radians).
+fn mean_reflectance(engine: &RayEngine, theta_i: f64, phis: &[f64]) -> f64 {
+    let one = |phi: f64| -> f64 {
+        let rays = engine.reflected_rays(dir(theta_i, phi)).unwrap();
+        rays.iter().map(|r| r.1).sum()
+    };
+    phis.iter().map(|&phi| one(phi)).sum::<f64>() / phis.len() as f64
+}
+
 /// The Gaussian surface of issue 5 (Sq 0.3 µm, T 6 µm; 512² at 0.5 µm), its ray engine and
 /// its default isotropic table, computed once for the tests that share them.
 fn gaussian_table() -> &'static (RayEngine, BrdfTable) {
@@ -65,19 +75,7 @@ fn table_albedo_is_the_ray_reflectance() {
     for ti in [0.0f64, 20.0, 40.0, 60.0, 76.0] {
         let wi = dir(ti.to_radians(), 0.0);
         // The table averages the turned sources: so does the reference.
-        let rays: f64 = turns
-            .iter()
-            .map(|&turn| {
-                let source = dir(ti.to_radians(), turn);
-                engine
-                    .reflected_rays(source)
-                    .unwrap()
-                    .iter()
-                    .map(|r| r.1)
-                    .sum::<f64>()
-            })
-            .sum::<f64>()
-            / turns.len() as f64;
+        let rays = mean_reflectance(engine, ti.to_radians(), &turns);
         let albedo = table.albedo_with(wi, 2048, 720)[0];
         // Second-order error of linear interpolation across the 2° between incidences of a
         // BRDF growing as 1/cos² theta_i: (Δ²/8) · 2 (1 + 3 tan² theta_i).
@@ -153,18 +151,8 @@ fn isotropic_table_of_an_anisotropic_surface_averages_the_azimuths() {
             .sum::<f64>()
             / 24.0;
         let (a, one) = (iso.albedo(t, 0.0)[0], single.albedo(t, 0.0)[0]);
-        let truth = (0..24)
-            .map(|k| {
-                let source = dir(t, (15.0 * k as f64).to_radians());
-                engine
-                    .reflected_rays(source)
-                    .unwrap()
-                    .iter()
-                    .map(|r| r.1)
-                    .sum::<f64>()
-            })
-            .sum::<f64>()
-            / 24.0;
+        let azimuths: Vec<f64> = (0..24).map(|k| (15.0 * k as f64).to_radians()).collect();
+        let truth = mean_reflectance(&engine, t, &azimuths);
         println!(
             "{ti}°: isotropic table {a:.5}, one azimuth {one:.5}, anisotropic mean {mean:.5}, rays {truth:.5}"
         );
