@@ -71,8 +71,8 @@ fn main() -> ExitCode {
     die_quietly_on_closed_stdout();
     let matches = accept_negative_numbers(Cli::command()).get_matches();
     let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
-    if let Some(selector) = cli.channel {
-        surface::choose_channel(selector);
+    if let Some(selector) = &cli.channel {
+        surface::choose_channel(selector.clone());
     }
     let result: anyhow::Result<()> = match cli.command {
         Command::Surface(cmd) => surface::run(cmd),
@@ -83,6 +83,10 @@ fn main() -> ExitCode {
         Command::Study(args) => study::run(args),
         Command::Inplane(args) => inplane::run(args),
         Command::Color(args) => color::run(args),
+        Command::Render(_) if cli.channel.is_some() => Err(anyhow::anyhow!(
+            "--channel: `gonio render` reads the height maps its scene names; give a surface's \
+             channel in the scene, `surface = {{ file = \"...\", channel = \"Height\" }}`"
+        )),
         Command::Render(args) => render::run(args),
         Command::Isotropy(args) => isotropy::run(args),
     };

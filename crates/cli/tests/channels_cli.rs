@@ -96,3 +96,13 @@ fn a_profile_gets_profile_statistics_and_areal_commands_refuse_it() {
         assert!(err.contains("line profile"), "{args:?}: {err}");
     }
 }
+
+/// `gonio render` reads the height maps its scene names: `--channel` is refused there (exit 2)
+/// with the way to give a surface's channel in the scene.
+#[test]
+fn render_takes_channels_from_the_scene() {
+    let out = gonio(&["--channel", "Height", "render", "scene.toml", "-o", "x.png"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("channel = "), "{err}");
+}

@@ -21,6 +21,10 @@ pub struct SurfaceDesc {
     /// A height-map file (any format `gonio surface` reads).
     #[serde(default)]
     pub file: Option<PathBuf>,
+    /// The file's channel to read, a name or a 0-based index (multi-channel AFM files;
+    /// default: the first height channel; `gonio surface info FILE` lists them).
+    #[serde(default)]
+    pub channel: Option<String>,
     /// Or a synthetic epoxy sample of this rms height, nm
     /// (`gonio_surface::synth::epoxy_surface`).
     #[serde(default)]
@@ -97,9 +101,10 @@ pub fn table(desc: &SurfaceDesc, dir: &Path, scene: &Path, name: &str) -> Result
                 .and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok())
                 .map_or(0, |d| d.as_nanos());
             let stamp = format!(
-                "file={}|len={}|mtime={modified}",
+                "file={}|len={}|mtime={modified}|channel={:?}",
                 path.display(),
-                meta.len()
+                meta.len(),
+                desc.channel
             );
             (Source::File(path), stamp)
         }
@@ -129,8 +134,25 @@ pub fn table(desc: &SurfaceDesc, dir: &Path, scene: &Path, name: &str) -> Result
         return Ok(table);
     }
     let map = match &source {
-        Source::File(path) => gonio_surface::io::read(path)
-            .map_err(|e| RenderError::scene(path, format!("cannot read the height map: {e}")))?,
+        Source::File(path) => {
+            let channel = desc
+                .channel
+                .as_deref()
+                .map(str::parse::<gonio_surface::ChannelSelector>)
+                .transpose()
+                .map_err(|e| bad(format!("surface `channel`: {e}")))?;
+            let options = gonio_surface::io::ReadOptions { channel };
+            let map = gonio_surface::io::read_with(path, &options).map_err(|e| {
+                RenderError::scene(path, format!("cannot read the height map: {e}"))
+            })?;
+            if map.is_profile() {
+                return Err(bad(format!(
+                    "{} holds a line profile; a surface's table needs an areal height map",
+                    path.display()
+                )));
+            }
+            map
+        }
         Source::Epoxy(sq_nm) => gonio_surface::synth::GaussianSurface {
             nx: points,
             ny: points,

@@ -253,6 +253,7 @@ fn importance_sampling_of_the_epoxy_table_pays() {
         method: None,
         index: None,
         azimuths: None,
+        channel: None,
     };
     let t = std::time::Instant::now();
     let table =
@@ -278,4 +279,36 @@ fn importance_sampling_of_the_epoxy_table_pays() {
         cosine / alias
     );
     assert!(cosine > 5.0 * alias, "alias {alias}, cosine {cosine}");
+}
+
+/// A scene's surface file is read with its `channel` (a channel the file lacks is an error that
+/// lists the file's channels), and a line profile is refused: a table needs an areal map.
+#[test]
+fn scene_surfaces_choose_a_channel_and_refuse_profiles() {
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("../surface/tests/data");
+    let dir = tempfile::tempdir().unwrap();
+    let desc = |file: &str, channel: Option<&str>| gonio_render::surface::SurfaceDesc {
+        file: Some(data.join(file)),
+        channel: channel.map(str::to_string),
+        epoxy_sq_nm: None,
+        seed: None,
+        points: None,
+        method: None,
+        index: None,
+        azimuths: None,
+    };
+    let scene = Path::new("test.toml");
+    let err = gonio_render::surface::table(&desc("opdx-3.opdx", None), dir.path(), scene, "p")
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("line profile"), "{err}");
+    let err = gonio_render::surface::table(
+        &desc("nid-1.nid", Some("no such channel")),
+        dir.path(),
+        scene,
+        "afm",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("no such channel"), "{err}");
 }
