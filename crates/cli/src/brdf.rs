@@ -11,6 +11,7 @@ use gonio_brdf::formats::{astm, csv, merl, mitsuba, pabopto};
 use gonio_brdf::gbrdf;
 use gonio_brdf::models::ModelSpec;
 use gonio_brdf::table::colour::{self, ColourSpace};
+use gonio_brdf::table::coords::turn_about_z;
 use gonio_brdf::table::{BrdfTable, Provenance, Resolution};
 use gonio_color::{Illuminant, Observer};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -484,10 +485,7 @@ fn measured_in_plane(table: &BrdfTable, path: &Path, incidence_deg: &[f64]) -> R
                 .filter(|s| (s.wi.z.acos() - ti.to_radians()).abs() < tolerance)
                 .filter_map(|s| {
                     // Turn the pair so that the source is at azimuth 180°, as `source` has it.
-                    let turn = std::f64::consts::PI - s.wi.y.atan2(s.wi.x);
-                    let (sn, cs) = turn.sin_cos();
-                    let wo =
-                        DVec3::new(cs * s.wo.x - sn * s.wo.y, sn * s.wo.x + cs * s.wo.y, s.wo.z);
+                    let wo = turn_about_z(s.wo, std::f64::consts::PI - s.wi.y.atan2(s.wi.x));
                     (wo.y.abs() < tolerance.sin()).then(|| {
                         let rgb = table.to_rgb(&s.values);
                         (wo.x.atan2(wo.z).to_degrees(), (rgb.x + rgb.y + rgb.z) / 3.0)

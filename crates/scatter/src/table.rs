@@ -41,7 +41,7 @@ use crate::error::{Result, ScatterError};
 use crate::kirchhoff::Kirchhoff;
 use crate::ray::{HemisphereGrid, HemisphereTable, RayEngine};
 use glam::DVec3;
-use gonio_brdf::table::coords::{dir, theta_of};
+use gonio_brdf::table::coords::{dir, theta_of, turn_about_z};
 use gonio_brdf::table::{BrdfTable, Channels, Provenance, Resolution, TableBuilder};
 use rayon::prelude::*;
 use slice::{Slice, SliceGrid};
@@ -332,12 +332,6 @@ fn mean_of_turns(mut values: Vec<f64>, turns: usize) -> Vec<f64> {
     values
 }
 
-/// `v` turned about z by `angle` (radians, counter-clockwise).
-fn turned(v: DVec3, angle: f64) -> DVec3 {
-    let (s, c) = angle.sin_cos();
-    DVec3::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z)
-}
-
 /// The partial deposits of every ray the engine reflects for a source in `wi` turned about the
 /// normal by `turn`, each ray turned back by `turn` (so that the deposits are in the frame of
 /// `wi`), one per chunk of facets in order. `normals`: the half-vector coordinates of every
@@ -351,7 +345,7 @@ fn ray_deposits(
     turn: f64,
     normals: Option<&[(f64, f64)]>,
 ) -> Result<Vec<Vec<f64>>> {
-    let source = turned(wi, turn);
+    let source = turn_about_z(wi, turn);
     engine.fold_rays(
         source,
         || vec![0.0; grid.len()],
@@ -360,9 +354,12 @@ fn ray_deposits(
                 grid.deposit(part, rays.iter().map(|r| (coords[r.facet], r.share)));
             }
             _ => {
-                let coords = rays
-                    .iter()
-                    .map(|r| (grid.coords(turned(source + r.direction, -turn)), r.share));
+                let coords = rays.iter().map(|r| {
+                    (
+                        grid.coords(turn_about_z(source + r.direction, -turn)),
+                        r.share,
+                    )
+                });
                 grid.deposit(part, coords);
             }
         },
@@ -412,7 +409,7 @@ pub fn kirchhoff_table(
         for (c, &nm) in wavelengths_nm.iter().enumerate() {
             let mut partials = Vec::new();
             for (l, &turn) in turns.iter().enumerate() {
-                let map = engine.hemisphere(nm * 1e-9, turned(wi, turn), &hemisphere)?;
+                let map = engine.hemisphere(nm * 1e-9, turn_about_z(wi, turn), &hemisphere)?;
                 partials.extend(hemisphere_deposits(&grid, wi, turn, &map));
                 progress(k * runs_per_incidence + c * turns.len() + l + 1, total);
             }

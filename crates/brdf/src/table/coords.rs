@@ -257,6 +257,12 @@ pub fn dir(theta: f64, phi: f64) -> DVec3 {
     DVec3::new(st * cp, st * sp, ct)
 }
 
+/// `v` turned about the normal (z) by `angle` (radians, counter-clockwise seen from above).
+pub fn turn_about_z(v: DVec3, angle: f64) -> DVec3 {
+    let (s, c) = angle.sin_cos();
+    DVec3::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -43,6 +43,7 @@ use crate::geometry::{CurvePoint, Detector, InplaneCurve, incidence_direction, i
 use glam::DVec3;
 use gonio_brdf::Ior;
 use gonio_brdf::fresnel::Polarised;
+use gonio_brdf::table::coords::turn_about_z;
 use gonio_surface::HeightMap;
 use gonio_surface::normals::{NormalMethod, facet_normals};
 use index::{BinMask, DirectionIndex, Sums};
@@ -266,7 +267,7 @@ impl RayEngine {
     fn tracer<'a>(&'a self, wi: DVec3, k: usize, wanted: Option<&'a BinMask>) -> Tracer<'a> {
         let phi = std::f64::consts::TAU * k as f64 / self.options.azimuths as f64;
         let (sin, cos) = phi.sin_cos();
-        let wi_map = DVec3::new(cos * wi.x - sin * wi.y, sin * wi.x + cos * wi.y, wi.z);
+        let wi_map = turn_about_z(wi, phi);
         // The horizon map the shadowing test reads, if the source lies along a grid axis (made
         // here, before the parallel loops, so that no worker waits for another to make it).
         let source_horizon = self
