@@ -129,9 +129,10 @@ fn nnls(rows: &[(Vec<f64>, f64, f64)], n: usize) -> Vec<f64> {
 
 /// Least-squares rows of one band: the basis `[1/π, D(θ*; α_1), ...]` at each sample, the value
 /// to fit and its weight.
-struct Rows {
-    /// `D(θ*; α)` at every sample, per grid roughness: `shapes[k][j]`.
-    shapes: Vec<Vec<f64>>,
+struct Rows<'a> {
+    /// `D(θ*; α)` at every sample, per grid roughness: `shapes[k][j]` (computed once, shared
+    /// by every band).
+    shapes: &'a [Vec<f64>],
     /// Weight `1/(f + m)²` of each sample (`m` the band's median value: relative error for
     /// the bright values, absolute for those far below the median, so that readings near the
     /// noise floor do not steer the fit).
@@ -140,8 +141,8 @@ struct Rows {
     values: Vec<f64>,
 }
 
-impl Rows {
-    fn new(shapes: &[Vec<f64>], values: Vec<f64>) -> Rows {
+impl<'a> Rows<'a> {
+    fn new(shapes: &'a [Vec<f64>], values: Vec<f64>) -> Rows<'a> {
         let mut sorted = values.clone();
         sorted.sort_by(f64::total_cmp);
         let median = sorted
@@ -155,7 +156,7 @@ impl Rows {
             .map(|y| 1.0 / (y.max(0.0) + median).max(1e-150).powi(2))
             .collect();
         Rows {
-            shapes: shapes.to_vec(),
+            shapes,
             weights,
             values,
         }

@@ -79,6 +79,8 @@ pub struct ScatteredFit {
     logs: Vec<f64>,
     /// `values[i * nc + c]`: the measured f of sample i, channel c (negative readings as 0).
     values: Vec<f64>,
+    /// Per channel, the largest measured value in the file.
+    largest: Vec<f64>,
     eps: Vec<f64>,
     nc: usize,
     bw: Bandwidths,
@@ -178,10 +180,20 @@ impl ScatteredFit {
             let mean = |v: &[f64]| v.iter().map(|v| v.max(0.0)).sum::<f64>() / nc as f64;
             z_mean.push(((mean(&s.values) + eps_mean) / (mean(&m) + eps_mean)).ln());
         }
+        let largest = (0..nc)
+            .map(|c| {
+                values
+                    .iter()
+                    .skip(c)
+                    .step_by(nc)
+                    .fold(0.0f64, |m, v| m.max(*v))
+            })
+            .collect();
         let mut fit = ScatteredFit {
             points,
             logs,
             values,
+            largest,
             eps,
             nc,
             bw: [0.1; 3],
@@ -380,14 +392,7 @@ impl ScatteredFit {
                 }
             }
         }
-        if !any {
-            for (j, _) in self.points.iter().enumerate() {
-                for (c, v) in cap.iter_mut().zip(&self.values[j * nc..(j + 1) * nc]) {
-                    *c = c.max(*v);
-                }
-            }
-        }
-        cap
+        if any { cap } else { self.largest.clone() }
     }
 
     /// Relative residuals of the fit at the samples it was fitted to (each predicted with all
