@@ -36,10 +36,19 @@ pub struct RenderArgs {
     /// (D65, CIE 1931 2°). Default: the tristimulus shortcut (everything in linear sRGB).
     #[arg(long)]
     spectral: bool,
+    /// Denoise the picture (an edge-avoiding à-trous filter steered by each pixel's variance
+    /// and the first hit's normal, distance and albedo; docs/render.md), replacing the scene's
+    /// `[render] denoise`. A denoised picture is smoother but biased where detail is finer than
+    /// the noise; leave it off for radiometric work.
+    #[arg(long, conflicts_with = "no_denoise")]
+    denoise: bool,
+    /// Do not denoise, whatever the scene says.
+    #[arg(long)]
+    no_denoise: bool,
     /// Exposure of PNG output in stops, replacing the scene's.
     #[arg(long, allow_hyphen_values = true)]
     exposure: Option<f64>,
-    /// Print the render statistics as JSON (rays, seconds, rays_per_second).
+    /// Print the render statistics as JSON (rays, seconds, rays_per_second, denoised).
     #[arg(long)]
     json: bool,
 }
@@ -66,6 +75,11 @@ pub fn run(args: RenderArgs) -> Result<()> {
         } else {
             ColourMode::Tristimulus
         },
+        denoise: match (args.denoise, args.no_denoise) {
+            (true, _) => Some(true),
+            (_, true) => Some(false),
+            _ => None,
+        },
         progress: true,
     };
     let (image, stats) = gonio_render::render(&scene, &opts)
@@ -84,17 +98,19 @@ pub fn run(args: RenderArgs) -> Result<()> {
             "seconds": stats.seconds,
             "rays_per_second": stats.rays_per_second(),
             "colour_mode": if args.spectral { "spectral" } else { "tristimulus" },
+            "denoised": stats.denoised,
         });
         println!("{}", serde_json::to_string_pretty(&out)?);
     } else {
         eprintln!(
-            "{}: {} × {} px, {} rays in {:.1} s ({:.2e} rays/s)",
+            "{}: {} × {} px, {} rays in {:.1} s ({:.2e} rays/s){}",
             args.output.display(),
             image.width,
             image.height,
             stats.rays,
             stats.seconds,
-            stats.rays_per_second()
+            stats.rays_per_second(),
+            if stats.denoised { ", denoised" } else { "" }
         );
     }
     Ok(())

@@ -79,6 +79,22 @@ impl SeededComparison {
     }
 }
 
+/// The relative RMSE of `image` against `reference` (same size): `sqrt(mean((I − R)²)) /
+/// mean(R)` over every pixel and channel of the linear images, the measure of
+/// `crates/render/benches/versus_mitsuba.py`. Against a reference rendered with k times the
+/// samples, the reference's own noise adds `1/√k` of the image's noise in quadrature.
+pub fn relative_rmse(image: &Image, reference: &Image) -> f64 {
+    let (mut sq, mut sum) = (0.0, 0.0);
+    for (a, b) in image.pixels.iter().zip(&reference.pixels) {
+        for (x, y) in a.iter().zip(b) {
+            sq += f64::from(x - y).powi(2);
+            sum += f64::from(*y);
+        }
+    }
+    let n = 3.0 * reference.pixels.len().max(1) as f64;
+    (sq / n).sqrt() / (sum / n)
+}
+
 /// Median, 95th percentile and maximum of a set of colour differences.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Spread {

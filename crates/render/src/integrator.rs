@@ -9,6 +9,7 @@
 //! 16 × 16 pixels are spread over the threads by rayon, and every pixel depends only on the seed
 //! and its index, so the image is identical for any number of threads.
 
+use crate::denoise::{Features, denoise};
 use crate::error::{RenderError, Result};
 use crate::image::Image;
 use crate::path::{Sampler, Tristimulus, mix, radiance};
@@ -45,6 +46,9 @@ pub struct RenderOptions {
     pub sampling: BrdfSampling,
     /// How colour is carried along a path: linear sRGB (the default) or spectrally.
     pub colour: ColourMode,
+    /// Denoise the picture ([`crate::denoise`]) (`None`: the scene's `[render] denoise`, else
+    /// no).
+    pub denoise: Option<bool>,
     /// Show a progress bar on a terminal.
     pub progress: bool,
 }
@@ -77,8 +81,10 @@ pub(crate) struct Settings {
 pub struct RenderStats {
     /// Rays traced (camera, bounce and shadow rays).
     pub rays: u64,
-    /// Wall-clock time, s.
+    /// Wall-clock time, s (denoising included).
     pub seconds: f64,
+    /// Whether the picture was denoised.
+    pub denoised: bool,
 }
 
 impl RenderStats {
@@ -90,8 +96,57 @@ impl RenderStats {
 
 const TILE: usize = 16;
 
-/// Render `scene` with `opts`.
+/// Render `scene` with `options`: the Monte Carlo estimate, denoised when the options or the
+/// scene ask for it.
 pub fn render(scene: &Scene, options: &RenderOptions) -> Result<(Image, RenderStats)> {
+    let start = Instant::now();
+    let estimate = render_estimate(scene, options)?;
+    let denoised = options.denoises(scene);
+    let image = estimate.picture(scene, denoised);
+    Ok((
+        image,
+        RenderStats {
+            rays: estimate.stats.rays,
+            seconds: start.elapsed().as_secs_f64(),
+            denoised,
+        },
+    ))
+}
+
+impl RenderOptions {
+    /// Whether the picture is denoised: the option, else the scene's `[render] denoise`, else
+    /// not.
+    pub fn denoises(&self, scene: &Scene) -> bool {
+        self.denoise.or(scene.render.denoise).unwrap_or(false)
+    }
+}
+
+/// The Monte Carlo estimate of a picture, before any denoising.
+#[derive(Debug, Clone)]
+pub struct Estimate {
+    /// The mean of each pixel's samples.
+    pub image: Image,
+    /// The variance of each pixel mean's luminance (the samples' variance over their number;
+    /// infinite from one sample).
+    pub variance: Vec<f32>,
+    /// What it cost.
+    pub stats: RenderStats,
+}
+
+impl Estimate {
+    /// The picture to show: the estimate denoised ([`crate::denoise`]) when `denoised`, else
+    /// the estimate itself.
+    pub fn picture(&self, scene: &Scene, denoised: bool) -> Image {
+        if denoised {
+            denoise(&self.image, &self.variance, &Features::of(scene))
+        } else {
+            self.image.clone()
+        }
+    }
+}
+
+/// The Monte Carlo estimate of `scene`'s picture with `options` (which `denoise` is ignored).
+pub fn render_estimate(scene: &Scene, options: &RenderOptions) -> Result<Estimate> {
     let opts = Settings {
         spp: options.spp.or(scene.render.spp).unwrap_or(64),
         seed: options.seed.or(scene.render.seed).unwrap_or(0),
@@ -124,7 +179,9 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> Result<(Image, RenderSt
         indicatif::ProgressStyle::with_template("rendering {bar:40} {pos}/{len} tiles, eta {eta}")
             .expect("valid template"),
     );
-    let run = || -> Vec<(Vec<[f32; 3]>, u64)> {
+    // Per tile: each pixel's mean and luminance variance, and the rays traced.
+    type Tile = (Vec<([f32; 3], f32)>, u64);
+    let run = || -> Vec<Tile> {
         tiles
             .par_iter()
             .map(|&(x0, y0)| {
@@ -150,26 +207,31 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> Result<(Image, RenderSt
     };
     bar.finish_and_clear();
     let mut image = Image::new(w, h);
+    let mut variance = vec![0.0; w * h];
     let mut rays = 0;
     for (&(x0, y0), (vals, r)) in tiles.iter().zip(results) {
         rays += r;
         let mut it = vals.into_iter();
         for y in y0..(y0 + TILE).min(h) {
             for x in x0..(x0 + TILE).min(w) {
-                image.pixels[y * w + x] = it.next().expect("one value per pixel");
+                (image.pixels[y * w + x], variance[y * w + x]) =
+                    it.next().expect("one value per pixel");
             }
         }
     }
-    Ok((
+    Ok(Estimate {
         image,
-        RenderStats {
+        variance,
+        stats: RenderStats {
             rays,
             seconds: start.elapsed().as_secs_f64(),
+            denoised: false,
         },
-    ))
+    })
 }
 
-/// The mean radiance of pixel (`x`, `y`), linear sRGB.
+/// The mean radiance of pixel (`x`, `y`), linear sRGB, and the variance of its luminance (the
+/// sample variance over the number of samples; infinite from one sample).
 fn pixel(
     scene: &Scene,
     opts: &Settings,
@@ -177,10 +239,11 @@ fn pixel(
     x: usize,
     y: usize,
     rays: &mut u64,
-) -> [f32; 3] {
+) -> ([f32; 3], f32) {
     let index = (y * scene.camera.width + x) as u32;
     let seed = mix(mix(opts.seed) ^ index);
     let mut sum = Rgb::ZERO;
+    let mut sum_sq = 0.0;
     for s in 0..opts.spp {
         let mut sampler = Sampler {
             index: s,
@@ -199,7 +262,20 @@ fn pixel(
         };
         if l.is_finite() {
             sum += l;
+            sum_sq += luminance(l).powi(2);
         }
     }
-    (sum / f64::from(opts.spp)).as_vec3().to_array()
+    let n = f64::from(opts.spp);
+    let mean = sum / n;
+    let variance = if opts.spp > 1 {
+        ((sum_sq / n - luminance(mean).powi(2)) / (n - 1.0)).max(0.0)
+    } else {
+        f64::INFINITY
+    };
+    (mean.as_vec3().to_array(), variance as f32)
+}
+
+/// Luminance of a linear sRGB value.
+fn luminance(c: Rgb) -> f64 {
+    crate::light::luminance(c.as_vec3().to_array())
 }

@@ -16,6 +16,7 @@
 //! ```
 
 pub mod camera;
+pub mod denoise;
 pub mod difference;
 pub mod error;
 pub mod geometry;
@@ -30,7 +31,9 @@ pub mod surface;
 
 pub use error::{RenderError, Result};
 pub use image::{Display, Image, ToneCurve};
-pub use integrator::{BrdfSampling, ColourMode, RenderOptions, RenderStats, render};
+pub use integrator::{
+    BrdfSampling, ColourMode, Estimate, RenderOptions, RenderStats, render, render_estimate,
+};
 pub use scene::Scene;
 
 use std::path::Path;

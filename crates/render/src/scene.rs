@@ -76,6 +76,8 @@ pub struct RenderDesc {
     pub seed: Option<u32>,
     /// Longest path, in surface interactions.
     pub max_bounces: Option<u32>,
+    /// Denoise the picture (`gonio_render::denoise`); default no.
+    pub denoise: Option<bool>,
 }
 
 /// `[materials.NAME]`: exactly one of `brdf`, `table`, `surface`.
