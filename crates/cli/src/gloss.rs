@@ -27,7 +27,7 @@ pub struct GlossArgs {
     #[arg(long, default_value_t = 550.0)]
     wavelength_nm: f64,
     /// Print the readings as JSON with the keys gu20, gu60, gu85, haze, haze_wide, haze_20,
-    /// haze_d4039, doi and warnings.
+    /// haze_20_log, haze_d4039, doi and warnings.
     #[arg(long)]
     json: bool,
 }
@@ -100,6 +100,7 @@ pub fn run(args: GlossArgs) -> Result<()> {
             }
         }
     };
+    warnings.extend(validity::doi_warning(&report));
     for w in &warnings {
         eprintln!("warning: {w}");
     }
@@ -124,11 +125,20 @@ pub fn run(args: GlossArgs) -> Result<()> {
             report.haze_20
         );
         println!(
+            "log haze:  {:8.1}  (haze 20° on the haze meters' log scale: 1285.1 · log10(haze/20 + 1))",
+            report.haze_20_log
+        );
+        println!(
             "haze D4039:{:8.2}  (ASTM D4039: 60° gloss − 20° gloss, GU)",
             report.haze_d4039
         );
+        let uncertainty = if report.doi_uncertainty > 0.0 {
+            format!(" ± {:.2}", report.doi_uncertainty)
+        } else {
+            String::new()
+        };
         println!(
-            "DOI:       {:8.2}  (ASTM E430: 100 · (Rs − R0.3) / Rs, equal 0.1° slits, 30°)",
+            "DOI:       {:8.2}{uncertainty}  (ASTM E430: 100 · (Rs − R0.3) / Rs, equal 0.1° slits, 30°)",
             report.doi
         );
     }

@@ -50,13 +50,15 @@ fn index_not_positive_is_refused() {
     );
 }
 
-/// Issue 12: the JSON carries every reading and the warnings. A Sq 5 nm map is smooth at every
-/// meter geometry (g ≤ 0.01), so the ray method warns; a Sq 800 nm map (g = 2.5 even at 85°)
-/// does not. The D4039 index is 60° minus 20° gloss by definition.
+/// The JSON carries every reading and the warnings. A Sq 5 nm map is smooth at every meter
+/// geometry (g ≤ 0.01), so the ray method warns that it is smooth; a Sq 800 nm map (g = 2.5
+/// even at 85°) is not, but on so small a map its DOI rests on a handful of rays, and the
+/// warning about the DOI's uncertainty says so (and the uncertainty is in the JSON). The D4039
+/// index is 60° minus 20° gloss by definition; the log haze follows its formula.
 #[test]
 fn json_readings_and_warnings() {
     let dir = tempfile::tempdir().unwrap();
-    for (sq, warns) in [("5", true), ("800", false)] {
+    for (sq, smooth) in [("5", true), ("800", false)] {
         let map = gen_map(dir.path(), sq);
         let out = ok(&["gloss", &map, "--json"]);
         let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
@@ -69,13 +71,30 @@ fn json_readings_and_warnings() {
             "haze_wide",
             "haze_20",
             "doi",
+            "doi_uncertainty",
         ] {
             assert!(get(key).is_finite(), "{key}");
         }
         assert!((get("haze_d4039") - (get("gu60") - get("gu20"))).abs() < 1e-9);
+        let log = 1285.097 * (get("haze_20") / 20.0 + 1.0).log10();
+        assert!(
+            (get("haze_20_log") - log).abs() < 1e-3 * (1.0 + log),
+            "log haze"
+        );
         let warnings = json["warnings"].as_array().unwrap();
-        assert_eq!(!warnings.is_empty(), warns, "Sq {sq}: {warnings:?}");
+        let says = |what: &str| warnings.iter().any(|w| w.as_str().unwrap().contains(what));
+        assert_eq!(says("the map is smooth"), smooth, "Sq {sq}: {warnings:?}");
+        assert_eq!(
+            says("is uncertain by"),
+            get("doi_uncertainty") > 5.0,
+            "Sq {sq}: {warnings:?}"
+        );
+        assert!(smooth || says("is uncertain by"), "Sq {sq}: {warnings:?}");
         let stderr = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(stderr.contains("warning:"), warns, "Sq {sq}: {stderr}");
+        assert_eq!(
+            stderr.contains("warning: the map is smooth"),
+            smooth,
+            "Sq {sq}: {stderr}"
+        );
     }
 }

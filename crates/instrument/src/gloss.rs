@@ -78,6 +78,15 @@ pub trait Specimen: Sync {
     /// flux that leaves the specimen within each of `windows`.
     fn reflectance_into(&self, wi: DVec3, windows: &[Window]) -> Result<Vec<f64>>;
 
+    /// The same fractions split into the parts that separate patches of the specimen reflect
+    /// (one row per patch, one column per window; the rows add up to
+    /// [`Specimen::reflectance_into`]), so that the statistical uncertainty of a reading from a
+    /// finite map can be estimated from the patch-to-patch spread ([`jackknife`]). The default
+    /// is one patch: a specimen computed exactly has no such uncertainty.
+    fn reflectance_by_patch(&self, wi: DVec3, windows: &[Window]) -> Result<Vec<Vec<f64>>> {
+        Ok(vec![self.reflectance_into(wi, windows)?])
+    }
+
     /// Gauss-Legendre order (per axis) over the source aperture; specimens that are costly to
     /// query (a ray trace per source direction) use fewer directions.
     fn source_order(&self) -> usize {
@@ -197,6 +206,64 @@ pub fn readings(
     Ok(sums.into_iter().map(|s| s / norm).collect())
 }
 
+/// [`readings`] split by the specimen's patches ([`Specimen::reflectance_by_patch`]): one row
+/// per patch, whose sum over rows is the readings.
+pub fn readings_by_patch(
+    theta: f64,
+    source: Aperture,
+    receptors: &[Window],
+    specimen: &dyn Specimen,
+) -> Result<Vec<Vec<f64>>> {
+    let source = Window {
+        centre: -theta,
+        aperture: source,
+    };
+    let mut sums: Vec<Vec<f64>> = Vec::new();
+    let mut norm = 0.0;
+    for (wi, dw) in source.quadrature(specimen.source_order()) {
+        let weight = wi.z * dw;
+        let parts = specimen.reflectance_by_patch(wi, receptors)?;
+        sums.resize(parts.len(), vec![0.0; receptors.len()]);
+        for (row, part) in sums.iter_mut().zip(parts) {
+            for (s, r) in row.iter_mut().zip(part) {
+                *s += weight * r;
+            }
+        }
+        norm += weight;
+    }
+    Ok(sums
+        .into_iter()
+        .map(|row| row.into_iter().map(|s| s / norm).collect())
+        .collect())
+}
+
+/// The jackknife standard error of a quantity `f(readings)` computed from readings split into
+/// independent patches `parts` (rows: patches; their sum the readings): each patch left out in
+/// turn, the others scaled up to the whole, `σ² = (B−1)/B Σ_b (f_(b) − f̄)²` over the B
+/// patches (Efron & Tibshirani, *An Introduction to the Bootstrap*, 1993, §11.2, eq. 11.5).
+/// It treats the patches as independent samples of the surface, which holds where they are
+/// much larger than its correlation length. 0 with fewer than two patches.
+pub fn jackknife(parts: &[Vec<f64>], f: impl Fn(&[f64]) -> f64) -> f64 {
+    let b = parts.len();
+    if b < 2 {
+        return 0.0;
+    }
+    let total: Vec<f64> = (0..parts[0].len())
+        .map(|k| parts.iter().map(|p| p[k]).sum())
+        .collect();
+    let scale = b as f64 / (b - 1) as f64;
+    let values: Vec<f64> = parts
+        .iter()
+        .map(|p| {
+            let left: Vec<f64> = total.iter().zip(p).map(|(t, x)| (t - x) * scale).collect();
+            f(&left)
+        })
+        .collect();
+    let mean = values.iter().sum::<f64>() / b as f64;
+    let ss: f64 = values.iter().map(|v| (v - mean).powi(2)).sum();
+    ((b - 1) as f64 / b as f64 * ss).sqrt()
+}
+
 /// Specular gloss in gloss units at an ISO 2813 geometry.
 pub fn gloss_units(specimen: &dyn Specimen, geometry: &Geometry) -> Result<f64> {
     let standard = Smooth(Ior::Dielectric(STANDARD_INDEX));
@@ -267,11 +334,26 @@ pub struct GlossReport {
     /// Reflection haze at 20° (ASTM E430 Test Method B, the ISO 13803 geometry),
     /// `100 · rho(±1.9°) / rho_standard(specular, 20° gloss receptor)`, mean of both sides.
     pub haze_20: f64,
+    /// `haze_20` on the logarithmic scale of haze meters ([`log_haze`]), HU.
+    pub haze_20_log: f64,
     /// ASTM D4039 haze index: 60° gloss − 20° gloss, GU.
     pub haze_d4039: f64,
     /// Distinctness of image (ASTM E430): `100 · (Rs − R0.3) / Rs` through equal apertures,
     /// R0.3 the mean of both sides; 100 for a mirror, 0 where Rs = R0.3.
     pub doi: f64,
+    /// Standard uncertainty of `doi` from the finite map (the jackknife over 16 patches of a
+    /// height map read by the ray method, [`jackknife`]); 0 for a specimen computed exactly.
+    pub doi_uncertainty: f64,
+}
+
+/// The logarithmic haze of gloss-haze meters (ISO 13803 haze meters display it) from the
+/// linear haze `linear` (HU): `K · log10(linear / 20 + 1)`, with K chosen so that a linear haze
+/// of 100 reads 1000, K = 1000 / log10 6 = 1285.1 (BYK-Gardner micro-haze plus manual,
+/// "Messprinzip": "Die Konstante (K=1285,1) wurde so bemessen, dass sich bei einem linearen
+/// Haze von 100 ein logarithmischer Wert von 1000 ergibt"). The scale is steep for small haze,
+/// where high-gloss finishes differ, and flat for large.
+pub fn log_haze(linear: f64) -> f64 {
+    1000.0 / 6f64.log10() * (linear.max(0.0) / 20.0 + 1.0).log10()
 }
 
 /// Distinctness of image after ASTM E430 from the readings `rs` on specular and `r_plus`,
@@ -334,17 +416,23 @@ pub fn measure(specimen: &dyn Specimen) -> Result<GlossReport> {
         at(w, receptor),
         at(-w, receptor),
     ];
-    let r = readings(theta, e430::source(), &windows, specimen)?;
+    let parts = readings_by_patch(theta, e430::source(), &windows, specimen)?;
+    let r: Vec<f64> = (0..windows.len())
+        .map(|k| parts.iter().map(|p| p[k]).sum())
+        .collect();
     let standard30 = readings(theta, e430::source(), &[at(0.0, receptor)], &standard)?[0];
+    let haze_20 = 100.0 * mean(r20[1], r20[2]) / standard20;
     Ok(GlossReport {
         gu20,
         gu60,
         gu85,
         haze: 100.0 * mean(r[3], r[4]) / standard30,
         haze_wide: 100.0 * mean(r[5], r[6]) / standard30,
-        haze_20: 100.0 * mean(r20[1], r20[2]) / standard20,
+        haze_20,
+        haze_20_log: log_haze(haze_20),
         haze_d4039: gu60 - gu20,
         doi: doi(r[0], r[1], r[2]),
+        doi_uncertainty: jackknife(&parts, |r| doi(r[0], r[1], r[2])),
     })
 }
 
@@ -359,13 +447,24 @@ mod tests {
         assert!((r.gu20 - 95.4).abs() < 0.05, "{}", r.gu20);
         assert!((r.gu60 - 97.3).abs() < 0.05, "{}", r.gu60);
         assert!((r.gu85 - 99.8).abs() < 0.05, "{}", r.gu85);
-        for haze in [r.haze, r.haze_wide, r.haze_20] {
+        for haze in [r.haze, r.haze_wide, r.haze_20, r.haze_20_log] {
             assert_eq!(haze, 0.0);
         }
         assert!((r.haze_d4039 - (r.gu60 - r.gu20)).abs() < 1e-12);
         assert_eq!(r.doi, 100.0);
         let std = measure(&Smooth(Ior::Dielectric(STANDARD_INDEX))).unwrap();
         assert!((std.gu60 - 100.0).abs() < 1e-12);
+    }
+
+    /// The logarithmic scale's anchor points: 0 → 0 and 100 → 1000 (its definition), 20 →
+    /// K log10 2 = 386.9; and it rises steadily.
+    #[test]
+    fn log_haze_scale() {
+        assert_eq!(log_haze(0.0), 0.0);
+        assert!((log_haze(100.0) - 1000.0).abs() < 1e-9);
+        assert!((log_haze(20.0) - 1285.097 * 2f64.log10()).abs() < 1e-3);
+        let v: Vec<f64> = [0.1, 1.0, 5.0, 50.0, 400.0].map(log_haze).to_vec();
+        assert!(v.windows(2).all(|w| w[1] > w[0]), "{v:?}");
     }
 
     /// The microfacet model of physics.md (Beckmann D, height-correlated Smith G2, Fresnel at

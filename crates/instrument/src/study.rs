@@ -153,6 +153,7 @@ pub fn run(
                 },
             )?;
             let gloss_ray = measure(&RaySpecimen { engine: &engine })?;
+            warnings.extend(validity::doi_warning(&gloss_ray).map(|w| format!("ray gloss: {w}")));
             let mut curves = config
                 .incidences_deg
                 .iter()

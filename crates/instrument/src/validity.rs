@@ -1,7 +1,8 @@
 //! When a virtual reading cannot be trusted: plain-words warnings about the scattering method
 //! and the map it reads, and the check of the refractive index.
 //!
-//! Three limits, each an estimate from the physics rather than an exact bound:
+//! Three limits, each an estimate from the physics rather than an exact bound (and, after a
+//! reading, a fourth: a DOI whose patch-to-patch spread on the map is large, [`doi_warning`]):
 //!
 //! - **Ray method on a smooth map.** A Gaussian surface of rms height Sq reflects the fraction
 //!   `e^−g` of its light coherently (a specular spike as narrow as the spot's diffraction), with
@@ -25,7 +26,7 @@
 //!   (Goodman, *Speckle Phenomena in Optics*, 2007, §4.6). Below 10 grains that is over 30%.
 
 use crate::error::{InstrumentError, Result};
-use crate::gloss::{Aperture, e430};
+use crate::gloss::{Aperture, GlossReport, e430};
 
 /// Rayleigh roughness parameter below which the coherent specular part dominates.
 pub const RAYLEIGH_G_MIN: f64 = 1.0;
@@ -43,6 +44,23 @@ pub const PHOTOMETRIC_WAVELENGTH: f64 = 550e-9;
 /// `θs = θi`).
 pub fn rayleigh_g(sq: f64, theta: f64, wavelength: f64) -> f64 {
     (4.0 * std::f64::consts::PI * sq * theta.cos() / wavelength).powi(2)
+}
+
+/// DOI uncertainty (one standard deviation, DOI units) above which a reading is flagged.
+pub const DOI_UNCERTAINTY_MAX: f64 = 5.0;
+
+/// A warning when the DOI of `report` is uncertain by more than [`DOI_UNCERTAINTY_MAX`] units
+/// from the finite map: the 0.1° slits of DOI catch few of the ray method's reflected rays on a
+/// rough or small map, so the reading changes from one map of the surface to the next.
+pub fn doi_warning(report: &GlossReport) -> Option<String> {
+    (report.doi_uncertainty > DOI_UNCERTAINTY_MAX).then(|| {
+        format!(
+            "DOI {:.1} is uncertain by ±{:.1} (one standard deviation over 16 patches of the \
+             map): its 0.1° slits catch few reflected rays from this map; read a larger map, \
+             or several, and average",
+            report.doi, report.doi_uncertainty
+        )
+    })
 }
 
 /// Check the coating's refractive index: not finite or not positive is refused (the Fresnel

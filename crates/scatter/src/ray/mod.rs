@@ -213,6 +213,11 @@ impl RayEngine {
         self.facets.len()
     }
 
+    /// Position of facet `i` in metres (`x = ix dx`, `y = iy dy`, its height).
+    pub fn facet_position(&self, i: usize) -> DVec3 {
+        self.facets[i].pos
+    }
+
     /// Unit normal of facet `i` (`0 <= i < facet_count()`, the order of [`Reflected::facet`]).
     pub fn facet_normal(&self, i: usize) -> DVec3 {
         self.facets[i].n
