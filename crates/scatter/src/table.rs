@@ -61,7 +61,7 @@ pub const MIXED_TURNS: usize = 8;
 /// Turns for a map whose texture has a direction (`Str` below [`STR_ANISOTROPIC`]): 24, every
 /// 15° as the default anisotropic table's azimuths. Cells near normal incidence read slices at
 /// an azimuth that is arbitrary there, so the average must be nearly round: on a Gaussian map
-/// with its y spacing stretched four times (tests/table.rs) the table's albedo at normal
+/// with its y spacing stretched four times (tests/it/table.rs) the table's albedo at normal
 /// incidence is 92% high from one turn, 8.6% from 8 and 0.6% from 24 (at 30° and 60° 8 and 24
 /// turns agree to 0.1%).
 pub const DIRECTIONAL_TURNS: usize = 24;
@@ -252,7 +252,7 @@ pub fn texture_aspect_ratio(map: &gonio_surface::HeightMap) -> Option<f64> {
 /// Turns of the source an isotropic table of a map of texture aspect ratio `str_ratio` averages
 /// over: 1 for an isotropic texture (`Str` of at least [`STR_ISOTROPIC`]: the map's own
 /// azimuths average it, and one turn keeps the table within 0.1-0.9% of the rays from 20° to
-/// 60° on such a map, `tests/table.rs`), [`DIRECTIONAL_TURNS`] for a directional one (`Str`
+/// 60° on such a map, `tests/it/table.rs`), [`DIRECTIONAL_TURNS`] for a directional one (`Str`
 /// below [`STR_ANISOTROPIC`]), [`MIXED_TURNS`] between them or when `Str` is unknown.
 pub fn isotropic_turns(str_ratio: Option<f64>) -> usize {
     match str_ratio {

@@ -1,4 +1,4 @@
-"""Independent reference XYZ of the 24 ColorChecker patches for crates/color/tests/colorchecker.rs.
+"""Independent reference XYZ of the 24 ColorChecker patches for crates/color/tests/it/colorchecker.rs.
 
 Run from the repository root with colour-science 0.4.7 (pip install colour-science; numpy only,
 no scipy needed):
