@@ -108,22 +108,14 @@ pub fn write(table: &BrdfTable, path: &Path) -> Result<()> {
     })
 }
 
-/// Write a file atomically: `body` writes into a temporary file beside `path`, which is renamed
-/// over `path` only when `body` and the flush succeed (the `atomic-write-file` crate). The target
-/// is therefore either the old file or the complete new one, never half a file, and on an error
-/// the temporary file is removed. A new file gets the ordinary permissions (0666 less the umask),
-/// a replaced file keeps its own.
+/// Write a file atomically ([`gonio_io::write_atomic`]: the old file or the complete new one,
+/// never half a file); errors name the file.
 pub fn write_atomic(
     path: &Path,
     body: impl FnOnce(&mut std::io::BufWriter<&mut std::fs::File>) -> std::io::Result<()>,
 ) -> Result<()> {
     let io = |e| BrdfError::io(path, e);
-    let mut file = atomic_write_file::AtomicWriteFile::open(path).map_err(io)?;
-    {
-        let mut w = std::io::BufWriter::new(file.as_file_mut());
-        body(&mut w).and_then(|()| w.flush()).map_err(io)?;
-    }
-    file.commit().map_err(io)
+    gonio_io::write_atomic(path, |w| body(w).map_err(io), io)
 }
 
 /// Parse and check the header of a file's bytes; returns the header.

@@ -3,33 +3,23 @@
 
 use anyhow::{Context, Result};
 use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::BufWriter;
 use std::path::Path;
 
-/// Write a file atomically: `body` writes into a temporary file beside `path`, which is renamed
-/// over `path` only when `body` and the flush succeed (the `atomic-write-file` crate). The target
-/// is therefore either the old file or the complete new one, and on an error the temporary file
-/// is removed. A new file gets the ordinary permissions (0666 less the umask), a replaced file
-/// keeps its own. Errors name the file.
+/// Write a file atomically ([`gonio_io::write_atomic`]: the old file or the complete new one,
+/// never half a file); errors name the file.
 pub fn write_atomic(
     path: &Path,
     body: impl FnOnce(&mut BufWriter<&mut File>) -> Result<()>,
 ) -> Result<()> {
-    let mut file = atomic_write_file::AtomicWriteFile::open(path)
-        .with_context(|| format!("{}: cannot create the file", path.display()))?;
-    {
-        let mut w = BufWriter::new(file.as_file_mut());
-        body(&mut w)
-            .and_then(|()| Ok(w.flush()?))
-            .with_context(|| format!("{}: cannot write", path.display()))?;
-    }
-    file.commit()
+    gonio_io::write_atomic(path, body, anyhow::Error::new)
         .with_context(|| format!("{}: cannot write", path.display()))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::io::Write;
 
     #[test]
     fn failed_write_keeps_the_old_file_and_leaves_no_temporary_file() {

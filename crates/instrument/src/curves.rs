@@ -19,20 +19,13 @@ const COLUMNS: [&str; 7] = [
     "rel_uncertainty",
 ];
 
-/// Write curves as CSV to `path` atomically (temporary file, then rename; a new file gets the
-/// ordinary permissions, 0666 less the umask).
+/// Write curves as CSV to `path` atomically ([`gonio_io::write_atomic`]).
 pub fn write_csv(path: &Path, curves: &[InplaneCurve]) -> Result<(), InstrumentError> {
     let io_err = |source| InstrumentError::Io {
         path: path.display().to_string(),
         source,
     };
-    let mut file = atomic_write_file::AtomicWriteFile::open(path).map_err(io_err)?;
-    {
-        let mut w = std::io::BufWriter::new(file.as_file_mut());
-        write_csv_to(&mut w, curves).map_err(io_err)?;
-        w.flush().map_err(io_err)?;
-    }
-    file.commit().map_err(io_err)
+    gonio_io::write_atomic(path, |w| write_csv_to(w, curves).map_err(io_err), io_err)
 }
 
 /// Write curves as CSV to any writer.
@@ -90,9 +83,11 @@ pub fn read_csv(
     );
     let mut order: Vec<(String, Option<u64>, u64)> = Vec::new();
     let mut groups: BTreeMap<(String, Option<u64>, u64), InplaneCurve> = BTreeMap::new();
-    for (i, record) in reader.records().enumerate() {
-        let line = i + 2;
-        let record = record.map_err(|e| err(format!("line {line}: {e}")))?;
+    for record in reader.records() {
+        // The csv crate's errors name the record and its line themselves.
+        let record = record.map_err(|e| err(e.to_string()))?;
+        // The line in the file, comment lines counted (the reader skips them).
+        let line = record.position().map_or(0, |p| p.line());
         let number = |c: usize, name: &str| -> Result<f64, InstrumentError> {
             let text = record.get(c).unwrap_or("");
             let v: f64 = text
@@ -175,6 +170,18 @@ pub fn read_csv(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A bad value is reported on its own line of the file, comment lines counted.
+    #[test]
+    fn errors_name_the_line_in_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("m.csv");
+        let text = "# measured 2026-12-01\n# STARR, 1.4 deg\nincidence_deg,scatter_deg,reflectance\n\
+                    20,-10,0.01\n20,x,0.02\n";
+        std::fs::write(&path, text).unwrap();
+        let e = read_csv(&path, None).unwrap_err().to_string();
+        assert!(e.contains("line 5: scatter_deg 'x'"), "{e}");
+    }
 
     #[test]
     fn round_trip_and_simple_layout() {

@@ -164,14 +164,14 @@ impl Image {
             path: path.to_path_buf(),
             error: e,
         };
-        let mut file = atomic_write_file::AtomicWriteFile::open(path).map_err(io)?;
-        {
-            let mut out = std::io::BufWriter::new(file.as_file_mut());
-            img.write_to(&mut out, format)
-                .map_err(|e| RenderError::image(path, format!("cannot encode: {e}")))?;
-            std::io::Write::flush(&mut out).map_err(io)?;
-        }
-        file.commit().map_err(io)
+        gonio_io::write_atomic(
+            path,
+            |out| {
+                img.write_to(out, format)
+                    .map_err(|e| RenderError::image(path, format!("cannot encode: {e}")))
+            },
+            io,
+        )
     }
 
     /// Read a linear image (`.exr`, `.hdr`; PNG and other 8-bit formats are decoded from sRGB).
