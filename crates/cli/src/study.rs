@@ -405,7 +405,8 @@ fn plot_gloss(path: &Path, results: &[SampleResult]) -> Result<()> {
 
 fn write_gloss_csv(path: &Path, results: &[SampleResult]) -> Result<()> {
     let mut s = String::from(
-        "sample,sq_m,sdq,method,gu20,gu60,gu85,haze,haze_wide,haze_20,haze_d4039,doi\n",
+        "sample,sq_m,sdq,method,gu20,gu60,gu85,haze,haze_wide,haze_20,haze_d4039,doi,\
+         haze_20_log,doi_uncertainty\n",
     );
     for r in results {
         let methods = [
@@ -415,7 +416,7 @@ fn write_gloss_csv(path: &Path, results: &[SampleResult]) -> Result<()> {
         for (method, g) in methods {
             let Some(g) = g else { continue };
             s.push_str(&format!(
-                "{},{:.6e},{:.6},{method},{:.3},{:.3},{:.3},{:.4},{:.4},{:.4},{:.3},{:.3}\n",
+                "{},{:.6e},{:.6},{method},{:.3},{:.3},{:.3},{:.4},{:.4},{:.4},{:.3},{:.3},{:.1},{:.3}\n",
                 r.label,
                 r.statistics.sq,
                 r.statistics.sdq,
@@ -426,7 +427,9 @@ fn write_gloss_csv(path: &Path, results: &[SampleResult]) -> Result<()> {
                 g.haze_wide,
                 g.haze_20,
                 g.haze_d4039,
-                g.doi
+                g.doi,
+                g.haze_20_log,
+                g.doi_uncertainty
             ));
         }
     }

@@ -293,7 +293,7 @@ fn real_file_section(dir: &Path) -> Result<(Section, summary::RealFile)> {
                     format!("{:.1}", gloss.gu60),
                     format!("{:.1}", gloss.gu85),
                     format!("{:.2}", gloss.haze),
-                    format!("{:.1}", gloss.doi),
+                    doi_text(&gloss),
                 ]],
             },
             Block::Code(format!(
@@ -484,7 +484,7 @@ fn study_section(out: &StudyOutputs, config: &StudyConfig, plan: &Plan, seconds:
                         format!("{:.1}", g.gu60),
                         format!("{:.1}", g.gu85),
                         format!("{:.2}", g.haze),
-                        format!("{:.1}", g.doi),
+                        doi_text(g),
                     ])
                 })
                 .collect::<Vec<_>>()
@@ -537,5 +537,14 @@ fn study_section(out: &StudyOutputs, config: &StudyConfig, plan: &Plan, seconds:
         title: "The roughness study".into(),
         blocks,
         seconds,
+    }
+}
+/// DOI as the report shows it: with its uncertainty from the finite map where it has one
+/// (the ray method's, `GlossReport::doi_uncertainty`).
+fn doi_text(g: &gonio_instrument::gloss::GlossReport) -> String {
+    if g.doi_uncertainty > 0.0 {
+        format!("{:.1} ± {:.1}", g.doi, g.doi_uncertainty)
+    } else {
+        format!("{:.1}", g.doi)
     }
 }
