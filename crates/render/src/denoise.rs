@@ -29,10 +29,9 @@
 
 use crate::BrdfSampling;
 use crate::image::Image;
-use crate::path::sample_brdf;
+use crate::path::{facing_frame, sample_brdf};
 use crate::scene::{PrimKind, Scene};
 use glam::{DVec2, DVec3};
-use gonio_brdf::sampling::Frame;
 use rayon::prelude::*;
 
 /// The first-hit features of every pixel that steer the filter.
@@ -93,17 +92,8 @@ fn pixel_features(scene: &Scene, x: usize, y: usize) -> PixelFeatures {
             a += DVec3::ONE;
             continue;
         };
-        let ns = if hit.ns.dot(ray.dir) > 0.0 {
-            -hit.ns
-        } else {
-            hit.ns
-        };
-        n += ns;
-        let frame = Frame {
-            s: hit.tangent,
-            t: ns.cross(hit.tangent),
-            n: ns,
-        };
+        let (_, frame) = facing_frame(&hit, ray.dir);
+        n += frame.n;
         let wo = frame.to_local(-ray.dir);
         if wo.z <= 0.0 {
             continue;

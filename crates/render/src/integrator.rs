@@ -99,25 +99,30 @@ const TILE: usize = 16;
 /// Render `scene` with `options`: the Monte Carlo estimate, denoised when the options or the
 /// scene ask for it.
 pub fn render(scene: &Scene, options: &RenderOptions) -> Result<(Image, RenderStats)> {
+    render_picture(scene, options).map(|(image, estimate)| (image, estimate.stats))
+}
+
+/// [`render`], keeping the raw estimate beside the picture (for comparisons, whose noise must
+/// be the estimate's own). The estimate's statistics are the whole render's: its time includes
+/// the denoising.
+pub fn render_picture(scene: &Scene, options: &RenderOptions) -> Result<(Image, Estimate)> {
     let start = Instant::now();
-    let estimate = render_estimate(scene, options)?;
-    let denoised = options.denoises(scene);
-    let image = estimate.picture(scene, denoised);
-    Ok((
-        image,
-        RenderStats {
-            rays: estimate.stats.rays,
-            seconds: start.elapsed().as_secs_f64(),
-            denoised,
-        },
-    ))
+    let mut estimate = render_estimate(scene, options)?;
+    let denoised = options.denoise.or(scene.render.denoise).unwrap_or(false);
+    let image = if denoised {
+        denoise(&estimate.image, &estimate.variance, &Features::of(scene))
+    } else {
+        estimate.image.clone()
+    };
+    estimate.stats.seconds = start.elapsed().as_secs_f64();
+    estimate.stats.denoised = denoised;
+    Ok((image, estimate))
 }
 
 impl RenderOptions {
-    /// Whether the picture is denoised: the option, else the scene's `[render] denoise`, else
-    /// not.
-    pub fn denoises(&self, scene: &Scene) -> bool {
-        self.denoise.or(scene.render.denoise).unwrap_or(false)
+    /// Samples per pixel: the option, else the scene's `[render] spp`, else 64.
+    pub fn samples_per_pixel(&self, scene: &Scene) -> u32 {
+        self.spp.or(scene.render.spp).unwrap_or(64)
     }
 }
 
@@ -133,22 +138,10 @@ pub struct Estimate {
     pub stats: RenderStats,
 }
 
-impl Estimate {
-    /// The picture to show: the estimate denoised ([`crate::denoise`]) when `denoised`, else
-    /// the estimate itself.
-    pub fn picture(&self, scene: &Scene, denoised: bool) -> Image {
-        if denoised {
-            denoise(&self.image, &self.variance, &Features::of(scene))
-        } else {
-            self.image.clone()
-        }
-    }
-}
-
 /// The Monte Carlo estimate of `scene`'s picture with `options` (which `denoise` is ignored).
 pub fn render_estimate(scene: &Scene, options: &RenderOptions) -> Result<Estimate> {
     let opts = Settings {
-        spp: options.spp.or(scene.render.spp).unwrap_or(64),
+        spp: options.samples_per_pixel(scene),
         seed: options.seed.or(scene.render.seed).unwrap_or(0),
         max_bounces: options
             .max_bounces

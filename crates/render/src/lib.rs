@@ -33,6 +33,7 @@ pub use error::{RenderError, Result};
 pub use image::{Display, Image, ToneCurve};
 pub use integrator::{
     BrdfSampling, ColourMode, Estimate, RenderOptions, RenderStats, render, render_estimate,
+    render_picture,
 };
 pub use scene::Scene;
 

@@ -10,7 +10,7 @@
 //! random decision takes the next dimension of the path's [`Sampler`], in the same order in both
 //! modes, so that the two modes trace the same directions from the same seed.
 
-use crate::geometry::Ray;
+use crate::geometry::{Hit, Ray};
 use crate::integrator::{BrdfSampling, Settings};
 use crate::material::Material;
 use crate::scene::{PrimKind, Scene};
@@ -172,6 +172,23 @@ fn brdf_pdf(brdf: &dyn Brdf, wo: DVec3, wi: DVec3, how: BrdfSampling) -> f64 {
     }
 }
 
+/// Two-sided surfaces are shaded on the side a ray in direction `dir` arrives from: the hit's
+/// geometric normal and its shading frame (z along the shading normal, x along the tangent),
+/// both turned to that side (the geometric normal decides which side it is).
+pub(crate) fn facing_frame(hit: &Hit, dir: DVec3) -> (DVec3, Frame) {
+    let (ng, ns) = if hit.ng.dot(dir) > 0.0 {
+        (-hit.ng, -hit.ns)
+    } else {
+        (hit.ng, hit.ns)
+    };
+    let frame = Frame {
+        s: hit.tangent,
+        t: ns.cross(hit.tangent),
+        n: ns,
+    };
+    (ng, frame)
+}
+
 /// A point just off the surface on the side of `n`, so that a ray from it does not hit the
 /// surface it leaves.
 fn offset(p: DVec3, n: DVec3) -> DVec3 {
@@ -223,17 +240,7 @@ pub(crate) fn radiance<S: Shading>(
             PrimKind::Surface(m) => &scene.materials[m],
         };
         let brdf: &dyn Brdf = material.brdf.as_ref();
-        // Two-sided surfaces: shade the side the ray arrives from.
-        let (ng, ns) = if hit.ng.dot(ray.dir) > 0.0 {
-            (-hit.ng, -hit.ns)
-        } else {
-            (hit.ng, hit.ns)
-        };
-        let frame = Frame {
-            s: hit.tangent,
-            t: ns.cross(hit.tangent),
-            n: ns,
-        };
+        let (ng, frame) = facing_frame(&hit, ray.dir);
         let wo = frame.to_local(-ray.dir);
         if wo.z <= 0.0 {
             break;

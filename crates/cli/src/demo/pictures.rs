@@ -5,9 +5,8 @@ use crate::plot::Raster;
 use crate::report::{Block, Section};
 use anyhow::{Context, Result};
 use gonio_render::difference::{SeededComparison, Spread};
-use gonio_render::{ColourMode, Estimate, Image, RenderOptions, RenderStats, Scene};
+use gonio_render::{ColourMode, Image, RenderOptions, RenderStats, Scene, render_picture};
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 /// The options of the report's renders: colour mode `colour`, seed `seed` (`None`: the
 /// scene's), a progress bar.
@@ -18,19 +17,6 @@ fn options(colour: ColourMode, seed: Option<u32>) -> RenderOptions {
         seed,
         ..Default::default()
     }
-}
-
-/// A picture for the report: `scene` rendered with `options`, denoised when the scene asks,
-/// with its raw estimate (for comparisons, whose noise must be the estimate's own).
-fn picture(scene: &Scene, options: &RenderOptions) -> Result<(Image, Estimate)> {
-    let mut estimate = gonio_render::render_estimate(scene, options)?;
-    let start = Instant::now();
-    let denoised = options.denoises(scene);
-    let shown = estimate.picture(scene, denoised);
-    // The caption's time includes the denoising.
-    estimate.stats.seconds += start.elapsed().as_secs_f64();
-    estimate.stats.denoised = denoised;
-    Ok((shown, estimate))
 }
 
 /// Pixels per side of the blocks over which the spectral and tristimulus renders are compared:
@@ -46,7 +32,7 @@ const COMPARISON_BIN: usize = 4;
 /// picture shown is denoised like the tristimulus one.
 fn spectral_blocks(dir: &Path, scene: &Scene, tristimulus: &Image) -> Result<Vec<Block>> {
     const SECOND_SEED: Option<u32> = Some(0x9e37_79b9);
-    let (shown, spectral) = picture(scene, &options(ColourMode::Spectral, None))?;
+    let (shown, spectral) = render_picture(scene, &options(ColourMode::Spectral, None))?;
     let second = |colour| -> Result<Image> {
         let e = gonio_render::render_estimate(scene, &options(colour, SECOND_SEED))?;
         Ok(e.image.binned(COMPARISON_BIN))
@@ -92,7 +78,9 @@ fn spectral_blocks(dir: &Path, scene: &Scene, tristimulus: &Image) -> Result<Vec
                  {:.2}, max {:.2}. The noise reference (the same noise, no systematic part): \
                  median {:.2}, 95th percentile {:.2}, max {:.2}. docs/color.md has the \
                  comparison at 2 × 4096 samples per pixel and where the difference comes from",
-                2 * COMPARISON_BIN * COMPARISON_BIN * scene.render.spp.unwrap_or(64) as usize,
+                2 * COMPARISON_BIN
+                    * COMPARISON_BIN
+                    * options(ColourMode::Spectral, None).samples_per_pixel(scene) as usize,
                 de.median,
                 de.p95,
                 de.max,
@@ -211,7 +199,7 @@ pub(super) fn render_section(dir: &Path) -> Result<Section> {
     ] {
         let path = copy_scene(&Path::new(EXAMPLES).join(scene), dir)?;
         let loaded = Scene::from_file(&path)?;
-        let (image, estimate) = picture(&loaded, &options(ColourMode::Tristimulus, None))?;
+        let (image, estimate) = render_picture(&loaded, &options(ColourMode::Tristimulus, None))?;
         let png = dir.join(scene.replace(".toml", ".png"));
         image.write(&png, loaded.display)?;
         let stats = estimate.stats;
