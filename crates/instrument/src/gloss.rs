@@ -187,32 +187,32 @@ pub fn readings(
     receptors: &[Window],
     specimen: &dyn Specimen,
 ) -> Result<Vec<f64>> {
-    let source = Window {
-        centre: -theta,
-        aperture: source,
-    };
-    let mut sums = vec![0.0; receptors.len()];
-    let mut norm = 0.0;
-    for (wi, dw) in source.quadrature(specimen.source_order()) {
-        let weight = wi.z * dw;
-        for (s, r) in sums
-            .iter_mut()
-            .zip(specimen.reflectance_into(wi, receptors)?)
-        {
-            *s += weight * r;
-        }
-        norm += weight;
-    }
-    Ok(sums.into_iter().map(|s| s / norm).collect())
+    let mut rows = source_average(theta, source, specimen, |wi| {
+        Ok(vec![specimen.reflectance_into(wi, receptors)?])
+    })?;
+    Ok(rows.pop().unwrap_or_else(|| vec![0.0; receptors.len()]))
 }
 
 /// [`readings`] split by the specimen's patches ([`Specimen::reflectance_by_patch`]): one row
-/// per patch, whose sum over rows is the readings.
+/// per patch, whose sum over rows ([`column_sums`]) is the readings.
 pub fn readings_by_patch(
     theta: f64,
     source: Aperture,
     receptors: &[Window],
     specimen: &dyn Specimen,
+) -> Result<Vec<Vec<f64>>> {
+    source_average(theta, source, specimen, |wi| {
+        specimen.reflectance_by_patch(wi, receptors)
+    })
+}
+
+/// The rows `query(wi)` returns (one row per patch, one value per receptor) averaged over the
+/// source aperture centred on incidence `theta`, as [`readings`] describes.
+fn source_average(
+    theta: f64,
+    source: Aperture,
+    specimen: &dyn Specimen,
+    query: impl Fn(DVec3) -> Result<Vec<Vec<f64>>>,
 ) -> Result<Vec<Vec<f64>>> {
     let source = Window {
         centre: -theta,
@@ -222,10 +222,12 @@ pub fn readings_by_patch(
     let mut norm = 0.0;
     for (wi, dw) in source.quadrature(specimen.source_order()) {
         let weight = wi.z * dw;
-        let parts = specimen.reflectance_by_patch(wi, receptors)?;
-        sums.resize(parts.len(), vec![0.0; receptors.len()]);
-        for (row, part) in sums.iter_mut().zip(parts) {
-            for (s, r) in row.iter_mut().zip(part) {
+        let rows = query(wi)?;
+        if sums.is_empty() {
+            sums = rows.iter().map(|row| vec![0.0; row.len()]).collect();
+        }
+        for (sum, row) in sums.iter_mut().zip(rows) {
+            for (s, r) in sum.iter_mut().zip(row) {
                 *s += weight * r;
             }
         }
@@ -235,6 +237,14 @@ pub fn readings_by_patch(
         .into_iter()
         .map(|row| row.into_iter().map(|s| s / norm).collect())
         .collect())
+}
+
+/// The sums over the rows of `parts` (rows of equal length), column by column.
+pub fn column_sums(parts: &[Vec<f64>]) -> Vec<f64> {
+    let width = parts.first().map_or(0, Vec::len);
+    (0..width)
+        .map(|k| parts.iter().map(|p| p[k]).sum())
+        .collect()
 }
 
 /// The jackknife standard error of a quantity `f(readings)` computed from readings split into
@@ -248,9 +258,7 @@ pub fn jackknife(parts: &[Vec<f64>], f: impl Fn(&[f64]) -> f64) -> f64 {
     if b < 2 {
         return 0.0;
     }
-    let total: Vec<f64> = (0..parts[0].len())
-        .map(|k| parts.iter().map(|p| p[k]).sum())
-        .collect();
+    let total = column_sums(parts);
     let scale = b as f64 / (b - 1) as f64;
     let values: Vec<f64> = parts
         .iter()
@@ -417,9 +425,7 @@ pub fn measure(specimen: &dyn Specimen) -> Result<GlossReport> {
         at(-w, receptor),
     ];
     let parts = readings_by_patch(theta, e430::source(), &windows, specimen)?;
-    let r: Vec<f64> = (0..windows.len())
-        .map(|k| parts.iter().map(|p| p[k]).sum())
-        .collect();
+    let r = column_sums(&parts);
     let standard30 = readings(theta, e430::source(), &[at(0.0, receptor)], &standard)?[0];
     let haze_20 = 100.0 * mean(r20[1], r20[2]) / standard20;
     Ok(GlossReport {
