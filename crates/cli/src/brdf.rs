@@ -69,8 +69,9 @@ pub struct ImportArgs {
     /// Input format.
     #[arg(long, value_enum, default_value = "auto")]
     format: ImportFormat,
-    /// Nodes of the table built from scattered samples (ASTM, CSV): theta_h,theta_d,phi_d.
-    #[arg(long, value_delimiter = ',', default_values_t = [45usize, 45, 48])]
+    /// Nodes of the table built from scattered samples (ASTM, CSV): theta_h,theta_d,phi_d
+    /// (the default resolves a high-gloss paint's specular peak; docs/brdf-tables.md).
+    #[arg(long, value_delimiter = ',', default_values_t = import_resolution())]
     resolution: Vec<usize>,
     /// Make the table reciprocal (each pair f(wi, wo), f(wo, wi) replaced by its mean).
     #[arg(long)]
@@ -212,6 +213,12 @@ fn spinner(msg: &str) -> ProgressBar {
     pb.set_message(msg.to_string());
     pb.enable_steady_tick(std::time::Duration::from_millis(120));
     pb
+}
+
+/// The library's resolution of imported tables, as `--resolution` takes it.
+fn import_resolution() -> Vec<usize> {
+    let r = astm::default_resolution();
+    vec![r.theta_h, r.theta_d, r.phi_d]
 }
 
 fn resolution(v: &[usize]) -> Result<Resolution> {
