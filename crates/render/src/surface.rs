@@ -1,15 +1,16 @@
 //! Materials computed from topography: a height map (a file, or a synthetic epoxy surface of
 //! the `surface` crate) turned into a tabulated BRDF by the ray method
-//! ([`gonio_scatter::table::ray_table`]) when the scene is loaded. The table is cached as a
-//! `.gbrdf` file in `.gonio-cache/` beside the scene file, under a key made of every input
-//! (the settings, and the height-map file's size and modification time), so that later loads
+//! ([`gonio_scatter::table::ray_table`]) when the scene is loaded. The table is cached in
+//! `.gonio-cache/` beside the scene file ([`gonio_scatter::table::cache`]: keyed by gonio's
+//! version and table revision, the surface — the height-map file's path, size and modification
+//! time, or the synthetic surface's parameters — and the options' values), so that later loads
 //! read it instead of recomputing it.
 
 use crate::error::{RenderError, Result};
 use gonio_brdf::Ior;
-use gonio_brdf::gbrdf;
 use gonio_brdf::table::{BrdfTable, Provenance};
 use gonio_scatter::ray::{RayEngine, RayOptions};
+use gonio_scatter::table::cache::TableCache;
 use gonio_scatter::table::{TableOptions, isotropic_turns, ray_table, texture_aspect_ratio};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -47,13 +48,6 @@ pub struct SurfaceDesc {
     /// below 0.3).
     #[serde(default)]
     pub azimuths: Option<usize>,
-}
-
-/// The cache key: FNV-1a (64 bits) of every input, as text.
-fn cache_key(text: &str) -> u64 {
-    text.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
-    })
 }
 
 /// The BRDF table of material `name` described by `desc`; `dir` is the scene file's directory
@@ -123,63 +117,59 @@ pub fn table(desc: &SurfaceDesc, dir: &Path, scene: &Path, name: &str) -> Result
             ));
         }
     };
-    // The default turns depend on the map (its Str), which the key's stamp identifies.
-    let key = cache_key(&format!(
-        "gonio-render surface v2|{stamp}|method=ray|index={index}|azimuths={:?}|{:?}",
-        desc.azimuths,
-        TableOptions::isotropic()
-    ));
-    let cache = dir.join(".gonio-cache").join(format!("{key:016x}.gbrdf"));
-    if let Ok(table) = gbrdf::read(&cache) {
-        return Ok(table);
-    }
-    let map = match &source {
-        Source::File(path) => {
-            let channel = desc
-                .channel
-                .as_deref()
-                .map(str::parse::<gonio_surface::ChannelSelector>)
-                .transpose()
-                .map_err(|e| bad(format!("surface `channel`: {e}")))?;
-            let options = gonio_surface::io::ReadOptions { channel };
-            let map = gonio_surface::io::read_with(path, &options).map_err(|e| {
-                RenderError::scene(path, format!("cannot read the height map: {e}"))
-            })?;
-            if map.is_profile() {
-                return Err(bad(format!(
-                    "{} holds a line profile; a surface's table needs an areal height map",
-                    path.display()
-                )));
-            }
-            map
-        }
-        Source::Epoxy(sq_nm) => gonio_surface::synth::GaussianSurface {
-            nx: points,
-            ny: points,
-            ..gonio_surface::synth::epoxy_surface(sq_nm * 1e-9, seed)
-        }
-        .generate()
-        .map_err(|e| bad(format!("cannot synthesise the surface: {e}")))?,
-    };
-    let options = TableOptions {
-        incidence_azimuths: desc
-            .azimuths
-            .unwrap_or_else(|| isotropic_turns(texture_aspect_ratio(&map))),
-        ..TableOptions::isotropic()
-    };
     let ray_options = RayOptions {
         ior: Ior::Dielectric(index),
         ..RayOptions::default()
     };
-    let engine = RayEngine::new(&map, ray_options).map_err(|e| bad(format!("ray method: {e}")))?;
-    let provenance = Provenance::new(stamp, "ray");
-    let table = ray_table(&engine, &options, provenance, &mut |_, _| {})
-        .map_err(|e| bad(format!("ray method: {e}")))?;
-    if std::fs::create_dir_all(cache.parent().expect("has a parent")).is_ok() {
-        // A cache that cannot be written only costs time on the next load.
-        let _ = gbrdf::write(&table, &cache);
-    }
-    Ok(table)
+    // The default turns depend on the map (its Str), which the stamp identifies; an explicit
+    // count is part of the surface's identity too.
+    let cache = TableCache::new(dir.join(".gonio-cache"));
+    let cached = cache.path(
+        &format!("{stamp}|azimuths={:?}", desc.azimuths),
+        &ray_options,
+        &TableOptions::isotropic(),
+    );
+    cache.get_or_compute(&cached, || {
+        let map = match &source {
+            Source::File(path) => {
+                let channel = desc
+                    .channel
+                    .as_deref()
+                    .map(str::parse::<gonio_surface::ChannelSelector>)
+                    .transpose()
+                    .map_err(|e| bad(format!("surface `channel`: {e}")))?;
+                let options = gonio_surface::io::ReadOptions { channel };
+                let map = gonio_surface::io::read_with(path, &options).map_err(|e| {
+                    RenderError::scene(path, format!("cannot read the height map: {e}"))
+                })?;
+                if map.is_profile() {
+                    return Err(bad(format!(
+                        "{} holds a line profile; a surface's table needs an areal height map",
+                        path.display()
+                    )));
+                }
+                map
+            }
+            Source::Epoxy(sq_nm) => gonio_surface::synth::GaussianSurface {
+                nx: points,
+                ny: points,
+                ..gonio_surface::synth::epoxy_surface(sq_nm * 1e-9, seed)
+            }
+            .generate()
+            .map_err(|e| bad(format!("cannot synthesise the surface: {e}")))?,
+        };
+        let options = TableOptions {
+            incidence_azimuths: desc
+                .azimuths
+                .unwrap_or_else(|| isotropic_turns(texture_aspect_ratio(&map))),
+            ..TableOptions::isotropic()
+        };
+        let engine =
+            RayEngine::new(&map, ray_options).map_err(|e| bad(format!("ray method: {e}")))?;
+        let provenance = Provenance::new(stamp, "ray");
+        ray_table(&engine, &options, provenance, &mut |_, _| {})
+            .map_err(|e| bad(format!("ray method: {e}")))
+    })
 }
 
 enum Source {

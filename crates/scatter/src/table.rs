@@ -35,6 +35,7 @@
 //! narrower than the innermost theta_h node becomes a tent of that node's width (its power is
 //! kept); a surface point between table cells reads the linear interpolation of the table.
 
+pub mod cache;
 mod slice;
 
 use crate::error::{Result, ScatterError};

@@ -1,0 +1,116 @@
+//! A cache of ray-method tables on disk: computing the table of a 512² map takes tens of
+//! seconds, so a program that loads the same surface again (the renderer, for every scene that
+//! names it) reads the `.gbrdf` it wrote the first time.
+//!
+//! A cached table is named by a key of everything its values depend on: gonio's version and
+//! [`TABLE_REVISION`] (so a change of the algorithm never serves a table the old code made),
+//! the caller's identity of the surface (a file's path, size and modification time, or a
+//! synthetic surface's parameters), and the values of the [`RayOptions`] and [`TableOptions`].
+//! A cache that cannot be read or written costs only time: a missing or unreadable file is
+//! recomputed, a failed write is ignored.
+
+use super::TableOptions;
+use crate::ray::RayOptions;
+use gonio_brdf::gbrdf;
+use gonio_brdf::table::BrdfTable;
+use std::path::{Path, PathBuf};
+
+/// Revision of the tables [`super::ray_table`] makes from the same inputs. Raise it with every
+/// change that alters a table's values, so that caches written before are not read.
+pub const TABLE_REVISION: u32 = 1;
+
+/// Tables cached as `.gbrdf` files in one directory.
+#[derive(Debug, Clone)]
+pub struct TableCache {
+    dir: PathBuf,
+}
+
+impl TableCache {
+    /// A cache in `dir` (created when the first table is written).
+    pub fn new(dir: impl Into<PathBuf>) -> TableCache {
+        TableCache { dir: dir.into() }
+    }
+
+    /// The file that holds the table of `surface` (the caller's identity of the height map and
+    /// of any choice it makes from it) under these options.
+    pub fn path(&self, surface: &str, ray: &RayOptions, table: &TableOptions) -> PathBuf {
+        let inputs = format!(
+            "gonio {} table revision {TABLE_REVISION}|{surface}|{ray:?}|{table:?}",
+            env!("CARGO_PKG_VERSION")
+        );
+        self.dir.join(format!("{:016x}.gbrdf", fnv1a(&inputs)))
+    }
+
+    /// The cached table at `path` (from [`TableCache::path`]), or the one `compute` makes,
+    /// which is then written there.
+    pub fn get_or_compute<E>(
+        &self,
+        path: &Path,
+        compute: impl FnOnce() -> Result<BrdfTable, E>,
+    ) -> Result<BrdfTable, E> {
+        if let Ok(table) = gbrdf::read(path) {
+            return Ok(table);
+        }
+        let table = compute()?;
+        if std::fs::create_dir_all(&self.dir).is_ok() {
+            // A cache that cannot be written only costs time on the next load.
+            let _ = gbrdf::write(&table, path);
+        }
+        Ok(table)
+    }
+}
+
+/// FNV-1a, 64 bits (Fowler, Noll & Vo): a stable hash of the key text, the same on every
+/// platform and release (std's hasher promises neither).
+fn fnv1a(text: &str) -> u64 {
+    text.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use gonio_brdf::Ior;
+    use gonio_brdf::table::{Channels, Resolution, TableBuilder};
+
+    #[test]
+    fn every_input_changes_the_file_and_a_table_is_computed_once() {
+        let dir = tempfile::tempdir().unwrap();
+        let cache = TableCache::new(dir.path().join("cache"));
+        let (ray, table) = (RayOptions::default(), TableOptions::isotropic());
+        let path = cache.path("map a", &ray, &table);
+        assert_eq!(path, cache.path("map a", &ray, &table));
+        let other_ray = RayOptions {
+            ior: Ior::Dielectric(1.5),
+            ..ray
+        };
+        let other_table = TableOptions {
+            incidence_azimuths: 8,
+            ..table
+        };
+        for other in [
+            cache.path("map b", &ray, &table),
+            cache.path("map a", &other_ray, &table),
+            cache.path("map a", &ray, &other_table),
+        ] {
+            assert_ne!(path, other);
+        }
+        let make = || {
+            let mut b = TableBuilder::new(Resolution::isotropic(4, 4, 4), Channels::Mono).unwrap();
+            b.fill(|_, out| out[0] = 0.25);
+            b.build()
+        };
+        let mut computed = 0;
+        for _ in 0..2 {
+            let t = cache
+                .get_or_compute(&path, || {
+                    computed += 1;
+                    make()
+                })
+                .unwrap();
+            assert_eq!(t.values()[0], 0.25);
+        }
+        assert_eq!(computed, 1, "the second call reads the cached file");
+    }
+}
