@@ -2,6 +2,7 @@
 //! fitting a model to a table. The work is done by the gonio-brdf crate.
 
 use crate::plot::{self, LinePlot, Series};
+use crate::progress::spinner;
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
 use glam::DVec3;
@@ -14,7 +15,6 @@ use gonio_brdf::table::colour::{self, ColourSpace};
 use gonio_brdf::table::coords::turn_about_z;
 use gonio_brdf::table::{BrdfTable, Provenance, Resolution};
 use gonio_color::{Illuminant, Observer};
-use indicatif::{ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
 
 /// Subcommands of `gonio brdf`.
@@ -203,16 +203,6 @@ pub fn run(cmd: BrdfCommand) -> Result<()> {
 fn load(path: &Path) -> Result<BrdfTable> {
     gbrdf::open_mapped(path)
         .context("cannot read the table (write one with `gonio brdf import` or `tabulate`)")
-}
-
-fn spinner(msg: &str) -> ProgressBar {
-    let pb = ProgressBar::new_spinner();
-    pb.set_style(
-        ProgressStyle::with_template("{spinner} {msg} {elapsed}").expect("valid template"),
-    );
-    pb.set_message(msg.to_string());
-    pb.enable_steady_tick(std::time::Duration::from_millis(120));
-    pb
 }
 
 /// The library's resolution of imported tables, as `--resolution` takes it.

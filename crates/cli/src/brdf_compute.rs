@@ -10,7 +10,6 @@ use gonio_brdf::table::{BrdfTable, Provenance, Resolution};
 use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions};
 use gonio_scatter::ray::{RayEngine, RayOptions};
 use gonio_scatter::table::{self, TableOptions, kirchhoff_table, ray_table};
-use indicatif::{ProgressBar, ProgressStyle};
 use num_complex::Complex64;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -108,14 +107,9 @@ pub fn run(a: ComputeArgs) -> Result<()> {
             ComputeMethod::Ray => 1,
             ComputeMethod::Kirchhoff => a.wavelength_nm.len(),
         };
-    let bar = ProgressBar::new(runs as u64);
-    if let Ok(style) =
-        ProgressStyle::with_template("{bar:30} {pos}/{len} incidences {msg} {elapsed}")
-    {
-        bar.set_style(style);
-    }
-    bar.set_message(method);
-    let mut progress = |done: usize, _total: usize| bar.set_position(done as u64);
+    let bar = crate::progress::bar(runs as u64);
+    bar.set_message(format!("{method} runs"));
+    let progress = crate::progress::reporting(&bar);
     let start = Instant::now();
     let table = match a.method {
         ComputeMethod::Ray => {
@@ -136,19 +130,13 @@ pub fn run(a: ComputeArgs) -> Result<()> {
             );
             let engine = RayEngine::new(&map, ray_options)
                 .with_context(|| format!("{}", a.surface.display()))?;
-            ray_table(&engine, &options, provenance, &mut progress)?
+            ray_table(&engine, &options, provenance, &progress)?
         }
         ComputeMethod::Kirchhoff => {
             let engine = Kirchhoff::new(&map, KirchhoffOptions::new(ior))
                 .with_context(|| format!("{}", a.surface.display()))?;
-            kirchhoff_table(
-                &engine,
-                &a.wavelength_nm,
-                &options,
-                provenance,
-                &mut progress,
-            )
-            .with_context(|| format!("{}", a.surface.display()))?
+            kirchhoff_table(&engine, &a.wavelength_nm, &options, provenance, &progress)
+                .with_context(|| format!("{}", a.surface.display()))?
         }
     };
     bar.finish_and_clear();

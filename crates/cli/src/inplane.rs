@@ -14,7 +14,7 @@ use gonio_scatter::analytic::{AnalyticModel, GaussianModel};
 use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions, Spot, average_curves};
 use gonio_scatter::ray::{RayEngine, RayOptions};
 use gonio_surface::normals::NormalMethod;
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::ProgressBar;
 use num_complex::Complex64;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -128,7 +128,7 @@ pub fn run(args: InplaneArgs) -> Result<()> {
     let mut warnings = gonio_instrument::validity::check_index(args.index)
         .map_err(|e| anyhow::anyhow!("--index: {e}"))?;
     let steps = args.method.len() * args.incidence_deg.len();
-    let progress = progress_bar(steps as u64);
+    let progress = crate::progress::bar(steps as u64);
     let mut curves: Vec<InplaneCurve> = Vec::new();
     // Without a height map only the analytic models run.
     let methods: &[Method] = if args.surface.is_none() && !args.model.is_empty() {
@@ -389,7 +389,7 @@ fn kirchhoff_curves(
                 &incidences,
                 &scatter,
                 args.aperture_deg.to_radians(),
-                &|| progress.inc(1),
+                &crate::progress::ticking(progress),
             )
             .with_context(|| format!("{}", path.display()))?;
         sets.push(curves);
@@ -452,15 +452,6 @@ fn model_curves(args: &InplaneArgs, scatter_deg: &[f64]) -> Result<Vec<InplaneCu
         }
     }
     Ok(curves)
-}
-
-/// A bar over the (method, incidence) steps on a terminal; hidden when stderr is a pipe.
-fn progress_bar(steps: u64) -> ProgressBar {
-    let bar = ProgressBar::new(steps);
-    if let Ok(style) = ProgressStyle::with_template("{bar:30} {pos}/{len} {msg} {elapsed}") {
-        bar.set_style(style);
-    }
-    bar
 }
 
 pub fn plot_curves(path: &Path, curves: &[InplaneCurve]) -> Result<()> {

@@ -8,7 +8,6 @@ use anyhow::{Result, ensure};
 use clap::Args;
 use gonio_instrument::isotropy::{self, IsotropyConfig, Orientation, RotationCheck};
 use gonio_scatter::InplaneCurve;
-use indicatif::{ProgressBar, ProgressStyle};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -73,12 +72,8 @@ pub fn run(args: IsotropyArgs) -> Result<()> {
         },
         ..IsotropyConfig::starr(isotropy::Method::Ray)
     };
-    let bar = ProgressBar::new_spinner();
-    if let Ok(style) = ProgressStyle::with_template("{spinner} {msg} {elapsed}") {
-        bar.set_style(style);
-    }
-    bar.enable_steady_tick(std::time::Duration::from_millis(120));
-    let checks = isotropy::check(&map, &config, &|m| bar.set_message(m.to_string()));
+    let bar = crate::progress::bar(config.angles_deg.len() as u64);
+    let checks = isotropy::check(&map, &config, &crate::progress::reporting(&bar));
     bar.finish_and_clear();
     let checks = checks.map_err(|e| anyhow::anyhow!("{}: {e}", args.surface.display()))?;
     if let Some(csv) = &args.csv {

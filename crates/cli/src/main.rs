@@ -11,6 +11,7 @@ mod inplane;
 mod isotropy;
 mod output;
 mod plot;
+mod progress;
 mod render;
 mod report;
 mod study;

@@ -80,7 +80,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             (_, true) => Some(false),
             _ => None,
         },
-        progress: true,
+        progress: crate::progress::reporting(&crate::progress::bar(0)),
     };
     let (image, stats) = gonio_render::render(&scene, &opts)
         .with_context(|| format!("rendering {}", args.scene.display()))?;

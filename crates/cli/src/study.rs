@@ -12,7 +12,6 @@ use gonio_instrument::curves::write_csv;
 use gonio_instrument::study::{self, PeakRow, Sample, SampleResult, StudyConfig};
 use gonio_scatter::InplaneCurve;
 use gonio_surface::synth::{Acf, GaussianSurface};
-use indicatif::{ProgressBar, ProgressStyle};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -152,14 +151,8 @@ pub fn synthetic_samples(
 pub fn execute(samples: &[Sample], config: &StudyConfig, dir: &Path) -> Result<StudyOutputs> {
     std::fs::create_dir_all(dir)
         .with_context(|| format!("{}: cannot create directory", dir.display()))?;
-    let bar = ProgressBar::new(samples.len() as u64 * if config.kirchhoff { 3 } else { 2 });
-    if let Ok(style) = ProgressStyle::with_template("{bar:30} {pos}/{len} {msg} {elapsed}") {
-        bar.set_style(style);
-    }
-    let results = study::run(samples, config, &|msg: &str| {
-        bar.set_message(msg.to_string());
-        bar.inc(1);
-    })?;
+    let bar = crate::progress::bar(0);
+    let results = study::run(samples, config, &crate::progress::reporting(&bar))?;
     bar.finish_and_clear();
     let mut files = Vec::new();
     let mut plots = Vec::new();

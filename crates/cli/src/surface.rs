@@ -10,11 +10,9 @@ use gonio_surface::profile_stats::profile_statistics;
 use gonio_surface::stats::{self, Statistics};
 use gonio_surface::synth::{Acf, GaussianSurface};
 use gonio_surface::{ChannelSelector, HeightMap, io, ops};
-use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
-use std::time::Duration;
 
 /// Height maps: statistics, synthesis and editing.
 ///
@@ -233,11 +231,7 @@ fn write(map: &HeightMap, path: &Path) -> Result<()> {
 
 /// Run `work` with a spinner on a terminal (nothing when stderr is a pipe).
 fn busy<T>(message: &str, work: impl FnOnce() -> T) -> T {
-    let bar = ProgressBar::new_spinner().with_message(message.to_string());
-    if let Ok(style) = ProgressStyle::with_template("{spinner} {msg} {elapsed}") {
-        bar.set_style(style);
-    }
-    bar.enable_steady_tick(Duration::from_millis(120));
+    let bar = crate::progress::spinner(message);
     let out = work();
     bar.finish_and_clear();
     out

@@ -28,7 +28,9 @@ fn bench(c: &mut Criterion) {
             ..IsotropyConfig::starr(Method::Ray)
         };
         g.bench_function(format!("check {angle}° (ray, 4 incidences)"), |b| {
-            b.iter(|| check(black_box(&map), &config, &|_| {}).expect("check"))
+            b.iter(|| {
+                check(black_box(&map), &config, &gonio_io::Progress::silent()).expect("check")
+            })
         });
     }
     g.finish();

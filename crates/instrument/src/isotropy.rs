@@ -14,6 +14,7 @@
 use crate::compare::{Comparison, compare};
 use crate::error::{InstrumentError, Result};
 use gonio_brdf::Ior;
+use gonio_io::Progress;
 use gonio_scatter::InplaneCurve;
 use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions};
 use gonio_scatter::ray::{RayEngine, RayOptions};
@@ -184,7 +185,7 @@ fn read(map: &HeightMap, config: &IsotropyConfig) -> Result<Orientation> {
                 &radians(&config.incidences_deg),
                 &radians(&config.scatter_deg),
                 config.half_angle,
-                &|| {},
+                &gonio_io::Progress::silent(),
             )?
         }
     };
@@ -198,11 +199,12 @@ fn read(map: &HeightMap, config: &IsotropyConfig) -> Result<Orientation> {
     })
 }
 
-/// Run the check for every angle of `config`; `progress` is told what each step is about to do.
+/// Run the check for every angle of `config`; `progress` is told what each step is about to do
+/// and how many angles are done.
 pub fn check(
     map: &HeightMap,
     config: &IsotropyConfig,
-    progress: &dyn Fn(&str),
+    progress: &Progress,
 ) -> Result<Vec<RotationCheck>> {
     if config.angles_deg.is_empty()
         || config.incidences_deg.is_empty()
@@ -215,13 +217,15 @@ pub fn check(
     // The whole map serves every quarter turn as the original: read it once.
     let mut whole: Option<Orientation> = None;
     let mut checks = Vec::new();
-    for &angle in &config.angles_deg {
-        progress(&format!("turning the map by {angle}°"));
+    let total = config.angles_deg.len() as u64;
+    for (done, &angle) in config.angles_deg.iter().enumerate() {
+        let step = |what: &str| progress.report(what, done as u64, total);
+        step(&format!("turning the map by {angle}°"));
         let (original_map, turned_map, exact) = turned_pair(map, angle)?;
         let original = match (&whole, exact) {
             (Some(o), true) => o.clone(),
             _ => {
-                progress(&format!("{angle}°: curves of the original map"));
+                step(&format!("{angle}°: curves of the original map"));
                 let o = read(&original_map, config)?;
                 if exact {
                     whole = Some(o.clone());
@@ -229,7 +233,7 @@ pub fn check(
                 o
             }
         };
-        progress(&format!("{angle}°: curves of the turned map"));
+        step(&format!("{angle}°: curves of the turned map"));
         let rotated = read(&turned_map, config)?;
         let comparisons = original
             .curves

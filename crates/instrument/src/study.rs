@@ -8,6 +8,7 @@ use crate::gloss::{GlossReport, measure};
 use crate::specimens::{KirchhoffSpecimen, RaySpecimen};
 use crate::validity;
 use gonio_brdf::Ior;
+use gonio_io::Progress;
 use gonio_scatter::InplaneCurve;
 use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions};
 use gonio_scatter::ray::{RayEngine, RayOptions};
@@ -102,13 +103,14 @@ impl SampleResult {
     }
 }
 
-/// Run the study over `samples`; `progress` is told what each step is about to do. Each sample's
+/// Run the study over `samples`; `progress` is told what each step (statistics, ray method,
+/// Kirchhoff, per sample) is about to do and how many are done. Each sample's
 /// `warnings` name the readings its methods cannot be trusted for ([`crate::validity`]): the ray
 /// method where the map is smooth for the wavelength, Kirchhoff where the map is too small.
 pub fn run(
     samples: &[Sample],
     config: &StudyConfig,
-    progress: &dyn Fn(&str),
+    progress: &Progress,
 ) -> Result<Vec<SampleResult>> {
     if config.incidences_deg.is_empty() || config.scatter_deg.is_empty() {
         return Err(InstrumentError::Invalid(
@@ -128,10 +130,21 @@ pub fn run(
         .fold(validity::PHOTOMETRIC_WAVELENGTH, f64::max);
     let meter = validity::meter_readings();
     let detectors = validity::inplane_readings(&config.incidences_deg, config.half_angle);
+    let kirchhoff = config.kirchhoff && !config.wavelengths_nm.is_empty();
+    let steps = if kirchhoff { 3 } else { 2 };
+    let total = (samples.len() * steps) as u64;
     samples
         .iter()
-        .map(|s| {
-            progress(&format!("{}: statistics", s.label));
+        .enumerate()
+        .map(|(i, s)| {
+            let step = |k: usize, what: &str| {
+                progress.report(
+                    &format!("{}: {what}", s.label),
+                    (i * steps + k) as u64,
+                    total,
+                )
+            };
+            step(0, "statistics");
             let stats = statistics(&s.map)?;
             let mut warnings = Vec::new();
             warnings.extend(
@@ -144,7 +157,7 @@ pub fn run(
                     .into_iter()
                     .map(|w| format!("ray curves: {w}")),
             );
-            progress(&format!("{}: ray method", s.label));
+            step(1, "ray method");
             let engine = RayEngine::new(
                 &s.map,
                 RayOptions {
@@ -161,8 +174,8 @@ pub fn run(
                 .collect::<Result<Vec<_>, _>>()?;
             let mut gloss_kirchhoff = None;
             let mut notes = Vec::new();
-            if config.kirchhoff && !config.wavelengths_nm.is_empty() {
-                progress(&format!("{}: Kirchhoff", s.label));
+            if kirchhoff {
+                step(2, "Kirchhoff");
                 let k = Kirchhoff::new(&s.map, KirchhoffOptions::new(ior))?;
                 let spot = k.spot().diameter;
                 warnings.extend(
@@ -188,7 +201,7 @@ pub fn run(
                     &incidences,
                     &scatter,
                     config.half_angle,
-                    &|| {},
+                    &gonio_io::Progress::silent(),
                 )?);
                 // Gloss needs the whole receptor cones at 20–85°: a rough map may be too coarse
                 // for the Kirchhoff sampling there even where the in-plane curves could be

@@ -1,7 +1,13 @@
-//! gonio-io: how gonio writes files. Every file any gonio crate writes (height maps, BRDF tables
-//! and exports, curves, pictures, reports) goes through [`write_atomic`], so that a failure never
-//! leaves half a file and outputs get ordinary permissions. Each crate maps the I/O errors into
-//! its own error type, naming the file; this crate has no error type of its own.
+//! gonio-io: how gonio writes files and reports progress. Every file any gonio crate writes
+//! (height maps, BRDF tables and exports, curves, pictures, reports) goes through
+//! [`write_atomic`], so that a failure never leaves half a file and outputs get ordinary
+//! permissions. Each crate maps the I/O errors into its own error type, naming the file; this
+//! crate has no error type of its own. Long computations report how far they have come through
+//! one [`Progress`] handle ([`progress`]).
+
+pub mod progress;
+
+pub use progress::{Progress, Report};
 
 use std::fs::File;
 use std::io::{BufWriter, Write};

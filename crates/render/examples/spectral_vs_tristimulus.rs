@@ -196,7 +196,6 @@ fn run() -> Result<(), String> {
         seed: Some(seed),
         max_bounces: args.max_bounces,
         colour,
-        progress: true,
         ..RenderOptions::default()
     };
     let go = |o: RenderOptions| render(&scene, &o).map_err(|e| e.to_string());

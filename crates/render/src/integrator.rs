@@ -17,7 +17,9 @@ use crate::scene::Scene;
 use crate::spectral::{SpectralFilmSetup, SpectralPath};
 use glam::DVec2;
 use gonio_brdf::Rgb;
+use gonio_io::Progress;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
 /// How BRDF samples are drawn.
@@ -49,8 +51,8 @@ pub struct RenderOptions {
     /// Denoise the picture ([`crate::denoise`]) (`None`: the scene's `[render] denoise`, else
     /// no).
     pub denoise: Option<bool>,
-    /// Show a progress bar on a terminal.
-    pub progress: bool,
+    /// Where to report the tiles rendered (stage `rendering`; default: nowhere).
+    pub progress: Progress,
 }
 
 /// How colour is carried along a path.
@@ -163,15 +165,7 @@ pub fn render_estimate(scene: &Scene, options: &RenderOptions) -> Result<Estimat
     let tiles: Vec<(usize, usize)> = (0..h.div_ceil(TILE))
         .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
         .collect();
-    let bar = if options.progress {
-        indicatif::ProgressBar::new(tiles.len() as u64)
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("rendering {bar:40} {pos}/{len} tiles, eta {eta}")
-            .expect("valid template"),
-    );
+    let done = AtomicU64::new(0);
     // Per tile: each pixel's mean and luminance variance, and the rays traced.
     type Tile = (Vec<([f32; 3], f32)>, u64);
     let run = || -> Vec<Tile> {
@@ -185,7 +179,10 @@ pub fn render_estimate(scene: &Scene, options: &RenderOptions) -> Result<Estimat
                         out.push(pixel(scene, opts, &spectral, x, y, &mut rays));
                     }
                 }
-                bar.inc(1);
+                let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
+                options
+                    .progress
+                    .report("rendering", finished, tiles.len() as u64);
                 (out, rays)
             })
             .collect()
@@ -198,7 +195,6 @@ pub fn render_estimate(scene: &Scene, options: &RenderOptions) -> Result<Estimat
             .install(run),
         None => run(),
     };
-    bar.finish_and_clear();
     let mut image = Image::new(w, h);
     let mut variance = vec![0.0; w * h];
     let mut rays = 0;

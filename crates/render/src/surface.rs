@@ -167,7 +167,7 @@ pub fn table(desc: &SurfaceDesc, dir: &Path, scene: &Path, name: &str) -> Result
         let engine =
             RayEngine::new(&map, ray_options).map_err(|e| bad(format!("ray method: {e}")))?;
         let provenance = Provenance::new(stamp, "ray");
-        ray_table(&engine, &options, provenance, &mut |_, _| {})
+        ray_table(&engine, &options, provenance, &gonio_io::Progress::silent())
             .map_err(|e| bad(format!("ray method: {e}")))
     })
 }

@@ -39,7 +39,13 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             black_box(
                 engine
-                    .inplane(&[550e-9], &[20f64.to_radians()], &scatter, alpha, &|| {})
+                    .inplane(
+                        &[550e-9],
+                        &[20f64.to_radians()],
+                        &scatter,
+                        alpha,
+                        &gonio_io::Progress::silent(),
+                    )
                     .unwrap(),
             )
         })

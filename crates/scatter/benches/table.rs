@@ -50,8 +50,13 @@ fn ray(c: &mut Criterion) {
         group.bench_function(format!("{incidences}_incidences"), |b| {
             b.iter(|| {
                 black_box(
-                    ray_table(&engine, &options, Provenance::default(), &mut |_, _| {})
-                        .expect("table"),
+                    ray_table(
+                        &engine,
+                        &options,
+                        Provenance::default(),
+                        &gonio_io::Progress::silent(),
+                    )
+                    .expect("table"),
                 )
             })
         });
@@ -79,7 +84,7 @@ fn kirchhoff(c: &mut Criterion) {
                     &[550.0],
                     &options,
                     Provenance::default(),
-                    &mut |_, _| {},
+                    &gonio_io::Progress::silent(),
                 )
                 .expect("table"),
             )

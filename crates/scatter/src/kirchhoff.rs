@@ -33,11 +33,13 @@ use crate::geometry::{
 use facets::FacetGrid;
 use glam::DVec3;
 use gonio_brdf::Ior;
+use gonio_io::Progress;
 use gonio_surface::HeightMap;
 use gonio_surface::spline::BicubicSpline;
 use rayon::prelude::*;
 use std::f64::consts::{PI, TAU};
 use std::sync::OnceLock;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Largest refinement of the map's cells.
 pub const MAX_REFINEMENT: usize = 16;
@@ -329,14 +331,14 @@ impl Kirchhoff {
 
     /// In-plane curves for every wavelength (metres) and incidence (radians), in that order, with
     /// detectors of half-angle `half_angle` at signed scatter angles `scatter` (radians). The
-    /// detectors run in parallel; `on_done` is called after each.
+    /// detectors run in parallel; `progress` counts them as they finish.
     pub fn inplane(
         &self,
         wavelengths: &[f64],
         incidences: &[f64],
         scatter: &[f64],
         half_angle: f64,
-        on_done: &(dyn Fn() + Sync),
+        progress: &Progress,
     ) -> Result<Vec<InplaneCurve>> {
         let jobs: Vec<(f64, f64, f64)> = wavelengths
             .iter()
@@ -354,12 +356,14 @@ impl Kirchhoff {
         for &(l, ti, ts) in &jobs {
             self.detector_grid(TAU / l, incidence_direction(ti), &detector(ts))?;
         }
+        let done = AtomicU64::new(0);
         let readings: Vec<f64> = jobs
             .par_iter()
             .map(|&(l, ti, ts)| {
                 let detector = detector(ts);
                 let rho = self.reflectance(l, incidence_direction(ti), &detector);
-                on_done();
+                let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
+                progress.report("", finished, jobs.len() as u64);
                 rho
             })
             .collect::<Result<_>>()?;

@@ -44,6 +44,7 @@ use crate::ray::{HemisphereGrid, HemisphereTable, RayEngine};
 use glam::DVec3;
 use gonio_brdf::table::coords::{dir, theta_of, turn_about_z};
 use gonio_brdf::table::{BrdfTable, Channels, Provenance, Resolution, TableBuilder};
+use gonio_io::Progress;
 use rayon::prelude::*;
 use slice::{Slice, SliceGrid};
 use std::f64::consts::{FRAC_PI_2, TAU};
@@ -287,16 +288,13 @@ pub fn anisotropy_warning(str_ratio: Option<f64>, options: &TableOptions) -> Opt
     ))
 }
 
-/// Progress of a table computation: called with (engine runs done, runs in all).
-pub type Progress<'a> = &'a mut dyn FnMut(usize, usize);
-
 /// The ray-method table of a planned engine: one monochrome channel (the ray method does not
-/// depend on the wavelength). `progress` is called after each incidence.
+/// depend on the wavelength). `progress` counts the engine runs (one per incidence and turn).
 pub fn ray_table(
     engine: &RayEngine,
     options: &TableOptions,
     provenance: Provenance,
-    progress: Progress,
+    progress: &Progress,
 ) -> Result<BrdfTable> {
     options.validate()?;
     let grid = options.slice_grid();
@@ -316,7 +314,7 @@ pub fn ray_table(
         let mut partials = Vec::new();
         for (l, &turn) in turns.iter().enumerate() {
             partials.extend(ray_deposits(engine, &grid, wi, turn, normals.as_deref())?);
-            progress(k * turns.len() + l + 1, runs);
+            progress.report("", (k * turns.len() + l + 1) as u64, runs as u64);
         }
         let measure = grid.measures(wi);
         let values = mean_of_turns(grid.values_from(&partials, &measure), turns.len());
@@ -369,13 +367,14 @@ fn ray_deposits(
 
 /// The Kirchhoff table of a planned engine at the given wavelengths (nm, strictly increasing):
 /// one channel per wavelength (a monochrome table for a single wavelength, which is then
-/// recorded in the provenance as `wavelength_nm`). `progress` is called after each incidence and wavelength.
+/// recorded in the provenance as `wavelength_nm`). `progress` counts the hemisphere maps (one
+/// per incidence, wavelength and turn).
 pub fn kirchhoff_table(
     engine: &Kirchhoff,
     wavelengths_nm: &[f64],
     options: &TableOptions,
     mut provenance: Provenance,
-    progress: Progress,
+    progress: &Progress,
 ) -> Result<BrdfTable> {
     options.validate()?;
     let channels = match wavelengths_nm {
@@ -412,7 +411,8 @@ pub fn kirchhoff_table(
             for (l, &turn) in turns.iter().enumerate() {
                 let map = engine.hemisphere(nm * 1e-9, turn_about_z(wi, turn), &hemisphere)?;
                 partials.extend(hemisphere_deposits(&grid, wi, turn, &map));
-                progress(k * runs_per_incidence + c * turns.len() + l + 1, total);
+                let done = k * runs_per_incidence + c * turns.len() + l + 1;
+                progress.report("", done as u64, total as u64);
             }
             let values = mean_of_turns(grid.values_from(&partials, &measure), turns.len());
             per_channel.push(options.symmetrise(k, values, &grid, &measure));

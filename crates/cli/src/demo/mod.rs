@@ -321,7 +321,7 @@ fn isotropy_section(dir: &Path) -> Result<Section> {
         angles_deg: vec![90.0, 45.0],
         ..IsotropyConfig::starr(isotropy::Method::Ray)
     };
-    let checks = isotropy::check(&map, &config, &|_| {})?;
+    let checks = isotropy::check(&map, &config, &gonio_io::Progress::silent())?;
     let mut blocks = vec![Block::Text(format!(
         "An isotropic surface scatters the same whatever its azimuth. The in-plane curves of \
          {REAL_FILE_NAME} (ray method, STARR geometry, the plane of incidence along x) against \

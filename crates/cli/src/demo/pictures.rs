@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 /// scene's), a progress bar.
 fn options(colour: ColourMode, seed: Option<u32>) -> RenderOptions {
     RenderOptions {
-        progress: true,
+        progress: crate::progress::reporting(&crate::progress::bar(0)),
         colour,
         seed,
         ..Default::default()

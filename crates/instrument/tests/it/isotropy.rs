@@ -64,7 +64,7 @@ fn isotropic_checks() -> (Vec<Vec<RotationCheck>>, Vec<f64>) {
             check(
                 &gaussian(256, 0.3e-6, 3e-6, 0.5e-6, seed),
                 &config(),
-                &|_| {},
+                &gonio_io::Progress::silent(),
             )
             .unwrap()
         })
@@ -136,7 +136,7 @@ fn facet_fwhm_deg(slope: f64, half_angle: f64) -> f64 {
 fn anisotropic_surface_follows_the_slope_in_the_plane_of_incidence() {
     let map = stretched();
     let config = config();
-    let checks = check(&map, &config, &|_| {}).unwrap();
+    let checks = check(&map, &config, &gonio_io::Progress::silent()).unwrap();
     let (_, yardstick) = isotropic_checks();
     let quarter = &checks[0];
     let (o, r) = (&quarter.original, &quarter.rotated);

@@ -117,8 +117,14 @@ fn ray_and_kirchhoff_curves_of_the_rough_sample_agree() {
         let k = Kirchhoff::new(&map, KirchhoffOptions::new(ior)).unwrap();
         spot = Some(Spot::largest(&map));
         waves.push(
-            k.inplane(&[WAVELENGTH], &incidences, &scatter, half_angle, &|| {})
-                .unwrap(),
+            k.inplane(
+                &[WAVELENGTH],
+                &incidences,
+                &scatter,
+                half_angle,
+                &gonio_io::Progress::silent(),
+            )
+            .unwrap(),
         );
     }
     let r = REALISATIONS as f64;

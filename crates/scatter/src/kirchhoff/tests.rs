@@ -329,7 +329,7 @@ fn curve_labels_read_as_given() {
             &[60f64.to_radians()],
             &[60f64.to_radians()],
             0.05,
-            &|| {},
+            &gonio_io::Progress::silent(),
         )
         .unwrap();
     assert_eq!(curves[0].wavelength_nm, Some(550.0));

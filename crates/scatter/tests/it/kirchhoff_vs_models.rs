@@ -62,7 +62,7 @@ fn kirchhoff_average(
                     &[20f64.to_radians()],
                     &scatter(),
                     alpha,
-                    &|| {},
+                    &gonio_io::Progress::silent(),
                 )
                 .unwrap()
         })
@@ -209,12 +209,24 @@ fn smooth_maps_show_no_grating_ghosts() {
         for ti_deg in [20.0f64, 60.0] {
             let ti = ti_deg.to_radians();
             let curve = engine
-                .inplane(&[wavelength], &[ti], &scatter, alpha, &|| {})
+                .inplane(
+                    &[wavelength],
+                    &[ti],
+                    &scatter,
+                    alpha,
+                    &gonio_io::Progress::silent(),
+                )
                 .unwrap()
                 .remove(0);
             let series = model.inplane(AnalyticModel::Beckmann, wavelength, ti, &scatter, alpha);
             let specular = engine
-                .inplane(&[wavelength], &[ti], &[ti], alpha, &|| {})
+                .inplane(
+                    &[wavelength],
+                    &[ti],
+                    &[ti],
+                    alpha,
+                    &gonio_io::Progress::silent(),
+                )
                 .unwrap()[0]
                 .points[0]
                 .brdf_per_sr;

@@ -31,8 +31,6 @@ fn gaussian(sq: f64, corr: f64, n: usize, seed: u64) -> HeightMap {
     .unwrap()
 }
 
-fn no_progress(_: usize, _: usize) {}
-
 /// The reflectance the engine's rays carry for light from `theta_i`, averaged over the source
 /// azimuths `phis` (radians).
 fn mean_reflectance(engine: &RayEngine, theta_i: f64, phis: &[f64]) -> f64 {
@@ -51,7 +49,13 @@ fn gaussian_table() -> &'static (RayEngine, BrdfTable) {
         let map = gaussian(0.3e-6, 6e-6, 512, 11);
         let engine = RayEngine::new(&map, RayOptions::default()).unwrap();
         let options = TableOptions::isotropic();
-        let table = ray_table(&engine, &options, Provenance::default(), &mut no_progress).unwrap();
+        let table = ray_table(
+            &engine,
+            &options,
+            Provenance::default(),
+            &gonio_io::Progress::silent(),
+        )
+        .unwrap();
         (engine, table)
     })
 }
@@ -115,7 +119,7 @@ fn isotropic_table_of_an_anisotropic_surface_averages_the_azimuths() {
             ..TableOptions::isotropic()
         },
         Provenance::default(),
-        &mut no_progress,
+        &gonio_io::Progress::silent(),
     )
     .unwrap();
     let single = ray_table(
@@ -125,7 +129,7 @@ fn isotropic_table_of_an_anisotropic_surface_averages_the_azimuths() {
             ..TableOptions::isotropic()
         },
         Provenance::default(),
-        &mut no_progress,
+        &gonio_io::Progress::silent(),
     )
     .unwrap();
     // The anisotropic table on the isotropic default's theta_d × phi_d grid (1° × 2°) and
@@ -140,7 +144,7 @@ fn isotropic_table_of_an_anisotropic_surface_averages_the_azimuths() {
             incidence_azimuths: 24,
         },
         Provenance::default(),
-        &mut no_progress,
+        &gonio_io::Progress::silent(),
     )
     .unwrap();
     let mut single_misses = 0.0f64;
@@ -186,7 +190,7 @@ fn mirror_lobe_integrates_to_fresnel() {
         &engine,
         &TableOptions::isotropic(),
         Provenance::default(),
-        &mut no_progress,
+        &gonio_io::Progress::silent(),
     )
     .unwrap();
     for ti in [0.0f64, 30.0, 60.0, 80.0] {
@@ -235,21 +239,29 @@ fn kirchhoff_table_agrees_with_ray_table_for_a_rough_surface() {
         },
     )
     .unwrap();
-    let ray_t = ray_table(&ray, &options, Provenance::default(), &mut no_progress).unwrap();
+    let ray_t = ray_table(
+        &ray,
+        &options,
+        Provenance::default(),
+        &gonio_io::Progress::silent(),
+    )
+    .unwrap();
     let kirchhoff = Kirchhoff::new(&map, KirchhoffOptions::new(Ior::Dielectric(1.55))).unwrap();
-    let mut calls = 0;
+    let reports = std::sync::Arc::new(std::sync::Mutex::new(vec![]));
+    let sink = reports.clone();
+    let progress = gonio_io::Progress::new(move |r| sink.lock().unwrap().push((r.done, r.total)));
     let k_t = kirchhoff_table(
         &kirchhoff,
         &[633.0],
         &options,
         Provenance::default(),
-        &mut |done, total| {
-            calls += 1;
-            assert!(done <= total);
-        },
+        &progress,
     )
     .unwrap();
-    assert_eq!(calls, options.incidence_count());
+    // One report per hemisphere map, counting up to the total.
+    let n = options.incidence_count() as u64;
+    let want: Vec<(u64, u64)> = (1..=n).map(|k| (k, n)).collect();
+    assert_eq!(*reports.lock().unwrap(), want);
     for ti in [0.0f64, 30.0] {
         let (a, b) = (
             ray_t.albedo(ti.to_radians(), 0.0)[0],
@@ -271,10 +283,15 @@ fn tables_do_not_depend_on_the_thread_count() {
             .build()
             .unwrap()
             .install(|| {
-                ray_table(&engine, &options, Provenance::default(), &mut no_progress)
-                    .unwrap()
-                    .values()
-                    .to_vec()
+                ray_table(
+                    &engine,
+                    &options,
+                    Provenance::default(),
+                    &gonio_io::Progress::silent(),
+                )
+                .unwrap()
+                .values()
+                .to_vec()
             })
     };
     let (one, two) = (run(1), run(2));
