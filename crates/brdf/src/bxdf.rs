@@ -2,7 +2,8 @@
 //! instruments, the fitter and the renderer can use any of them.
 //!
 //! Directions are unit vectors in the local frame of the surface: +z is the normal, `wi` points
-//! toward the light and `wo` toward the viewer (the pbrt convention of `shared/docs/physics.md`).
+//! toward the light and `wo` toward the viewer (the convention of pbrt-v4, Pharr, Jakob &
+//! Humphreys, *Physically Based Rendering*, 4th ed., 2023, and of `docs/brdf-models.md`).
 //! Following pbrt-v4, sampling returns the value, the direction and the pdf together.
 
 use glam::{DVec2, DVec3};

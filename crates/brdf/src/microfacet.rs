@@ -2,9 +2,11 @@
 //! anisotropic), their Smith masking, and sampling of the distribution and of the visible
 //! normals; shared by the analytic models, the ray-method references and the samplers.
 //!
-//! Conventions of `shared/docs/physics.md`: for Beckmann, `m` is the total rms slope (per-axis
-//! rms slope `m/√2`) and `D(th) = exp(-tan²th/m²) / (π m² cos⁴th)`, i.e. the roughness `α` of
-//! the graphics literature equals `m`. Anisotropic forms take `α_x`, `α_y` along x and y
+//! Conventions (as in `docs/brdf-models.md`, "Parameter meanings and units"): for Beckmann, `m`
+//! is the total rms slope (per-axis rms slope `m/√2`; a Gaussian random surface of rms height
+//! `sigma` and correlation length `T` has `m = 2 sigma/T`) and
+//! `D(th) = exp(-tan²th/m²) / (π m² cos⁴th)` (Beckmann & Spizzichino 1963), i.e. the roughness
+//! `α` of the graphics literature equals `m`. Anisotropic forms take `α_x`, `α_y` along x and y
 //! (E. Heitz, "Understanding the masking-shadowing function in microfacet-based BRDFs", JCGT
 //! 3(2), 2014, eqs. 71 and 85):
 //!

@@ -3,14 +3,16 @@
 //!
 //! A meter illuminates the specimen from a rectangular source aperture centred on the incidence
 //! angle and collects the reflected flux in a rectangular receptor aperture centred on the
-//! specular direction (ISO 2813 §5; apertures as quoted in `shared/docs/physics.md`). The reading
-//! is the reflectance averaged over the source directions, weighted by their irradiance
-//! (`cos theta_i dω`). Gloss units are `100 · rho_specimen / rho_standard`, where the primary
-//! standard is a perfectly smooth black glass of index 1.567 (ISO 2813 §6.1).
+//! specular direction (ISO 2813 §5; the aperture sizes commonly quoted from ISO 2813 and ASTM
+//! D523, tabulated in `docs/instruments.md`, "Gloss meter"). The reading is the reflectance
+//! averaged over the source directions, weighted by their irradiance (`cos theta_i dω`). Gloss
+//! units are `100 · rho_specimen / rho_standard`, where the primary standard is a perfectly smooth
+//! black glass of index 1.567 (ISO 2813 §6.1).
 //!
 //! Angular coordinates of an aperture: a direction `w = (cos b sin a, sin b, cos b cos a)` has
-//! the signed in-plane angle `a` (positive on the specular side, as in physics.md) and the
-//! perpendicular elevation `b`; its solid-angle element is `cos b da db`.
+//! the signed in-plane angle `a` (positive on the specular side, the source being at negative x,
+//! as for the signed scattering angle of in-plane goniometers) and the perpendicular elevation
+//! `b`; its solid-angle element is `cos b da db`.
 
 use crate::error::Result;
 use crate::quadrature::gauss_legendre_on;
@@ -446,7 +448,8 @@ pub fn measure(specimen: &dyn Specimen) -> Result<GlossReport> {
 mod tests {
     use super::*;
 
-    /// physics.md: a perfectly smooth n = 1.55 surface reads 95.4, 97.3 and 99.8 GU.
+    /// A perfectly smooth n = 1.55 surface reads 95.4, 97.3 and 99.8 GU: its Fresnel reflectance
+    /// relative to that of the n = 1.567 standard at 20, 60 and 85°.
     #[test]
     fn smooth_surface_gloss() {
         let r = measure(&Smooth(Ior::Dielectric(1.55))).unwrap();
@@ -473,8 +476,8 @@ mod tests {
         assert!(v.windows(2).all(|w| w[1] > w[0]), "{v:?}");
     }
 
-    /// The microfacet model of physics.md (Beckmann D, height-correlated Smith G2, Fresnel at
-    /// the local angle), f in 1/sr.
+    /// The microfacet model `R D G2 / (4 cos ti cos to)` (Beckmann D, height-correlated Smith G2
+    /// of Heitz 2014, Fresnel at the local angle; Walter et al., EGSR 2007), f in 1/sr.
     fn microfacet(m: f64, n: f64) -> impl Fn(DVec3, DVec3) -> f64 + Sync {
         move |wi: DVec3, wo: DVec3| {
             let h = (wi + wo).normalize();
@@ -528,8 +531,8 @@ mod tests {
         sum / norm
     }
 
-    /// Issue 8: gloss of analytic Beckmann surfaces of several roughnesses agrees with an
-    /// independent numerical integration of the microfacet model over the apertures within 1%.
+    /// Gloss of analytic Beckmann surfaces of several roughnesses agrees with an independent
+    /// numerical integration of the microfacet model over the apertures within 1%.
     #[test]
     fn beckmann_gloss_matches_independent_integration() {
         let standard =
@@ -591,8 +594,8 @@ mod tests {
         midpoint_reading_on(f, &g, (32, 32), 60)
     }
 
-    /// Issue 12: DOI and the haze readings of analytic Beckmann surfaces agree with the
-    /// independent midpoint integration of the same microfacet model over the apertures.
+    /// DOI and the haze readings of analytic Beckmann surfaces agree with the independent
+    /// midpoint integration of the same microfacet model over the apertures.
     ///
     /// Tolerances: each reading of the meter (32 × 32 Gauss-Legendre over the receptor, 8 × 8
     /// over the source) and of the reference agree within 1% (measured: within 0.3%). DOI is

@@ -2,8 +2,8 @@
 //! normal, and their differences. An isotropic surface scatters the same whatever its azimuth, so
 //! the curves differ only by the map's finite statistics; an anisotropic one (brushed, stretched,
 //! a grating) changes its lobe with the direction of the plane of incidence, whose width follows
-//! the rms slope along that plane (facet model: an in-plane facet tilt `a` turns the reflected
-//! ray by `2a`, physics.md "Microfacet (facet) model").
+//! the rms slope along that plane (facet model: by the law of reflection, a facet tilted by `a`
+//! in the plane of incidence turns the reflected ray by `2a`).
 //!
 //! Quarter turns are exact: the grid is transposed and flipped, spacings swapped, no height is
 //! interpolated. Other angles use [`gonio_surface::ops::rotate`] (bicubic spline, corners whose

@@ -7,7 +7,7 @@
 //! - **Ray method on a smooth map.** A Gaussian surface of rms height Sq reflects the fraction
 //!   `e^−g` of its light coherently (a specular spike as narrow as the spot's diffraction), with
 //!   the Rayleigh roughness parameter `g = (4π Sq cos θ / λ)²` at incidence θ (Beckmann &
-//!   Spizzichino 1963, ch. 5; `docs/physics.md`, "Analytic references"). Geometric optics has
+//!   Spizzichino 1963, ch. 5; `docs/kirchhoff.md`, "Analytic references"). Geometric optics has
 //!   no coherent part: it spreads all the light over the facet-slope lobe. Where `g < 1` the
 //!   coherent part (more than 1/e = 37% of the reflected light) dominates and the ray method
 //!   misses it: `opd-1.opd` reads 53 GU at 20° by the ray method and 93 GU by Kirchhoff.
@@ -40,8 +40,8 @@ pub const PHOTOMETRIC_WAVELENGTH: f64 = 550e-9;
 
 /// The Rayleigh roughness parameter `g = (4π Sq cos θ / λ)²` of specular reflection at
 /// incidence `theta` (radians) for rms height `sq` and wavelength `wavelength` (metres)
-/// (Beckmann & Spizzichino 1963; `docs/physics.md`: `g = k² σ² (cos θi + cos θs)²` at
-/// `θs = θi`).
+/// (Beckmann & Spizzichino 1963, ch. 5: `g = k² σ² (cos θi + cos θs)²` with `k = 2π/λ`, at
+/// `θs = θi`; `docs/kirchhoff.md`, "Analytic references").
 pub fn rayleigh_g(sq: f64, theta: f64, wavelength: f64) -> f64 {
     (4.0 * std::f64::consts::PI * sq * theta.cos() / wavelength).powi(2)
 }

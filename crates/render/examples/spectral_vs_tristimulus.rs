@@ -1,5 +1,6 @@
-//! Spectral rendering against the tristimulus shortcut on one scene (issue 7): render it in both
-//! colour modes, and compare the displayed pictures pixel by pixel with CIEDE2000.
+//! Spectral rendering against the tristimulus shortcut on one scene: render it in both colour
+//! modes, and compare the displayed pictures pixel by pixel with CIEDE2000 (what the shortcut
+//! costs; results in `docs/color.md`, "Spectral rendering versus the tristimulus shortcut").
 //!
 //! ```text
 //! cargo run --release -p gonio-render --example spectral_vs_tristimulus -- \

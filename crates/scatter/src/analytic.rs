@@ -2,7 +2,7 @@
 //! `sigma² exp(-r²/T²)`), the references that the ray method and the Kirchhoff integral are held
 //! against, and their detector-averaged in-plane curves.
 //!
-//! Models (formulas as written in `shared/docs/physics.md`):
+//! Models (with their sources; method and tests in `docs/kirchhoff.md`, "Analytic references"):
 //! - [`AnalyticModel::Beckmann`]: the Beckmann-Spizzichino series (P. Beckmann & A. Spizzichino,
 //!   *The Scattering of Electromagnetic Waves from Rough Surfaces*, 1963, ch. 5, eq. 47 with the
 //!   Fresnel factor of ch. 3): the coherent specular reflectance `R e^(-g)` plus the incoherent
@@ -250,7 +250,7 @@ impl GaussianModel {
 
 /// `e^(-g) Σ_{m≥1} g^m/(m! m) exp(-a/m)`, each term formed in log space. Terms below
 /// `m = g - 10√g - 30` are skipped (their Poisson weight is below e^(-50) of the peak) and the sum
-/// ends at `m = g + 10√g + 30` (physics.md).
+/// ends at `m = g + 10√g + 30`, as far above the peak (`docs/kirchhoff.md`, "Analytic references").
 pub fn beckmann_sum(g: f64, a: f64) -> f64 {
     if g <= 0.0 {
         return 0.0;

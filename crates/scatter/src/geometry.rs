@@ -1,6 +1,9 @@
 //! Measurement geometry shared by the scattering methods: incidence and in-plane scattering
-//! directions in the conventions of `shared/docs/physics.md`, detectors with a circular aperture,
-//! and the in-plane curve that every method returns.
+//! directions, detectors with a circular aperture, and the in-plane curve that every method
+//! returns. Conventions (those of in-plane goniometers such as NIST's STARR; `docs/physics.md`,
+//! "Frames, angles, units"): +z is the mean surface normal, `wi` points toward the source and `wo`
+//! toward the detector, the source lies in the x-z plane at negative x, and the in-plane scattering
+//! angle is signed, with the specular peak at `+ti` and negative angles on the source's side.
 
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -83,7 +86,8 @@ pub struct InplaneCurve {
 mod tests {
     use super::*;
 
-    /// physics.md: alpha = 1.4° gives Omega = 1.8756e-3 sr.
+    /// A cone of half-angle alpha = 1.4° (the STARR aperture) subtends
+    /// `Omega = 2π(1 - cos alpha) = 1.8756e-3` sr.
     #[test]
     fn starr_aperture_solid_angle() {
         let omega = cone_solid_angle(1.4f64.to_radians());

@@ -1,5 +1,6 @@
-//! The scalar Kirchhoff approximation over a measured height map (Beckmann & Spizzichino 1963,
-//! ch. 3 and 5, as written in `shared/docs/physics.md`): with `v = -k (wi + wo)`,
+//! The scalar Kirchhoff approximation over a measured height map (P. Beckmann & A. Spizzichino,
+//! *The Scattering of Electromagnetic Waves from Rough Surfaces*, 1963, ch. 3 and 5): with
+//! `wi` toward the source, `wo` toward the detector, `k = 2π/λ` and `v = -k (wi + wo)`,
 //!
 //! ```text
 //! E(v) = ∫∫ W(x, y) exp(i (vx x + vy y + vz h(x, y))) dx dy

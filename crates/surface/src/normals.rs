@@ -1,7 +1,7 @@
 //! Facet normals at the interior points of a height map, the two ways the NIST ray method allows
-//! (physics.md, "Ray method"; Germer & Marx, Appl. Opt. 43, 1266 (2004)): from the least-squares
-//! plane through a point and its eight neighbours, or from the derivatives of a bicubic spline
-//! through the data.
+//! (Germer & Marx, Appl. Opt. 43, 1266 (2004); `docs/ray-method.md`, "Method", and
+//! `docs/surface.md`, "Facet normals"): from the least-squares plane through a point and its eight
+//! neighbours, or from the derivatives of a bicubic spline through the data.
 //!
 //! Border points and points whose 3 × 3 neighbourhood holds an invalid point get a NaN normal:
 //! facets touching invalid points are skipped by the methods that use them.

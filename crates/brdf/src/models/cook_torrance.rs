@@ -5,8 +5,9 @@
 //! the form of B. Walter et al., "Microfacet models for refraction through rough surfaces",
 //! EGSR 2007, eq. 20: `f = F(wi·h) D(h) G2(wi, wo) / (4 cos θi cos θo)`, times an optional
 //! per-channel tint. `D`, `G2` from [`crate::microfacet`], `F` from [`crate::fresnel`]. This
-//! is the facet model of `shared/docs/physics.md` with masking. Sampled through the visible
-//! normals of `wo`: pdf `D_wo(h) / (4 wo·h) = G1(wo) D(h) / (4 cos θo)` (Heitz & d'Eon 2014).
+//! is the facet model, which the ray method reproduces on Gaussian slopes (`docs/ray-method.md`),
+//! with masking. Sampled through the visible normals of `wo`: pdf
+//! `D_wo(h) / (4 wo·h) = G1(wo) D(h) / (4 cos θo)` (Heitz & d'Eon 2014).
 
 use crate::bxdf::{Brdf, BrdfSample, Rgb};
 use crate::fresnel::Ior;

@@ -1,6 +1,6 @@
 //! Tests of the analytic models against closed-form properties (normalisation, reciprocity,
-//! the facet formula of `physics.md`) and of every sampler against its pdf and the albedo
-//! ([`crate::validate::check_sampler`]).
+//! the facet formula `R D G2 / (4 cos ti cos to)` written out by hand) and of every sampler against
+//! its pdf and the albedo ([`crate::validate::check_sampler`]).
 
 use super::*;
 use crate::fresnel::{Ior, dielectric};
@@ -240,8 +240,9 @@ fn ward_albedo_is_bounded_by_rho_s() {
     assert!(a > 0.99, "{a}");
 }
 
-/// The Cook-Torrance Beckmann model is the facet formula of `physics.md` with masking, written
-/// out here by hand: `R(iota) D G2 / (4 cos ti cos to)`, `cos iota = sqrt((1 + wi·wo)/2)`.
+/// The Cook-Torrance Beckmann model is the facet (microfacet) formula with masking (Walter et al.,
+/// EGSR 2007, eq. 20; the model the ray method reproduces on Gaussian slopes), written out here by
+/// hand: `R(iota) D G2 / (4 cos ti cos to)`, `cos iota = sqrt((1 + wi·wo)/2)`.
 #[test]
 fn cook_torrance_is_the_facet_formula() {
     let (m, n) = (0.25, 1.55);

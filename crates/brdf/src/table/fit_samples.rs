@@ -72,9 +72,9 @@ mod tests {
     use crate::table::{BrdfTable, Provenance, Resolution};
     use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-    /// Fitting the table of a known Beckmann Cook-Torrance model (issue 5: "recovers its
-    /// parameters within 2%"). The cells hold the model's exact values, so only the f32
-    /// storage and the fit's tolerance separate the result from the truth.
+    /// Fitting the table of a known Beckmann Cook-Torrance model recovers its parameters within
+    /// 2%. The cells hold the model's exact values, so only the f32 storage and the fit's
+    /// tolerance separate the result from the truth.
     #[test]
     fn fitting_a_model_table_recovers_the_model() {
         let spec = ModelSpec::Beckmann {

@@ -1,4 +1,5 @@
-//! Importance sampling of a tabulated BRDF (issue 6).
+//! Importance sampling of a tabulated BRDF (method and tests: `docs/brdf-tables.md`, "Importance
+//! sampling").
 //!
 //! For a set of bins of the conditioning direction `wo` (theta_o, and phi_o for anisotropic
 //! tables), the BRDF is split into the largest constant that fits under it, `c = min f` over the

@@ -8,9 +8,9 @@
 //! the perfect diffuser under the illuminant (Y = 100). Near the specular peak π·f exceeds 1 and
 //! L* exceeds 100; CIELAB is still defined there and the comparison stays like for like.
 //!
-//! The Done-when comparison uses the table fitted to all geometries; a second one fits every
-//! geometry but each tenth and compares at those held out (the colour a table predicts where it
-//! was not measured).
+//! The acceptance comparison (median CIEDE2000 under 2) uses the table fitted to all geometries;
+//! a second one fits every geometry but each tenth and compares at those held out (the colour a
+//! table predicts where it was not measured).
 //! A second test bins the geometries by aspecular angle and checks that the table keeps the
 //! paint's colour travel. The figures are quoted in docs/color.md.
 

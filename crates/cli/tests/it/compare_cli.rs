@@ -3,7 +3,7 @@
 
 use crate::common::ok;
 
-/// Issue 12: every curves CSV the quick demo writes (the `gonio inplane` columns, with `inf`
+/// Every curves CSV the quick demo writes (the `gonio inplane` columns, with `inf`
 /// relative uncertainty where a detector caught nothing) compares against itself: zero RMS
 /// difference and equal peaks.
 #[test]
@@ -37,7 +37,7 @@ fn demo_curves_round_trip_into_compare() {
         "no demo CSV has an infinite uncertainty: {csvs:?}"
     );
     for csv in &csvs {
-        // The whole file reads (before issue 12 it stopped at the first `inf`).
+        // The whole file reads, not only up to the first `inf` (where the reader once stopped).
         let name = csv.to_str().unwrap();
         ok(&["compare", name, name, "--method", "ray"]);
         // Its ray curves, rows unchanged, compared with themselves: nothing differs.

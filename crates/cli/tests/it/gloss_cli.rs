@@ -25,7 +25,7 @@ fn gen_map(dir: &std::path::Path, sq_nm: &str) -> String {
     path
 }
 
-/// Issue 12: an index that is not positive exits with status 2 and says why, without output;
+/// An index that is not positive exits with status 2 and says why, without output;
 /// one below 1 is read with a warning.
 #[test]
 fn index_not_positive_is_refused() {

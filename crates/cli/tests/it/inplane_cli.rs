@@ -125,8 +125,8 @@ fn bad_input_exits_2_and_writes_nothing() {
     assert!(!Path::new(csv).exists());
 }
 
-/// Issue 12: `--json` alone prints the curves at the STARR incidences (20/45/60/70°) on standard
-/// output and writes no file; with neither `-o` nor `--json` the CSV goes to standard output.
+/// `--json` alone prints the curves at the STARR incidences (20/45/60/70°) on standard output and
+/// writes no file; with neither `-o` nor `--json` the CSV goes to standard output.
 #[test]
 fn default_geometry_and_json_without_output() {
     let dir = tempfile::tempdir().unwrap();
@@ -150,8 +150,8 @@ fn default_geometry_and_json_without_output() {
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), before);
 }
 
-/// Issue 12: the ray method on a map far smoother than the wavelength (Sq 5 nm: Rayleigh
-/// roughness g = (4π · 5 nm · cos 20° / 550 nm)² = 0.01 at 20°) warns on stderr and in the JSON.
+/// The ray method on a map far smoother than the wavelength (Sq 5 nm: Rayleigh roughness
+/// g = (4π · 5 nm · cos 20° / 550 nm)² = 0.01 at 20°) warns on stderr and in the JSON.
 #[test]
 fn ray_method_on_a_smooth_map_warns() {
     let dir = tempfile::tempdir().unwrap();

@@ -116,8 +116,8 @@ fn stretched() -> HeightMap {
     resample(&map, 0.5e-6, 0.5e-6).unwrap()
 }
 
-/// Facet model (physics.md): an in-plane facet tilt `a` turns the reflected ray by `2a` in the
-/// plane, so slopes of rms `s` along the plane of incidence make a Gaussian lobe of standard
+/// Facet model (law of reflection): an in-plane facet tilt `a` turns the reflected ray by `2a` in
+/// the plane, so slopes of rms `s` along the plane of incidence make a Gaussian lobe of standard
 /// deviation `2 atan s ≈ 2s` radians in scatter angle, which the detector's disc of half-angle
 /// alpha widens by its in-plane variance `alpha²/4`. FWHM = 2√(2 ln 2) · that, in degrees.
 fn facet_fwhm_deg(slope: f64, half_angle: f64) -> f64 {

@@ -1,10 +1,11 @@
 //! `compare` of the ray-method and Kirchhoff curves of the rough epoxy sample (Sq 805 nm,
-//! T 6 µm) at the STARR geometry: the Done-when of issue 8, "differences within what the
-//! Kirchhoff work established".
+//! T 6 µm) at the STARR geometry: the two methods' differences must stay within what the
+//! validation of the Kirchhoff integral established.
 //!
-//! What the Kirchhoff work established (docs/kirchhoff.md, physics.md): for g ≫ 1 the Kirchhoff
-//! integral tends to the geometric (facet) limit, which the ray method computes, with corrections
-//! O(1/g); here g = k²σ²(2 cos 20°)² ≈ 300 at 550 nm, so the methods must agree up to the noise of
+//! What that validation established (docs/kirchhoff.md, "Analytic references"; Beckmann &
+//! Spizzichino 1963, ch. 5): for g ≫ 1 the Kirchhoff integral tends to the geometric (facet)
+//! limit, which the ray method computes, with corrections O(1/g); here
+//! g = k²σ²(2 cos 20°)² ≈ 300 at 550 nm, so the methods must agree up to the noise of
 //! each and two small systematic differences. The noise, per detector and realisation, in the
 //! log of the ratio of the two readings:
 //!
@@ -146,7 +147,7 @@ fn ray_and_kirchhoff_curves_of_the_rough_sample_agree() {
     let b = 2.6 * eps + 0.03;
     let log10e = std::f64::consts::LOG10_E;
     // The lobe's standard deviation in scatter angle: twice the facet tilt along the plane of
-    // incidence (physics.md, facet model), about 22°.
+    // incidence (facet model: a facet tilted by `a` turns the reflected ray by `2a`), about 22°.
     let sigma = (2.0 * (slope_x.iter().sum::<f64>() / r).atan()).to_degrees();
     let position_tol = |s_peak: f64| sigma * (6.0 * s_peak).sqrt() + 0.5 * STEP_DEG;
 

@@ -1,7 +1,8 @@
 //! The reflectance a detector cone collects, `rho = ∫_cone f cos t dω`, from the field on the
 //! lattice of wave vectors that the spot resolves.
 //!
-//! With `dvx dvy = k² cos t dω`, the physics.md BRDF gives
+//! With `dvx dvy = k² cos t dω`, the Kirchhoff BRDF of the parent module (Beckmann & Spizzichino
+//! 1963, ch. 3 and 5; `docs/kirchhoff.md`) gives
 //! `rho = R cos ti / (4π² ∫∫W²) ∫_cone |F E(v)|² / cos t dvx dvy`. `|E|²` is the Fourier
 //! transform of the autocorrelation of `W e^(i vz h)`, which vanishes beyond the spot's diameter
 //! D, so sampling `E` at spacing `2π/L` (`L ≥ D`, the width of the facet grid) resolves every
@@ -105,7 +106,8 @@ pub(crate) fn outgoing(k: f64, wi: DVec3, vx: f64, vy: f64) -> Option<DVec3> {
 }
 
 /// `R(iota) F²` with Beckmann's `F = (1 + wi·wo)/(cos ti (cos ti + cos to))` and the Fresnel
-/// reflectance at the local angle `cos iota = sqrt((1 + wi·wo)/2)` (physics.md).
+/// reflectance at the local angle `cos iota = sqrt((1 + wi·wo)/2)`, that of the facet that
+/// mirrors `wi` into `wo` (`docs/kirchhoff.md`, "The integral").
 pub(crate) fn brdf_factor(ior: Ior, wi: DVec3, wo: DVec3) -> f64 {
     let c = wi.dot(wo);
     let f = (1.0 + c) / (wi.z * (wi.z + wo.z));

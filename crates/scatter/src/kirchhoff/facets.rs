@@ -10,9 +10,9 @@ use rayon::prelude::*;
 use rustfft::{Fft, FftPlanner};
 use std::sync::Arc;
 
-/// The Schwartz test function `b(t) = exp(-1/(1 - t²))` for |t| < 1, else 0 (physics.md): smooth
-/// to every order at the edge of the spot, so the spot's diffraction pattern decays faster than
-/// any power and does not ring.
+/// The Schwartz test function `b(t) = exp(-1/(1 - t²))` for |t| < 1, else 0 (the window of
+/// `docs/kirchhoff.md`, "Window"): smooth to every order at the edge of the spot, so the spot's
+/// diffraction pattern decays faster than any power and does not ring.
 pub(crate) fn schwartz(t: f64) -> f64 {
     if t.abs() < 1.0 {
         (-1.0 / (1.0 - t * t)).exp()

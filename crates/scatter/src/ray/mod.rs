@@ -3,7 +3,7 @@
 //! Every interior grid point of the map is a facet with the normal the `surface` crate computes
 //! (least-squares plane or bicubic spline). Under uniform illumination from `wi`, a facet
 //! reflects `wr = 2(wi·n)n - wi` and carries the share `R(wi·n) (wi·n) / (n_z N cos ti)` of the
-//! reflectance (`shared/docs/physics.md`, "Ray method"), with the Fresnel reflectance `R` of a
+//! reflectance (`docs/ray-method.md`, "Method"), with the Fresnel reflectance `R` of a
 //! dielectric or a metal at its local angle. Facets the source cannot see (shadowing) or whose
 //! reflected ray meets the surface again (masking) are found by marching over the height field;
 //! an optional second bounce follows masked rays one more reflection.
@@ -472,8 +472,8 @@ impl RayEngine {
     }
 
     /// The in-plane curve at incidence `incidence_deg` for detectors at the signed scattering
-    /// angles `scatter_deg` (degrees, physics.md convention: specular at `+incidence`) with cone
-    /// half-angle `half_angle` (radians).
+    /// angles `scatter_deg` (degrees; specular at `+incidence`, negative on the source's side, as
+    /// on in-plane goniometers) with cone half-angle `half_angle` (radians).
     pub fn inplane(
         &self,
         incidence_deg: f64,

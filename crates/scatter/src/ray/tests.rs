@@ -29,8 +29,9 @@ fn gaussian(n: usize, sq: f64, t: f64, seed: u64) -> HeightMap {
     .unwrap()
 }
 
-/// physics.md: a perfectly smooth surface gives `rho = R(ti)` in every detector whose cone holds
-/// the mirror direction, whatever the aperture, and nothing anywhere else. (Apertures are kept
+/// A perfectly smooth surface gives `rho = R(ti)` in every detector whose cone holds the mirror
+/// direction, whatever the aperture, and nothing anywhere else (`docs/ray-method.md`,
+/// "Normalisation": all the reflected power goes into one direction). (Apertures are kept
 /// off whole degrees so that no detector has the mirror direction exactly on its rim.)
 #[test]
 fn flat_map_reflects_fresnel_into_specular_only() {

@@ -2,11 +2,12 @@
 //! Fresnel reflectance at its local angle, shadowing and masking by the height field and an
 //! optional second bounce.
 //!
-//! Formulas from `shared/docs/physics.md`, section "Ray method" (geometric optics of a faceted
-//! surface, as in the facet model of K. E. Torrance & E. M. Sparrow, "Theory for off-specular
-//! reflection from roughened surfaces", JOSA 57, 1105 (1967)): a facet of unit normal
-//! `n` lit from `wi` reflects `wr = 2(wi·n)n - wi`, and its share of the reflectance is
-//! `R(wi·n) (wi·n) / (n_z N cos ti)` for `N` facets.
+//! Formulas of `docs/ray-method.md`, "Method" (geometric optics of a faceted surface, as in the
+//! facet model of K. E. Torrance & E. M. Sparrow, "Theory for off-specular reflection from
+//! roughened surfaces", JOSA 57, 1105 (1967)): a facet of unit normal `n` lit from `wi` reflects
+//! `wr = 2(wi·n)n - wi`, and its share of the reflectance is `R(wi·n) (wi·n) / (n_z N cos ti)` for
+//! `N` facets (it intercepts power in proportion to its true area `dx dy / n_z` times `wi·n`, out
+//! of the `N dx dy cos ti` the map receives).
 
 use super::index::BinMask;
 use super::march::{Fate, HeightField};

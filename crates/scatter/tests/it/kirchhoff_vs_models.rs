@@ -1,5 +1,6 @@
 //! The Kirchhoff integral over synthetic Gaussian surfaces against the Beckmann-Spizzichino series
-//! and the ray method: the Done-when of issue 4.
+//! and the ray method: the acceptance test of the Kirchhoff engine (results in `docs/kirchhoff.md`,
+//! "Validation against the models").
 //!
 //! Statistics behind the tolerances. One detector of half-angle alpha over a spot of diameter D
 //! averages about π(alpha D/λ)² speckle grains, each an independent exponential variate, so its
@@ -8,8 +9,10 @@
 //! so with D = 128 µm and λ = 500 nm a 2° cone holds about 87 grains (11% per realisation, 3.8%
 //! over 8) and a 3° cone about 195 (7%, 1.8% over 16). The realisation's own surface
 //! statistics matter more in the tails: the spot sees only ~400 correlation areas, and a 1% error
-//! in the rms slope moves the 1%-of-peak point by about 9% (physics.md), so the series is
-//! evaluated with each spot's own W²-weighted rms height and slope along x and then averaged.
+//! in the rms slope moves the 1%-of-peak point by about 9% (relative to its peak the lobe goes as
+//! `exp(-tan²θ/m²)`, which is 1% where `tan²θ/m² = ln 100`, so it changes by `2 ln 100 ≈ 9` times
+//! the relative change of `m`), so the series is evaluated with each spot's own W²-weighted rms
+//! height and slope along x and then averaged.
 //! The largest of ~30 deviations then stays within 15% (measured: 7% for the moderate case, 10%
 //! against the series and 12% against the ray method for the rough one), while a wrong
 //! normalisation, a missing F factor or a wrong g (also tested by the flat and smooth cases)
@@ -100,8 +103,9 @@ fn spot_statistics(map: &HeightMap) -> (f64, f64) {
 }
 
 /// The Beckmann-Spizzichino curve averaged over the realisations, each evaluated with the rms
-/// height and slope its spot actually has (physics.md, "Testing against a model": a 1% error in
-/// the rms slope moves the 1%-of-peak point by about 9%).
+/// height and slope its spot actually has (a single realisation's statistics depart from the
+/// ensemble's, and a 1% error in the rms slope moves the 1%-of-peak point by about 9%: see the
+/// module comment).
 fn series_average(maps: &[HeightMap], alpha: f64) -> InplaneCurve {
     let sets: Vec<Vec<InplaneCurve>> = maps
         .iter()
@@ -183,7 +187,7 @@ fn rough_matches_beckmann_series_and_ray_method() {
     );
 }
 
-/// Issue 12: no grating ghosts. Facets of pitch `a` act as a grating: before the facet grid was
+/// No grating ghosts. Facets of pitch `a` act as a grating: before the facet grid was
 /// refined to keep its grating orders off the detectors, smooth maps showed the diffuse lobe
 /// imaged at `sin ts = sin ti - λ/a` (-48° at 20°, 550 nm, 0.5 µm facets) at up to 7·10⁻³ 1/sr
 /// where the true scatter is below 10⁻⁹. On the demo's smooth samples (Sq 3 and 50 nm, T = 6 µm)
@@ -252,8 +256,8 @@ fn smooth_maps_show_no_grating_ghosts() {
     eprintln!("worst ratio to the bound: {worst_ratio:.3e}");
 }
 
-/// Issue 12: the light a gloss receptor collects from a map too rough for one sampled grid is the
-/// mean over smaller spots. A rough map (Sq 0.3 µm, T 3 µm, rms slope 0.2) at 550 nm and 20° needs
+/// The light a gloss receptor collects from a map too rough for one sampled grid is the mean over
+/// smaller spots. A rough map (Sq 0.3 µm, T 3 µm, rms slope 0.2) at 550 nm and 20° needs
 /// its phase sampled 3 times finer than the map for a cone about specular (590 thousand facets
 /// over the 128 µm spot; the whole hemisphere would need 10 times); with the facet limit set to
 /// 2¹⁸ the engine cuts the spot's square into 2 × 2 spots of 64 µm. The comparison with the ray

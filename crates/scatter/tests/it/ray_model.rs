@@ -1,11 +1,13 @@
-//! The ray method against the facet (microfacet) model of physics.md on Gaussian random
-//! surfaces: Sq 0.3 µm, T 6 µm, 1024 × 1024 points at 0.5 µm, in-plane detectors of half-angle
-//! 1.4° at 20, 45, 60 and 70° incidence; within 10% wherever the model exceeds 1% of its peak.
+//! The ray method against the facet (microfacet) model `R D G2 / (4 cos ti cos to)` (Beckmann
+//! normals, Fresnel at the local angle, height-correlated Smith masking; Walter et al., EGSR 2007;
+//! Heitz 2014, JCGT 3(2)) on Gaussian random surfaces: Sq 0.3 µm, T 6 µm, 1024 × 1024 points at
+//! 0.5 µm, in-plane detectors of half-angle 1.4° at 20, 45, 60 and 70° incidence; within 10%
+//! wherever the model exceeds 1% of its peak (results in `docs/ray-method.md`, "Validation").
 //!
-//! As physics.md ("Testing against a model") prescribes, the model uses each map's own measured
-//! per-axis rms slopes (from the same normals the ray method uses) and is averaged over each
-//! detector's cone as the detector averages. One realisation's slope histogram departs from
-//! the Gaussian by 10–25% at 1% of the peak and by about 5% at the peak (a 1.4° cone sees
+//! A single realisation is not the ensemble the model describes, so the model uses each map's
+//! own measured per-axis rms slopes (from the same normals the ray method uses) and is averaged
+//! over each detector's cone as the detector averages. One realisation's slope histogram departs
+//! from the Gaussian by 10–25% at 1% of the peak and by about 5% at the peak (a 1.4° cone sees
 //! about 1.5% of the facets, from a few hundred independent correlation areas), so the test
 //! averages both the ray result and the model over several realisations and over azimuths of
 //! incidence (rotating the source and detectors about the normal, which samples other parts of
@@ -24,7 +26,8 @@ use std::f64::consts::PI;
 
 /// Anisotropic Beckmann distribution of normals with per-axis rms slopes `sx`, `sy`: the
 /// Gaussian slope density `exp(-p²/(2sx²) - q²/(2sy²)) / (2π sx sy)` over `(p, q) = -(hx, hy)/hz`
-/// divided by `hz⁴` (physics.md's `D` for `sx = sy = m/√2`; Walter et al., EGSR 2007, eq. 25).
+/// divided by `hz⁴`; for `sx = sy = m/√2` it is the isotropic Beckmann
+/// `D(θ) = exp(-tan²θ/m²) / (π m² cos⁴θ)` (Walter et al., EGSR 2007, eq. 25).
 fn beckmann_d_aniso(h: DVec3, sx: f64, sy: f64) -> f64 {
     if h.z <= 0.0 {
         return 0.0;

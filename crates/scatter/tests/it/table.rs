@@ -1,6 +1,6 @@
 //! Tables from height maps (`gonio_scatter::table`): energy against the ray engine's own
 //! hemisphere reflectance, a mirror's lobe against Fresnel, the Beckmann fit of a Gaussian
-//! surface's table against the map's rms slope (issue 5), and Kirchhoff against the ray method.
+//! surface's table against the map's rms slope, and Kirchhoff against the ray method.
 
 use gonio_brdf::Ior;
 use gonio_brdf::fit::{FitKind, FitOptions, fit};
@@ -41,8 +41,8 @@ fn mean_reflectance(engine: &RayEngine, theta_i: f64, phis: &[f64]) -> f64 {
     phis.iter().map(|&phi| one(phi)).sum::<f64>() / phis.len() as f64
 }
 
-/// The Gaussian surface of issue 5 (Sq 0.3 µm, T 6 µm; 512² at 0.5 µm), its ray engine and
-/// its default isotropic table, computed once for the tests that share them.
+/// A Gaussian surface (Sq 0.3 µm, T 6 µm; 512² at 0.5 µm, the Beckmann fit's test case), its ray
+/// engine and its default isotropic table, computed once for the tests that share them.
 fn gaussian_table() -> &'static (RayEngine, BrdfTable) {
     static TABLE: OnceLock<(RayEngine, BrdfTable)> = OnceLock::new();
     TABLE.get_or_init(|| {
@@ -200,9 +200,10 @@ fn mirror_lobe_integrates_to_fresnel() {
     }
 }
 
-/// Issue 5: fitting Beckmann's Cook-Torrance model to the ray-method table of a Gaussian
-/// surface gives a roughness m within 5% of the map's total rms slope `sqrt(sx² + sy²)` (the
-/// facet model of physics.md, which the ray method reproduces, has Beckmann D with that m).
+/// Fitting Beckmann's Cook-Torrance model to the ray-method table of a Gaussian surface gives a
+/// roughness m within 5% of the map's total rms slope `sqrt(sx² + sy²)`: the ray method reproduces
+/// the facet model on Gaussian slopes (`docs/ray-method.md`, "Validation"), and that model has the
+/// Beckmann D of total rms slope m (per-axis `m/√2`).
 #[test]
 fn beckmann_fit_of_a_gaussian_surface_gives_its_rms_slope() {
     let (engine, table) = gaussian_table();
