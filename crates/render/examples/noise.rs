@@ -8,7 +8,7 @@
 //!
 //! What the figures mean (σ the raw N-sample picture's noise, relative to the mean):
 //! - `raw_vs_raw4x`: σ √(1 + 1/4), the Monte Carlo noise at N samples;
-//! - `denoised_vs_denoised4x`: what the criterion asks (the shown picture against the
+//! - `denoised_vs_denoised4x`: the denoiser's acceptance criterion (the shown picture against the
 //!   same pipeline with four times the samples): the filter's residual noise, plus the change of
 //!   its bias between N and 4N;
 //! - `denoised_vs_raw16x`: the shown picture against a raw reference with 16 times the samples:

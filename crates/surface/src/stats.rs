@@ -479,9 +479,9 @@ mod tests {
         }
     }
 
-    /// The acceptance test: Sq equals the request within 0.1% and Sdq is within 5% of
-    /// 2 Sq/T. Sdq is also held to the finite-difference expectation (module docs), within 3%:
-    /// three standard deviations of one 512 × 512 realisation (about 1% at 64 T across).
+    /// The acceptance test of the synthesis: Sq equals the request within 0.1% and Sdq is within
+    /// 5% of 2 Sq/T. Sdq is also held to the finite-difference expectation (module docs), within
+    /// 3%: three standard deviations of one 512 × 512 realisation (about 1% at 64 T across).
     #[test]
     fn gaussian_surface_sq_and_sdq() {
         for seed in 0..3 {

@@ -363,7 +363,7 @@ fn mitsuba3_loads_and_renders_the_spectral_cayman_file() {
     );
     // A measured metallic paint: the file's 128² value grids hold its albedo to 1.1% at 60°
     // (measured; 64² grids: 7% on the earlier import, whose peak was a thin in-plane streak).
-    // 5%: the bound on a measured paint's rim, which the albedo integrates.
+    // 5%: the bound required on a measured paint's rim, which the albedo integrates.
     check_render_and_albedo(
         &report,
         (&table, &tensor),

@@ -106,9 +106,9 @@ const XYZ_A_2DEG: [[f64; 3]; 24] = [
 
 /// The XYZ of every patch agrees with colour-science's. Both sides implement the same
 /// summation, so the only differences are the reference's 6-decimal printing (5e-7) and the
-/// order of the floating-point sums; 1e-5 is a hundred times tighter than the 0.01 the issue
-/// asks for. (colour-science's default ASTM E308 weighting-factor method, a different
-/// interpolation, differs from both by up to 0.042; see docs/color.md.)
+/// order of the floating-point sums; 1e-5 is a hundred times tighter than the required 0.01.
+/// (colour-science's default ASTM E308 weighting-factor method, a different interpolation,
+/// differs from both by up to 0.042; see docs/color.md.)
 #[test]
 fn xyz_agrees_with_colour_science() {
     let cases = [

@@ -95,7 +95,7 @@ fn table_albedo_is_the_ray_reflectance() {
 
 /// An isotropic table of an anisotropic surface is the average over the azimuth of incidence:
 /// its albedo equals the azimuthal mean of the anisotropic table's albedo (24 azimuths, every
-/// 15°, on the same theta_d × phi_d grid) within 1%, the bound, at 0°, 30° and 60°, and
+/// 15°, on the same theta_d × phi_d grid) within 1%, the required bound, at 0°, 30° and 60°, and
 /// the azimuthal mean of the rays the engine reflects (the independent reference: the table's
 /// quadrature against the sum of the rays) within 1% too; each table's interpolation error at
 /// these angles is below 1% (`table_albedo_is_the_ray_reflectance`). The surface is a Gaussian
