@@ -70,6 +70,28 @@ pub const SPACING_DEG: f64 = 2.0;
 /// file).
 pub const PEAKED_SPACING_DEG: f64 = 1.0;
 
+/// Step in degrees of the incidence azimuths of an anisotropic table: all round the circle.
+/// `pabopto2bsdf` infers a symmetry from the quadrants of azimuth its incidences fall in
+/// (`bsdfrep.c`, `new_input_direction` and `use_symmetry`): incidences in the first two
+/// quadrants only (0°–135°, as gonio wrote before) make it mirror the data about the x axis
+/// (y → −y) for the other two, which is wrong for a surface without that symmetry (measured
+/// with a Ward lobe turned by 30°: Radiance's value at an incidence azimuth of 160° 3.4 times
+/// gonio's; docs/brdf-tables.md). With incidences in all four quadrants it assumes none.
+pub const ANISOTROPIC_PHI_STEP_DEG: f64 = 45.0;
+
+/// The incidence azimuths (degrees) exported for `table`: 0° for an isotropic table, every
+/// [`ANISOTROPIC_PHI_STEP_DEG`] from 0° to 315° for an anisotropic one.
+pub fn incidence_azimuths_deg(table: &BrdfTable) -> Vec<f64> {
+    if table.resolution().is_isotropic() {
+        vec![0.0]
+    } else {
+        let n = (360.0 / ANISOTROPIC_PHI_STEP_DEG).round() as usize;
+        (0..n)
+            .map(|k| k as f64 * ANISOTROPIC_PHI_STEP_DEG)
+            .collect()
+    }
+}
+
 /// A table is sampled every [`PEAKED_SPACING_DEG`] when, at some exported incidence up to 60°,
 /// its value at the mirror direction exceeds this many times the mean of its values 4° before
 /// and after it in the plane of incidence: a lobe whose 1/e half width in theta_o is below
@@ -81,9 +103,9 @@ pub const PEAKED_SPACING_DEG: f64 = 1.0;
 /// Lambert table ripples by 1.6% with them, by 3.5–7% with 1° ones (docs/brdf-tables.md).
 pub const PEAK_RATIO: f64 = 1.25;
 
-/// Write one file per incidence angle (phi_i = 0, and for anisotropic tables also 45°, 90°,
-/// 135°) into the directory `out_dir` (created if needed), named `<name>_t<theta>_p<phi>.dat`.
-/// Returns the paths written.
+/// Write one file per incidence angle (phi_i = 0, and for anisotropic tables every
+/// [`ANISOTROPIC_PHI_STEP_DEG`] around the circle) into the directory `out_dir` (created if
+/// needed), named `<name>_t<theta>_p<phi>.dat`. Returns the paths written.
 pub fn write(
     table: &BrdfTable,
     out_dir: &Path,
@@ -96,11 +118,8 @@ pub fn write(
         )));
     }
     std::fs::create_dir_all(out_dir).map_err(|e| BrdfError::io(out_dir, e))?;
-    let phis: &[f64] = if table.resolution().is_isotropic() {
-        &[0.0]
-    } else {
-        &[0.0, 45.0, 90.0, 135.0]
-    };
+    let phis = incidence_azimuths_deg(table);
+    let phis = phis.as_slice();
     let weights = xyz_weights(table.channels())?;
     let spacing = spacing_deg(table, theta_i_deg, phis);
     let outgoing: Vec<(DVec3, f64, f64)> = directions(spacing)
@@ -315,6 +334,42 @@ mod tests {
 
     fn numbers(line: &str) -> Vec<f64> {
         line.split(' ').map(|x| x.parse().unwrap()).collect()
+    }
+
+    /// The quadrant of an incidence azimuth as `pabopto2bsdf` classifies it (`bsdfrep.c`,
+    /// `new_input_direction`: strictly inside 1°–89°, 91°–179°, ...; on an axis, none).
+    fn radiance_quadrant(phi: f64) -> Option<usize> {
+        (0..4).find(|&q| {
+            let lo = 90.0 * q as f64;
+            lo + 1.0 < phi && phi < lo + 89.0
+        })
+    }
+
+    #[test]
+    fn an_anisotropic_table_is_written_in_all_four_quadrants_of_incidence_azimuth() {
+        let iso = TableBuilder::new(Resolution::isotropic(8, 8, 8), Channels::Mono)
+            .unwrap()
+            .build()
+            .unwrap();
+        assert_eq!(incidence_azimuths_deg(&iso), [0.0]);
+        let mut b = TableBuilder::new(Resolution::anisotropic(8, 8, 8, 8), Channels::Mono).unwrap();
+        b.fill(|_, out| out[0] = 0.1);
+        let t = b.build().unwrap();
+        let dir_out = tempfile::tempdir().unwrap();
+        let files = write(&t, dir_out.path(), "a", &[30.0]).unwrap();
+        let mut quadrants = [false; 4];
+        for f in &files {
+            let inphi = lines(f)
+                .iter()
+                .find_map(|l| l.strip_prefix("#inphi ").map(|v| v.parse::<f64>().unwrap()))
+                .unwrap();
+            if let Some(q) = radiance_quadrant(inphi) {
+                quadrants[q] = true;
+            }
+        }
+        // Every quadrant holds an incidence, so Radiance assumes no symmetry.
+        assert_eq!(quadrants, [true; 4], "{files:?}");
+        assert_eq!(files.len(), 8);
     }
 
     #[test]
