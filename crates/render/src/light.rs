@@ -11,7 +11,7 @@ use crate::geometry::{Shape, planar_coords};
 use crate::image::Image;
 use glam::{DVec2, DVec3};
 use gonio_brdf::Rgb;
-use gonio_brdf::sampling::{Frame, concentric_disk};
+use gonio_brdf::sampling::{Frame, PiecewiseConstant2D, concentric_disk};
 use std::f64::consts::{PI, TAU};
 
 /// A light sample seen from a point.
@@ -206,53 +206,6 @@ fn shape_pdf(shape: &Shape, p: DVec3, wi: DVec3, hit: DVec3) -> f64 {
     }
 }
 
-/// A piecewise-constant 1D distribution on [0, 1) over `n` equal bins.
-#[derive(Debug, Clone)]
-struct Distribution1D {
-    /// Cumulative sums normalised to end at 1; `cdf[0] = 0`, length `n + 1`.
-    cdf: Vec<f64>,
-    /// Sum of the weights.
-    total: f64,
-}
-
-impl Distribution1D {
-    fn new(weights: &[f64]) -> Distribution1D {
-        let mut cdf = Vec::with_capacity(weights.len() + 1);
-        let mut acc = 0.0;
-        cdf.push(0.0);
-        for w in weights {
-            acc += w.max(0.0);
-            cdf.push(acc);
-        }
-        if acc > 0.0 {
-            cdf.iter_mut().for_each(|c| *c /= acc);
-        }
-        Distribution1D { cdf, total: acc }
-    }
-
-    fn len(&self) -> usize {
-        self.cdf.len() - 1
-    }
-
-    /// A bin and the continuous position `x` in [0, 1) within the whole range (pbrt-v4 §A.4.2).
-    fn sample(&self, u: f64) -> (usize, f64) {
-        let n = self.len();
-        let i = self.cdf.partition_point(|&c| c <= u).clamp(1, n) - 1;
-        let width = self.cdf[i + 1] - self.cdf[i];
-        let frac = if width > 0.0 {
-            ((u - self.cdf[i]) / width).clamp(0.0, 1.0 - 1e-12)
-        } else {
-            0.5
-        };
-        (i, (i as f64 + frac) / n as f64)
-    }
-
-    /// Density on [0, 1) in bin `i`.
-    fn density(&self, i: usize) -> f64 {
-        (self.cdf[i + 1] - self.cdf[i]) * self.len() as f64
-    }
-}
-
 /// An equirectangular environment map, importance-sampled in proportion to luminance times
 /// `sin θ` with a marginal distribution over rows and a conditional one per row (pbrt-v4 §A.4.2).
 #[derive(Debug)]
@@ -260,29 +213,27 @@ pub struct EnvMap {
     image: Image,
     scale: f64,
     rotation: f64,
-    rows: Distribution1D,
-    cols: Vec<Distribution1D>,
+    /// Pixels in proportion to luminance times `sin θ` (x: columns, y: rows).
+    pixels: PiecewiseConstant2D,
 }
 
 impl EnvMap {
     /// The map `image` scaled by `scale`, turned by `rotation_rad` about +y.
     pub fn new(image: Image, scale: f64, rotation_rad: f64) -> EnvMap {
         let (w, h) = (image.width, image.height);
-        let cols: Vec<Distribution1D> = (0..h)
-            .map(|j| {
+        let weights: Vec<f64> = (0..h)
+            .flat_map(|j| {
                 let sin_t = (PI * (j as f64 + 0.5) / h as f64).sin();
-                let weights: Vec<f64> =
-                    (0..w).map(|i| luminance(image.get(i, j)) * sin_t).collect();
-                Distribution1D::new(&weights)
+                let image = &image;
+                (0..w).map(move |i| luminance(image.get(i, j)) * sin_t)
             })
             .collect();
-        let rows = Distribution1D::new(&cols.iter().map(|c| c.total).collect::<Vec<_>>());
+        let pixels = PiecewiseConstant2D::new(&weights, w);
         EnvMap {
             image,
             scale,
             rotation: rotation_rad,
-            rows,
-            cols,
+            pixels,
         }
     }
 
@@ -308,11 +259,11 @@ impl EnvMap {
     }
 
     fn sample(&self, u: DVec2) -> Option<LightSample> {
-        if self.rows.total <= 0.0 {
+        if self.pixels.total() <= 0.0 {
             return None;
         }
-        let (j, v) = self.rows.sample(u.x);
-        let (i, uu) = self.cols[j].sample(u.y);
+        let ((i, j), p) = self.pixels.sample(u);
+        let (uu, v) = (p.x, p.y);
         // Keep off the poles, where the density per steradian is singular.
         let theta = PI * v.clamp(1e-9, 1.0 - 1e-9);
         let phi = TAU * uu + self.rotation;
@@ -320,7 +271,7 @@ impl EnvMap {
         if sin_t <= 0.0 {
             return None;
         }
-        let pdf_uv = self.rows.density(j) * self.cols[j].density(i);
+        let pdf_uv = self.pixels.density(i, j);
         let wi = DVec3::new(sin_t * phi.cos(), theta.cos(), sin_t * phi.sin());
         // The radiance of the sampled pixel itself (recomputing it from `wi` could round into a
         // neighbour at a pixel edge).
@@ -334,7 +285,7 @@ impl EnvMap {
     }
 
     fn pdf(&self, d: DVec3) -> f64 {
-        if self.rows.total <= 0.0 {
+        if self.pixels.total() <= 0.0 {
             return 0.0;
         }
         let (u, v) = self.dir_to_uv(d);
@@ -343,7 +294,7 @@ impl EnvMap {
         if sin_t <= 0.0 {
             return 0.0;
         }
-        self.rows.density(j) * self.cols[j].density(i) / (2.0 * PI * PI * sin_t)
+        self.pixels.density(i, j) / (2.0 * PI * PI * sin_t)
     }
 }
 

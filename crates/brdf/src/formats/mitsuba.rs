@@ -26,9 +26,9 @@
 //! `f(m, m) = D F G / (4 cos² θ)` with F G taken as constant), so that the values are smooth.
 
 use super::tensor::{self, Field};
-use super::warp::Marginal2D;
 use crate::bxdf::{Brdf, BrdfSample, Rgb};
 use crate::error::{BrdfError, Result};
+use crate::sampling::Marginal2D;
 use crate::table::coords::{dir, theta_of};
 use crate::table::{BrdfTable, Channels, rgb_weights};
 use glam::{DVec2, DVec3};

@@ -10,4 +10,3 @@ pub mod mitsuba;
 pub mod pabopto;
 pub mod scattered;
 pub mod tensor;
-pub mod warp;

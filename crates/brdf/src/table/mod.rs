@@ -29,6 +29,7 @@ pub use sampler::{SampledTable, SamplerOptions, TableSampler};
 
 use crate::bxdf::{Brdf, BrdfSample, Rgb};
 use crate::error::{BrdfError, Result};
+use crate::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
 use glam::{DVec2, DVec3};
 use std::collections::BTreeMap;
 
@@ -397,8 +398,8 @@ impl Brdf for BrdfTable {
         if wo.z <= 0.0 {
             return None;
         }
-        let wi = sampler::cosine_hemisphere(u);
-        let pdf = sampler::cosine_pdf(wi);
+        let wi = cosine_hemisphere(u);
+        let pdf = cosine_hemisphere_pdf(wi.z);
         if pdf <= 0.0 {
             return None;
         }
@@ -413,7 +414,7 @@ impl Brdf for BrdfTable {
         if wo.z <= 0.0 {
             0.0
         } else {
-            sampler::cosine_pdf(wi)
+            cosine_hemisphere_pdf(wi.z)
         }
     }
 }

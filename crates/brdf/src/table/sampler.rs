@@ -17,22 +17,10 @@
 use super::BrdfTable;
 use super::coords::dir;
 use crate::bxdf::{Brdf, BrdfSample, Rgb};
+use crate::sampling::{AliasTable, cosine_hemisphere, cosine_hemisphere_pdf};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
-
-/// Cosine-weighted direction on the upper hemisphere from two uniform numbers (Malley's method
-/// with the polar map).
-pub(crate) fn cosine_hemisphere(u: DVec2) -> DVec3 {
-    let r = u.x.sqrt();
-    let phi = TAU * u.y;
-    DVec3::new(r * phi.cos(), r * phi.sin(), (1.0 - u.x).max(0.0).sqrt())
-}
-
-/// Density of [`cosine_hemisphere`] per steradian.
-pub(crate) fn cosine_pdf(wi: DVec3) -> f64 {
-    if wi.z > 0.0 { wi.z / PI } else { 0.0 }
-}
 
 /// Resolution of the sampler's bins and cells.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -61,59 +49,13 @@ impl SamplerOptions {
     }
 }
 
-/// Walker/Vose alias table over `n` outcomes.
-struct Alias {
-    prob: Vec<f32>,
-    alias: Vec<u32>,
-}
-
-impl Alias {
-    /// Build from non-negative weights with a positive sum.
-    fn new(weights: &[f64]) -> Alias {
-        let n = weights.len();
-        let total: f64 = weights.iter().sum();
-        let mut scaled: Vec<f64> = weights.iter().map(|w| w * n as f64 / total).collect();
-        let mut prob = vec![1.0f32; n];
-        let mut alias: Vec<u32> = (0..n as u32).collect();
-        let (mut small, mut large): (Vec<usize>, Vec<usize>) =
-            (0..n).partition(|&i| scaled[i] < 1.0);
-        while let (Some(s), Some(&l)) = (small.pop(), large.last()) {
-            prob[s] = scaled[s] as f32;
-            alias[s] = l as u32;
-            scaled[l] -= 1.0 - scaled[s];
-            if scaled[l] < 1.0 {
-                large.pop();
-                small.push(l);
-            }
-        }
-        Alias { prob, alias }
-    }
-
-    /// An outcome from a uniform `u` in [0, 1), and `u` rescaled to a fresh uniform.
-    fn sample(&self, u: f64) -> (usize, f64) {
-        let n = self.prob.len();
-        let x = u * n as f64;
-        let i = (x as usize).min(n - 1);
-        let frac = (x - i as f64).clamp(0.0, 1.0);
-        let p = f64::from(self.prob[i]);
-        if frac < p {
-            (i, frac / p)
-        } else {
-            (
-                self.alias[i] as usize,
-                ((frac - p) / (1.0 - p)).clamp(0.0, 1.0),
-            )
-        }
-    }
-}
-
 /// The distribution of one bin of `wo`.
 struct Bin {
     /// Probability of the cosine-law part.
     p_const: f64,
     /// Probability of each half-vector cell (sums to 1 when `p_const < 1`).
     cell_prob: Vec<f32>,
-    alias: Option<Alias>,
+    alias: Option<AliasTable>,
 }
 
 /// Alias-method sampler of a table; build once, then sample many times.
@@ -231,7 +173,7 @@ impl TableSampler {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return 0.0;
         }
-        let cos_part = wi.z / PI;
+        let cos_part = cosine_hemisphere_pdf(wi.z);
         // The half-vector cell of the pair and the density of h per steradian within it.
         let spec = (wi + wo).try_normalize().and_then(|h| {
             let c = wo.dot(h);
@@ -321,7 +263,7 @@ fn build_bin(table: &BrdfTable, o: &SamplerOptions, wo: DVec3) -> Bin {
     Bin {
         p_const: e_const / (e_const + e_spec),
         cell_prob,
-        alias: Some(Alias::new(&weights)),
+        alias: Some(AliasTable::new(&weights)),
     }
 }
 

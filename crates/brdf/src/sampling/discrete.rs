@@ -1,0 +1,233 @@
+//! Sampling from tabulated weights: Walker's alias table over discrete outcomes, and
+//! piecewise-constant densities on [0, 1) and [0, 1)² (pbrt-v4 §A.1 "The alias method" and
+//! §A.4.2 "Piecewise-constant 1D and 2D distributions"). The table sampler draws its half-vector
+//! cells from an [`AliasTable`], the renderer's environment light its pixels from a
+//! [`PiecewiseConstant2D`].
+//!
+//! The Mitsuba tensor export uses the piecewise-*bilinear* warp beside these
+//! ([`super::bilinear::Marginal2D`]): it must reproduce Mitsuba's `Marginal2D` exactly, which
+//! interpolates its density between nodes rather than holding it constant in cells.
+
+use glam::DVec2;
+
+/// Walker's alias table over `n` outcomes (A. J. Walker, "An efficient method for generating
+/// discrete random variables with general distributions", ACM TOMS 3(3), 1977; built by Vose's
+/// method, IEEE TSE 17(9), 1991): one uniform number picks an outcome in constant time.
+#[derive(Debug, Clone)]
+pub struct AliasTable {
+    prob: Vec<f32>,
+    alias: Vec<u32>,
+}
+
+impl AliasTable {
+    /// The table of non-negative `weights` with a positive sum.
+    pub fn new(weights: &[f64]) -> AliasTable {
+        let n = weights.len();
+        let total: f64 = weights.iter().sum();
+        let mut scaled: Vec<f64> = weights.iter().map(|w| w * n as f64 / total).collect();
+        let mut prob = vec![1.0f32; n];
+        let mut alias: Vec<u32> = (0..n as u32).collect();
+        let (mut small, mut large): (Vec<usize>, Vec<usize>) =
+            (0..n).partition(|&i| scaled[i] < 1.0);
+        while let (Some(s), Some(&l)) = (small.pop(), large.last()) {
+            prob[s] = scaled[s] as f32;
+            alias[s] = l as u32;
+            scaled[l] -= 1.0 - scaled[s];
+            if scaled[l] < 1.0 {
+                large.pop();
+                small.push(l);
+            }
+        }
+        AliasTable { prob, alias }
+    }
+
+    /// An outcome from a uniform `u` in [0, 1), and `u` rescaled to a fresh uniform number.
+    pub fn sample(&self, u: f64) -> (usize, f64) {
+        let n = self.prob.len();
+        let x = u * n as f64;
+        let i = (x as usize).min(n - 1);
+        let frac = (x - i as f64).clamp(0.0, 1.0);
+        let p = f64::from(self.prob[i]);
+        if frac < p {
+            (i, frac / p)
+        } else {
+            (
+                self.alias[i] as usize,
+                ((frac - p) / (1.0 - p)).clamp(0.0, 1.0),
+            )
+        }
+    }
+}
+
+/// A piecewise-constant density on [0, 1) over `n` equal bins, in proportion to non-negative
+/// weights, sampled by inverting its cumulative distribution.
+#[derive(Debug, Clone)]
+pub struct PiecewiseConstant1D {
+    /// Cumulative sums normalised to end at 1; `cdf[0] = 0`, length `n + 1`.
+    cdf: Vec<f64>,
+    /// Sum of the weights.
+    total: f64,
+}
+
+impl PiecewiseConstant1D {
+    /// The density of `weights` (negative weights count as zero).
+    pub fn new(weights: &[f64]) -> PiecewiseConstant1D {
+        let mut cdf = Vec::with_capacity(weights.len() + 1);
+        let mut acc = 0.0;
+        cdf.push(0.0);
+        for w in weights {
+            acc += w.max(0.0);
+            cdf.push(acc);
+        }
+        if acc > 0.0 {
+            cdf.iter_mut().for_each(|c| *c /= acc);
+        }
+        PiecewiseConstant1D { cdf, total: acc }
+    }
+
+    /// Number of bins.
+    pub fn len(&self) -> usize {
+        self.cdf.len() - 1
+    }
+
+    /// Whether there are no bins.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Sum of the weights (zero: nothing can be sampled).
+    pub fn total(&self) -> f64 {
+        self.total
+    }
+
+    /// A bin and the continuous position in [0, 1) within the whole range from a uniform `u`.
+    pub fn sample(&self, u: f64) -> (usize, f64) {
+        let n = self.len();
+        let i = self.cdf.partition_point(|&c| c <= u).clamp(1, n) - 1;
+        let width = self.cdf[i + 1] - self.cdf[i];
+        let frac = if width > 0.0 {
+            ((u - self.cdf[i]) / width).clamp(0.0, 1.0 - 1e-12)
+        } else {
+            0.5
+        };
+        (i, (i as f64 + frac) / n as f64)
+    }
+
+    /// The density on [0, 1) in bin `i`.
+    pub fn density(&self, i: usize) -> f64 {
+        (self.cdf[i + 1] - self.cdf[i]) * self.len() as f64
+    }
+}
+
+/// A piecewise-constant density on [0, 1)² over `width × height` equal cells: the marginal
+/// density of the rows and, per row, the conditional density of its columns.
+#[derive(Debug, Clone)]
+pub struct PiecewiseConstant2D {
+    rows: PiecewiseConstant1D,
+    cols: Vec<PiecewiseConstant1D>,
+}
+
+impl PiecewiseConstant2D {
+    /// The density of `weights`, row-major with `width` columns per row.
+    pub fn new(weights: &[f64], width: usize) -> PiecewiseConstant2D {
+        let cols: Vec<PiecewiseConstant1D> = weights
+            .chunks(width.max(1))
+            .map(PiecewiseConstant1D::new)
+            .collect();
+        let rows = PiecewiseConstant1D::new(&cols.iter().map(|c| c.total).collect::<Vec<_>>());
+        PiecewiseConstant2D { rows, cols }
+    }
+
+    /// Sum of the weights (zero: nothing can be sampled).
+    pub fn total(&self) -> f64 {
+        self.rows.total
+    }
+
+    /// A cell (column, row) and the continuous position in [0, 1)² (x along the columns, y
+    /// along the rows) from a uniform `u`: `u.x` picks the row, `u.y` the column in it.
+    pub fn sample(&self, u: DVec2) -> ((usize, usize), DVec2) {
+        let (j, y) = self.rows.sample(u.x);
+        let (i, x) = self.cols[j].sample(u.y);
+        ((i, j), DVec2::new(x, y))
+    }
+
+    /// The density on [0, 1)² in column `i` of row `j`.
+    pub fn density(&self, i: usize, j: usize) -> f64 {
+        self.rows.density(j) * self.cols[j].density(i)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const WEIGHTS: [f64; 6] = [0.5, 3.0, 0.0, 1.25, 2.0, 0.25];
+
+    /// Stratified uniforms `(k + 0.5)/n` reach each outcome in proportion to its weight, to
+    /// within one stratum per outcome boundary (the alias table splits each column once).
+    #[test]
+    fn the_alias_table_draws_each_outcome_in_proportion_to_its_weight() {
+        let table = AliasTable::new(&WEIGHTS);
+        let n = 60_000;
+        let mut counts = [0usize; WEIGHTS.len()];
+        for k in 0..n {
+            let (i, rest) = table.sample((k as f64 + 0.5) / n as f64);
+            assert!((0.0..=1.0).contains(&rest));
+            counts[i] += 1;
+        }
+        let total: f64 = WEIGHTS.iter().sum();
+        for (c, w) in counts.iter().zip(WEIGHTS) {
+            let want = w / total;
+            let got = *c as f64 / n as f64;
+            assert!(
+                (got - want).abs() <= 2.0 * WEIGHTS.len() as f64 / n as f64,
+                "{got} {want}"
+            );
+        }
+    }
+
+    /// The 1D density integrates to 1, is proportional to the weights, and its inversion puts
+    /// the fraction `w_i / Σw` of stratified uniforms into bin `i`, at positions inside it.
+    #[test]
+    fn the_1d_density_inverts_its_distribution() {
+        let d = PiecewiseConstant1D::new(&WEIGHTS);
+        let n = d.len();
+        let integral: f64 = (0..n).map(|i| d.density(i) / n as f64).sum();
+        assert!((integral - 1.0).abs() < 1e-12);
+        let total: f64 = WEIGHTS.iter().sum();
+        assert_eq!(d.total(), total);
+        let samples = 60_000;
+        let mut counts = [0usize; WEIGHTS.len()];
+        for k in 0..samples {
+            let (i, x) = d.sample((k as f64 + 0.5) / samples as f64);
+            assert!(x >= i as f64 / n as f64 && x < (i + 1) as f64 / n as f64);
+            counts[i] += 1;
+        }
+        for (c, w) in counts.iter().zip(WEIGHTS) {
+            assert!((*c as f64 / samples as f64 - w / total).abs() <= 1.0 / samples as f64);
+        }
+    }
+
+    /// The 2D density integrates to 1 and equals the normalised weight times the cell count.
+    #[test]
+    fn the_2d_density_is_the_normalised_weights() {
+        let (w, h) = (3, 2);
+        let d = PiecewiseConstant2D::new(&WEIGHTS, w);
+        let total: f64 = WEIGHTS.iter().sum();
+        let mut integral = 0.0;
+        for j in 0..h {
+            for i in 0..w {
+                let want = WEIGHTS[j * w + i] / total * (w * h) as f64;
+                assert!((d.density(i, j) - want).abs() < 1e-12);
+                integral += d.density(i, j) / (w * h) as f64;
+            }
+        }
+        assert!((integral - 1.0).abs() < 1e-12);
+        let ((i, j), p) = d.sample(DVec2::new(0.7, 0.4));
+        assert!(d.density(i, j) > 0.0);
+        assert_eq!(
+            ((p.x * w as f64) as usize, (p.y * h as f64) as usize),
+            (i, j)
+        );
+    }
+}
