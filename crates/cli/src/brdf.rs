@@ -15,6 +15,7 @@ use gonio_brdf::table::colour::{self, ColourSpace};
 use gonio_brdf::table::coords::turn_about_z;
 use gonio_brdf::table::{BrdfTable, Provenance, Resolution};
 use gonio_color::{Illuminant, Observer};
+use gonio_scatter::geometry::{incidence_direction, inplane_direction};
 use std::path::{Path, PathBuf};
 
 /// Subcommands of `gonio brdf`.
@@ -221,18 +222,6 @@ fn resolution(v: &[usize]) -> Result<Resolution> {
     Ok(r)
 }
 
-/// Source in the x-z plane at negative x, the convention of in-plane goniometers.
-fn source(theta_deg: f64) -> DVec3 {
-    let t = theta_deg.to_radians();
-    DVec3::new(-t.sin(), 0.0, t.cos())
-}
-
-/// Detector at signed in-plane angle (positive: specular side).
-fn detector(theta_deg: f64) -> DVec3 {
-    let t = theta_deg.to_radians();
-    DVec3::new(t.sin(), 0.0, t.cos())
-}
-
 /// The in-plane plots' x axis, in words and unit.
 const SCATTER_AXIS: &str = "scattering angle θs (degrees from the normal, + on the specular side)";
 /// The in-plane plots' y axis, in words and unit.
@@ -433,7 +422,10 @@ fn in_plane(brdf: &dyn Brdf, incidence_deg: &[f64], label: &str, markers: bool) 
             label: format!("{label}{ti}°"),
             points: (-89..=89)
                 .map(|ts| {
-                    let f = brdf.eval(detector(ts as f64), source(ti));
+                    let f = brdf.eval(
+                        inplane_direction((ts as f64).to_radians()),
+                        incidence_direction(ti.to_radians()),
+                    );
                     (ts as f64, (f.x + f.y + f.z) / 3.0)
                 })
                 .collect(),

@@ -9,10 +9,12 @@ use anyhow::{Context, Result, bail, ensure};
 use clap::{Args, ValueEnum};
 use gonio_brdf::Ior;
 use gonio_instrument::validity;
-use gonio_scatter::InplaneCurve;
+use gonio_io::Progress;
 use gonio_scatter::analytic::{AnalyticModel, GaussianModel};
+use gonio_scatter::inplane::AnalyticMethod;
 use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions, Spot, average_curves};
 use gonio_scatter::ray::{RayEngine, RayOptions};
+use gonio_scatter::{Goniometer, InplaneCurve, InplaneMethod};
 use gonio_surface::normals::NormalMethod;
 use indicatif::ProgressBar;
 use num_complex::Complex64;
@@ -127,6 +129,7 @@ pub fn run(args: InplaneArgs) -> Result<()> {
     check_args(&args)?;
     let mut warnings = gonio_instrument::validity::check_index(args.index)
         .map_err(|e| anyhow::anyhow!("--index: {e}"))?;
+    let gonio = Goniometer::from_degrees(&args.incidence_deg, &scatter_deg, args.aperture_deg);
     let steps = args.method.len() * args.incidence_deg.len();
     let progress = crate::progress::bar(steps as u64);
     let mut curves: Vec<InplaneCurve> = Vec::new();
@@ -138,18 +141,27 @@ pub fn run(args: InplaneArgs) -> Result<()> {
     };
     for method in methods {
         match method {
-            Method::Ray => {
-                curves.extend(ray_curves(&args, &scatter_deg, &progress, &mut warnings)?)
+            Method::Ray => curves.extend(ray_curves(&args, &gonio, &progress, &mut warnings)?),
+            Method::Kirchhoff => {
+                curves.extend(kirchhoff_curves(&args, &gonio, &progress, &mut warnings)?)
             }
-            Method::Kirchhoff => curves.extend(kirchhoff_curves(
-                &args,
-                &scatter_deg,
-                &progress,
-                &mut warnings,
-            )?),
         }
     }
-    curves.extend(model_curves(&args, &scatter_deg)?);
+    curves.extend(model_curves(&args, &gonio)?);
+    // Write the angles in degrees exactly as the user gave them (the library works in radians,
+    // and 60° → rad → deg is 59.99999999999999).
+    for curve in &mut curves {
+        if let Some(k) = gonio
+            .incidences_deg()
+            .iter()
+            .position(|&t| t == curve.incidence_deg)
+        {
+            curve.incidence_deg = args.incidence_deg[k];
+        }
+        for (p, &ts) in curve.points.iter_mut().zip(&scatter_deg) {
+            p.scatter_deg = ts;
+        }
+    }
     progress.finish_and_clear();
     for w in &warnings {
         eprintln!("warning: {w}");
@@ -272,7 +284,7 @@ fn parse_angles(spec: &str) -> Result<Vec<f64>> {
 
 fn ray_curves(
     args: &InplaneArgs,
-    scatter_deg: &[f64],
+    gonio: &Goniometer,
     progress: &ProgressBar,
     warnings: &mut Vec<String>,
 ) -> Result<Vec<InplaneCurve>> {
@@ -309,16 +321,12 @@ fn ray_curves(
     };
     progress.set_message("ray: facet normals");
     let engine = RayEngine::new(&map, options).with_context(|| format!("{}", path.display()))?;
-    let mut curves = Vec::new();
-    for &ti in &args.incidence_deg {
-        progress.set_message(format!("ray: incidence {ti}°"));
-        let mut curve = engine.inplane(ti, scatter_deg, args.aperture_deg.to_radians())?;
+    let mut curves = engine.inplane_curves(gonio, &[], &crate::progress::ticking(progress))?;
+    for curve in &mut curves {
         curve.wavelength_nm = match args.wavelength_nm.as_slice() {
             [w] => Some(*w),
             _ => None,
         };
-        curves.push(curve);
-        progress.inc(1);
     }
     Ok(curves)
 }
@@ -342,7 +350,7 @@ fn wavelengths_m(args: &InplaneArgs, what: &str) -> Result<Vec<f64>> {
 
 fn kirchhoff_curves(
     args: &InplaneArgs,
-    scatter_deg: &[f64],
+    gonio: &Goniometer,
     progress: &ProgressBar,
     warnings: &mut Vec<String>,
 ) -> Result<Vec<InplaneCurve>> {
@@ -370,10 +378,8 @@ fn kirchhoff_curves(
         longest,
         &validity::inplane_readings(&args.incidence_deg, args.aperture_deg.to_radians()),
     ));
-    let incidences: Vec<f64> = args.incidence_deg.iter().map(|t| t.to_radians()).collect();
-    let scatter: Vec<f64> = scatter_deg.iter().map(|t| t.to_radians()).collect();
-    let detectors = spots.len() * wavelengths.len() * incidences.len() * scatter.len();
-    progress.inc_length((detectors - incidences.len()) as u64);
+    let detectors = spots.len() * wavelengths.len() * gonio.incidences.len() * gonio.scatter.len();
+    progress.inc_length((detectors - gonio.incidences.len()) as u64);
     let mut sets = Vec::new();
     for (i, spot) in spots.iter().enumerate() {
         progress.set_message(format!("kirchhoff: spot {}/{}", i + 1, spots.len()));
@@ -384,39 +390,27 @@ fn kirchhoff_curves(
         let engine =
             Kirchhoff::new(&map, options).with_context(|| format!("{}", path.display()))?;
         let curves = engine
-            .inplane(
-                &wavelengths,
-                &incidences,
-                &scatter,
-                args.aperture_deg.to_radians(),
+            .inplane_curves(
+                gonio,
+                &args.wavelength_nm,
                 &crate::progress::ticking(progress),
             )
             .with_context(|| format!("{}", path.display()))?;
         sets.push(curves);
     }
-    // Label the curves (wavelength-major, then incidence) with the values as the user wrote them.
+    // Label the curves (wavelength-major, then incidence) with the wavelengths as written.
     let mut curves = average_curves(&sets)?;
     let labels = args
         .wavelength_nm
         .iter()
-        .flat_map(|&w| args.incidence_deg.iter().map(move |&ti| (w, ti)));
-    for (curve, (w, ti)) in curves.iter_mut().zip(labels) {
+        .flat_map(|&w| args.incidence_deg.iter().map(move |_| w));
+    for (curve, w) in curves.iter_mut().zip(labels) {
         curve.wavelength_nm = Some(w);
-        label(curve, ti, scatter_deg);
     }
     Ok(curves)
 }
 
-/// Write the angles in degrees exactly as the user gave them (the library works in radians, and
-/// 60° → rad → deg is 59.99999999999999).
-fn label(curve: &mut InplaneCurve, incidence_deg: f64, scatter_deg: &[f64]) {
-    curve.incidence_deg = incidence_deg;
-    for (p, &ts) in curve.points.iter_mut().zip(scatter_deg) {
-        p.scatter_deg = ts;
-    }
-}
-
-fn model_curves(args: &InplaneArgs, scatter_deg: &[f64]) -> Result<Vec<InplaneCurve>> {
+fn model_curves(args: &InplaneArgs, gonio: &Goniometer) -> Result<Vec<InplaneCurve>> {
     if args.model.is_empty() {
         return Ok(Vec::new());
     }
@@ -424,8 +418,6 @@ fn model_curves(args: &InplaneArgs, scatter_deg: &[f64]) -> Result<Vec<InplaneCu
         bail!("--model needs the surface's --sq-nm and --corr-um");
     };
     let model = GaussianModel::new(sq * 1e-9, corr * 1e-6, ior(args))?;
-    let scatter: Vec<f64> = scatter_deg.iter().map(|t| t.to_radians()).collect();
-    let alpha = args.aperture_deg.to_radians();
     let mut curves = Vec::new();
     for m in &args.model {
         let kind = match m {
@@ -435,21 +427,25 @@ fn model_curves(args: &InplaneArgs, scatter_deg: &[f64]) -> Result<Vec<InplaneCu
             Model::Smooth => AnalyticModel::Smooth,
         };
         // Ray-optics models do not depend on the wavelength: one curve per incidence.
-        let wavelengths: Vec<Option<f64>> = if kind.is_wave() {
+        if kind.is_wave() {
             wavelengths_m(args, &format!("--model {}", kind.name()))?;
-            args.wavelength_nm.iter().map(|&w| Some(w)).collect()
-        } else {
-            vec![None]
+        }
+        let method = AnalyticMethod {
+            surface: &model,
+            model: kind,
         };
-        for &w in &wavelengths {
-            for &ti in &args.incidence_deg {
-                let wavelength = w.map_or(f64::NAN, |w| w * 1e-9);
-                let mut curve = model.inplane(kind, wavelength, ti.to_radians(), &scatter, alpha);
-                curve.wavelength_nm = w;
-                label(&mut curve, ti, scatter_deg);
-                curves.push(curve);
+        let mut these = method.inplane_curves(gonio, &args.wavelength_nm, &Progress::silent())?;
+        if kind.is_wave() {
+            // Wavelength-major, then incidence: label them with the wavelengths as written.
+            let labels = args
+                .wavelength_nm
+                .iter()
+                .flat_map(|&w| args.incidence_deg.iter().map(move |_| w));
+            for (curve, w) in these.iter_mut().zip(labels) {
+                curve.wavelength_nm = Some(w);
             }
         }
+        curves.append(&mut these);
     }
     Ok(curves)
 }

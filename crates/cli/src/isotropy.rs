@@ -7,7 +7,7 @@ use crate::inplane::Method;
 use anyhow::{Result, ensure};
 use clap::Args;
 use gonio_instrument::isotropy::{self, IsotropyConfig, Orientation, RotationCheck};
-use gonio_scatter::InplaneCurve;
+use gonio_scatter::{Goniometer, InplaneCurve};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -62,15 +62,18 @@ pub fn run(args: IsotropyArgs) -> Result<()> {
     let config = IsotropyConfig {
         angles_deg: args.angle_deg.clone(),
         ior: args.index,
-        incidences_deg: args.incidence_deg.clone(),
-        half_angle: args.aperture_deg.to_radians(),
+        // STARR's scattering angles at the incidences and aperture given.
+        goniometer: Goniometer {
+            incidences: args.incidence_deg.iter().map(|t| t.to_radians()).collect(),
+            half_angle: args.aperture_deg.to_radians(),
+            ..Goniometer::starr()
+        },
         method: match args.method {
             Method::Ray => isotropy::Method::Ray,
             Method::Kirchhoff => isotropy::Method::Kirchhoff {
                 wavelength: args.wavelength_nm * 1e-9,
             },
         },
-        ..IsotropyConfig::starr(isotropy::Method::Ray)
     };
     let bar = crate::progress::bar(config.angles_deg.len() as u64);
     let checks = isotropy::check(&map, &config, &crate::progress::reporting(&bar));

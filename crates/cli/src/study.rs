@@ -242,7 +242,7 @@ fn shown(c: &InplaneCurve, config: &StudyConfig) -> bool {
 }
 
 fn plot_sample(path: &Path, r: &SampleResult, config: &StudyConfig) -> Result<()> {
-    let incidences = &config.incidences_deg;
+    let incidences = &config.goniometer.incidences_deg();
     let series: Vec<Series> = r
         .curves
         .iter()
@@ -286,7 +286,7 @@ fn plot_peaks(
     config: &StudyConfig,
 ) -> Result<()> {
     let mut series = Vec::new();
-    for (i, &ti) in config.incidences_deg.iter().enumerate() {
+    for (i, &ti) in config.goniometer.incidences_deg().iter().enumerate() {
         for method in ["ray", "kirchhoff"] {
             let points: Vec<(f64, f64)> = peaks
                 .iter()

@@ -5,7 +5,8 @@
 //! docs/performance.md.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use gonio_instrument::isotropy::{IsotropyConfig, Method, check, quarter_turns, turned_pair};
+use gonio_instrument::isotropy::{IsotropyConfig, Method, check};
+use gonio_surface::ops::{quarter_turns, turned_pair};
 use gonio_surface::synth::epoxy_surface;
 use std::hint::black_box;
 use std::time::Duration;

@@ -9,9 +9,9 @@ use crate::specimens::{KirchhoffSpecimen, RaySpecimen};
 use crate::validity;
 use gonio_brdf::Ior;
 use gonio_io::Progress;
-use gonio_scatter::InplaneCurve;
 use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions};
 use gonio_scatter::ray::{RayEngine, RayOptions};
+use gonio_scatter::{Goniometer, InplaneCurve, InplaneMethod};
 use gonio_surface::HeightMap;
 use gonio_surface::stats::{Statistics, statistics};
 
@@ -23,12 +23,8 @@ pub const GLOSS_WAVELENGTH: f64 = 550e-9;
 pub struct StudyConfig {
     /// Refractive index of the coating.
     pub ior: f64,
-    /// Incidence angles, degrees.
-    pub incidences_deg: Vec<f64>,
-    /// Signed scatter angles, degrees (specular at +incidence).
-    pub scatter_deg: Vec<f64>,
-    /// Detector half-angle, radians.
-    pub half_angle: f64,
+    /// The in-plane goniometer the curves are read at.
+    pub goniometer: Goniometer,
     /// Wavelengths of the Kirchhoff curves, nm.
     pub wavelengths_nm: Vec<f64>,
     /// Whether to compute Kirchhoff curves (the ray method is always computed).
@@ -41,9 +37,7 @@ impl StudyConfig {
     pub fn starr() -> Self {
         StudyConfig {
             ior: 1.55,
-            incidences_deg: vec![20.0, 45.0, 60.0, 70.0],
-            scatter_deg: (-75..=75).map(f64::from).collect(),
-            half_angle: 1.4f64.to_radians(),
+            goniometer: Goniometer::starr(),
             wavelengths_nm: vec![500.0, 550.0, 600.0],
             kirchhoff: true,
         }
@@ -112,7 +106,8 @@ pub fn run(
     config: &StudyConfig,
     progress: &Progress,
 ) -> Result<Vec<SampleResult>> {
-    if config.incidences_deg.is_empty() || config.scatter_deg.is_empty() {
+    let gonio = &config.goniometer;
+    if gonio.incidences.is_empty() || gonio.scatter.is_empty() {
         return Err(InstrumentError::Invalid(
             "the study needs incidence and scatter angles".into(),
         ));
@@ -129,7 +124,7 @@ pub fn run(
         .map(|w| w * 1e-9)
         .fold(validity::PHOTOMETRIC_WAVELENGTH, f64::max);
     let meter = validity::meter_readings();
-    let detectors = validity::inplane_readings(&config.incidences_deg, config.half_angle);
+    let detectors = validity::inplane_readings(&gonio.incidences_deg(), gonio.half_angle);
     let kirchhoff = config.kirchhoff && !config.wavelengths_nm.is_empty();
     let steps = if kirchhoff { 3 } else { 2 };
     let total = (samples.len() * steps) as u64;
@@ -167,11 +162,8 @@ pub fn run(
             )?;
             let gloss_ray = measure(&RaySpecimen { engine: &engine })?;
             warnings.extend(validity::doi_warning(&gloss_ray).map(|w| format!("ray gloss: {w}")));
-            let mut curves = config
-                .incidences_deg
-                .iter()
-                .map(|&ti| engine.inplane(ti, &config.scatter_deg, config.half_angle))
-                .collect::<Result<Vec<_>, _>>()?;
+            let silent = Progress::silent();
+            let mut curves = engine.inplane_curves(gonio, &[], &silent)?;
             let mut gloss_kirchhoff = None;
             let mut notes = Vec::new();
             if kirchhoff {
@@ -188,21 +180,7 @@ pub fn run(
                         .into_iter()
                         .map(|w| format!("Kirchhoff curves: {w}")),
                 );
-                let wavelengths: Vec<f64> =
-                    config.wavelengths_nm.iter().map(|l| l * 1e-9).collect();
-                let incidences: Vec<f64> = config
-                    .incidences_deg
-                    .iter()
-                    .map(|t| t.to_radians())
-                    .collect();
-                let scatter: Vec<f64> = config.scatter_deg.iter().map(|t| t.to_radians()).collect();
-                curves.extend(k.inplane(
-                    &wavelengths,
-                    &incidences,
-                    &scatter,
-                    config.half_angle,
-                    &gonio_io::Progress::silent(),
-                )?);
+                curves.extend(k.inplane_curves(gonio, &config.wavelengths_nm, &silent)?);
                 // Gloss needs the whole receptor cones at 20–85°: a rough map may be too coarse
                 // for the Kirchhoff sampling there even where the in-plane curves could be
                 // computed; the sample then has no Kirchhoff gloss, and a note says why.

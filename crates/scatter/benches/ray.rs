@@ -4,8 +4,10 @@
 //! Throughput is in facet reflections (facets × incidences × azimuths).
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use gonio_io::Progress;
 use gonio_scatter::geometry::incidence_direction;
 use gonio_scatter::ray::{HemisphereGrid, RayEngine, RayOptions};
+use gonio_scatter::{Goniometer, InplaneMethod};
 use gonio_surface::HeightMap;
 use gonio_surface::synth::GaussianSurface;
 use std::hint::black_box;
@@ -19,8 +21,7 @@ fn surface() -> HeightMap {
 
 fn inplane(c: &mut Criterion) {
     let map = surface();
-    let scatter_deg: Vec<f64> = (-75..=75).map(f64::from).collect();
-    let incidences = [20.0, 45.0, 60.0, 70.0];
+    let starr = Goniometer::starr();
     let mut group = c.benchmark_group("ray_inplane_1024");
     group
         .sample_size(10)
@@ -32,7 +33,7 @@ fn inplane(c: &mut Criterion) {
         };
         let engine = RayEngine::new(&map, options).expect("engine");
         group.throughput(Throughput::Elements(
-            (engine.facet_count() * incidences.len()) as u64,
+            (engine.facet_count() * starr.incidences.len()) as u64,
         ));
         let name = if shadowing {
             "4x151_shadowing"
@@ -41,13 +42,11 @@ fn inplane(c: &mut Criterion) {
         };
         group.bench_function(name, |b| {
             b.iter(|| {
-                for &ti in &incidences {
-                    black_box(
-                        engine
-                            .inplane(ti, &scatter_deg, 1.4f64.to_radians())
-                            .expect("curve"),
-                    );
-                }
+                black_box(
+                    engine
+                        .inplane_curves(&starr, &[], &Progress::silent())
+                        .expect("curves"),
+                )
             })
         });
     }

@@ -49,6 +49,69 @@ impl Detector {
     }
 }
 
+/// An in-plane goniometer: sources at the incidences, detectors of one cone half-angle at the
+/// signed scattering angles, all in the plane of incidence and in radians (the conventions of
+/// this module's directions). Built from degrees at the edges ([`Goniometer::from_degrees`]);
+/// [`Goniometer::starr`] is the NIST STARR set-up the project's measurements use.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Goniometer {
+    /// Incidence angles, radians.
+    pub incidences: Vec<f64>,
+    /// Signed scattering angles, radians (specular at `+incidence`).
+    pub scatter: Vec<f64>,
+    /// Detector cone half-angle, radians.
+    pub half_angle: f64,
+}
+
+impl Goniometer {
+    /// A goniometer from angles in degrees: incidences, signed scattering angles and the
+    /// detector's half-angle (the aperture).
+    pub fn from_degrees(incidences_deg: &[f64], scatter_deg: &[f64], aperture_deg: f64) -> Self {
+        Goniometer {
+            incidences: incidences_deg.iter().map(|d| d.to_radians()).collect(),
+            scatter: scatter_deg.iter().map(|d| d.to_radians()).collect(),
+            half_angle: aperture_deg.to_radians(),
+        }
+    }
+
+    /// The NIST STARR in-plane set-up of the epoxy roughness series: incidence 20°, 45°, 60° and
+    /// 70°, scattering angles −75° to 75° in 1° steps, detectors of 1.4° half-angle.
+    pub fn starr() -> Self {
+        let scatter: Vec<f64> = (-75..=75).map(f64::from).collect();
+        Goniometer::from_degrees(&STARR_INCIDENCES_DEG, &scatter, STARR_APERTURE_DEG)
+    }
+
+    /// The incidences in degrees (as the curves label them).
+    pub fn incidences_deg(&self) -> Vec<f64> {
+        self.incidences
+            .iter()
+            .map(|t| label_value(t.to_degrees()))
+            .collect()
+    }
+
+    /// The scattering angles in degrees (as the curves label them).
+    pub fn scatter_deg(&self) -> Vec<f64> {
+        self.scatter
+            .iter()
+            .map(|t| label_value(t.to_degrees()))
+            .collect()
+    }
+
+    /// The detector at the scattering angle `theta_s` (radians).
+    pub fn detector(&self, theta_s: f64) -> Detector {
+        Detector {
+            direction: inplane_direction(theta_s),
+            half_angle: self.half_angle,
+        }
+    }
+}
+
+/// Incidence angles of the NIST STARR set-up, degrees.
+pub const STARR_INCIDENCES_DEG: [f64; 4] = [20.0, 45.0, 60.0, 70.0];
+
+/// Detector half-angle of the NIST STARR set-up, degrees.
+pub const STARR_APERTURE_DEG: f64 = 1.4;
+
 /// A value for a curve's label (degrees, nm) rounded to 10⁻⁹, so that a quantity converted from
 /// the user's unit to SI and back reads as given (60° → rad → deg is 59.99999999999999).
 pub fn label_value(x: f64) -> f64 {

@@ -5,9 +5,11 @@
 pub mod analytic;
 pub mod error;
 pub mod geometry;
+pub mod inplane;
 pub mod kirchhoff;
 pub mod ray;
 pub mod table;
 
 pub use error::{Result, ScatterError};
-pub use geometry::{CurvePoint, Detector, InplaneCurve};
+pub use geometry::{CurvePoint, Detector, Goniometer, InplaneCurve};
+pub use inplane::InplaneMethod;

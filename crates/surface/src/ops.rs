@@ -1,6 +1,10 @@
 //! Operations on height maps that return a new map: least-squares plane levelling, cropping,
 //! rotation about the centre and resampling to another spacing (both with bicubic-spline
-//! interpolation).
+//! interpolation), and exact quarter turns and turned pairs ([`turns`]).
+
+pub mod turns;
+
+pub use turns::{quarter_turns, turned_pair};
 
 use crate::error::{Result, SurfaceError};
 use crate::heightmap::HeightMap;

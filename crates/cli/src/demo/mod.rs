@@ -13,7 +13,9 @@ use clap::Args;
 use gonio_instrument::isotropy::{self, IsotropyConfig};
 use gonio_instrument::specimens::RaySpecimen;
 use gonio_instrument::study::StudyConfig;
+use gonio_io::Progress;
 use gonio_scatter::ray::{RayEngine, RayOptions};
+use gonio_scatter::{Goniometer, InplaneMethod};
 use gonio_surface::stats::{Statistics, statistics};
 use gonio_surface::{HeightMap, io};
 use std::path::{Path, PathBuf};
@@ -246,11 +248,7 @@ fn real_file_section(dir: &Path) -> Result<(Section, summary::RealFile)> {
     let png = dir.join("real_surface.png");
     plot_height_map(&map, REAL_FILE_NAME, &png)?;
     let engine = RayEngine::new(&map, RayOptions::default())?;
-    let scatter: Vec<f64> = (-75..=75).map(f64::from).collect();
-    let curves = [20.0, 45.0, 60.0, 70.0]
-        .iter()
-        .map(|&ti| engine.inplane(ti, &scatter, 1.4f64.to_radians()))
-        .collect::<Result<Vec<_>, _>>()?;
+    let curves = engine.inplane_curves(&Goniometer::starr(), &[], &Progress::silent())?;
     let gloss = gonio_instrument::measure(&RaySpecimen { engine: &engine })?;
     let csv = dir.join("real_inplane.csv");
     gonio_instrument::curves::write_csv(&csv, &curves)?;
@@ -321,7 +319,7 @@ fn isotropy_section(dir: &Path) -> Result<Section> {
         angles_deg: vec![90.0, 45.0],
         ..IsotropyConfig::starr(isotropy::Method::Ray)
     };
-    let checks = isotropy::check(&map, &config, &gonio_io::Progress::silent())?;
+    let checks = isotropy::check(&map, &config, &Progress::silent())?;
     let mut blocks = vec![Block::Text(format!(
         "An isotropic surface scatters the same whatever its azimuth. The in-plane curves of \
          {REAL_FILE_NAME} (ray method, STARR geometry, the plane of incidence along x) against \
@@ -423,7 +421,8 @@ fn study_section(out: &StudyOutputs, config: &StudyConfig, plan: &Plan, seconds:
          approximation at {} nm. The ray method cannot produce the coherent specular spike of the \
          smooth samples; the two methods meet for the rough ones.",
         config
-            .incidences_deg
+            .goniometer
+            .incidences_deg()
             .iter()
             .map(|v| v.to_string())
             .collect::<Vec<_>>()

@@ -148,8 +148,8 @@ fn anisotropic_surface_follows_the_slope_in_the_plane_of_incidence() {
     let mut widths = 0;
     for c in &quarter.comparisons {
         if let (Some(wa), Some(wb)) = (c.peak_a.fwhm_deg, c.peak_b.fwhm_deg) {
-            let ea = facet_fwhm_deg(o.rms_slope_x, config.half_angle);
-            let eb = facet_fwhm_deg(r.rms_slope_x, config.half_angle);
+            let ea = facet_fwhm_deg(o.rms_slope_x, config.goniometer.half_angle);
+            let eb = facet_fwhm_deg(r.rms_slope_x, config.goniometer.half_angle);
             assert!(
                 (wa / ea - 1.0).abs() < 0.1,
                 "{}°: {wa} vs {ea}",

@@ -110,9 +110,9 @@ fn ray_and_kirchhoff_curves_of_the_rough_sample_agree() {
         slope_ratio.push(0.5 * (px / sx + py / sy));
         slope_x.push(px);
         rays.push(
-            INCIDENCES_DEG
+            incidences
                 .iter()
-                .map(|&ti| ray.inplane(ti, &scatter_deg, half_angle).unwrap())
+                .map(|&ti| ray.inplane(ti, &scatter, half_angle).unwrap())
                 .collect::<Vec<_>>(),
         );
         let k = Kirchhoff::new(&map, KirchhoffOptions::new(ior)).unwrap();

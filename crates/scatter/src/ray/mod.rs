@@ -17,11 +17,12 @@
 //!
 //! ```no_run
 //! use gonio_scatter::ray::{RayEngine, RayOptions};
+//! use gonio_scatter::{Goniometer, InplaneMethod};
 //! let map = gonio_surface::io::read(std::path::Path::new("sample.x3p"))?;
 //! let engine = RayEngine::new(&map, RayOptions::default())?;
-//! let scatter_deg: Vec<f64> = (-75..=75).map(f64::from).collect();
-//! let curve = engine.inplane(20.0, &scatter_deg, 1.4f64.to_radians())?;
-//! println!("specular BRDF {} 1/sr", curve.points[95].brdf_per_sr);
+//! // Incidence 20/45/60/70°, scatter -75..75° in 1° steps, 1.4° detectors.
+//! let curves = engine.inplane_curves(&Goniometer::starr(), &[], &Default::default())?;
+//! println!("specular BRDF at 20° {} 1/sr", curves[0].points[95].brdf_per_sr);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -39,7 +40,9 @@ pub use hemisphere::{HemisphereGrid, HemisphereTable};
 use hemisphere::CellLocator;
 
 use crate::error::{Result, ScatterError};
-use crate::geometry::{CurvePoint, Detector, InplaneCurve, incidence_direction, inplane_direction};
+use crate::geometry::{
+    CurvePoint, Detector, InplaneCurve, incidence_direction, inplane_direction, label_value,
+};
 use glam::DVec3;
 use gonio_brdf::Ior;
 use gonio_brdf::fresnel::Polarised;
@@ -471,32 +474,28 @@ impl RayEngine {
         ))
     }
 
-    /// The in-plane curve at incidence `incidence_deg` for detectors at the signed scattering
-    /// angles `scatter_deg` (degrees; specular at `+incidence`, negative on the source's side, as
-    /// on in-plane goniometers) with cone half-angle `half_angle` (radians).
-    pub fn inplane(
-        &self,
-        incidence_deg: f64,
-        scatter_deg: &[f64],
-        half_angle: f64,
-    ) -> Result<InplaneCurve> {
-        let detectors: Vec<Detector> = scatter_deg
+    /// The in-plane curve at incidence `theta_i` for detectors at the signed scattering angles
+    /// `scatter` (specular at `+theta_i`, negative on the source's side, as on in-plane
+    /// goniometers) with cone half-angle `half_angle`, all in radians like the other methods'
+    /// (the [`crate::InplaneMethod`] of a [`crate::Goniometer`] calls it per incidence).
+    pub fn inplane(&self, theta_i: f64, scatter: &[f64], half_angle: f64) -> Result<InplaneCurve> {
+        let detectors: Vec<Detector> = scatter
             .iter()
             .map(|&ts| Detector {
-                direction: inplane_direction(ts.to_radians()),
+                direction: inplane_direction(ts),
                 half_angle,
             })
             .collect();
-        let readings = self.detect(incidence_direction(incidence_deg.to_radians()), &detectors)?;
+        let readings = self.detect(incidence_direction(theta_i), &detectors)?;
         Ok(InplaneCurve {
             method: "ray".into(),
             wavelength_nm: None,
-            incidence_deg,
-            points: scatter_deg
+            incidence_deg: label_value(theta_i.to_degrees()),
+            points: scatter
                 .iter()
                 .zip(&readings)
                 .map(|(&ts, r)| CurvePoint {
-                    scatter_deg: ts,
+                    scatter_deg: label_value(ts.to_degrees()),
                     brdf_per_sr: r.brdf_per_sr,
                     reflectance: r.reflectance,
                     rel_uncertainty: Some(r.rel_uncertainty()),

@@ -37,7 +37,7 @@ fn gaussian(n: usize, sq: f64, t: f64, seed: u64) -> HeightMap {
 fn flat_map_reflects_fresnel_into_specular_only() {
     let map = plane_map(48, 0.0);
     let n = 1.55;
-    let scatter_deg: Vec<f64> = (-89..=89).map(f64::from).collect();
+    let scatter: Vec<f64> = (-89..=89).map(|d| f64::from(d).to_radians()).collect();
     for shadowing in [true, false] {
         let options = RayOptions {
             shadowing,
@@ -51,7 +51,7 @@ fn flat_map_reflects_fresnel_into_specular_only() {
                 let ti: f64 = f64::to_radians(ti_deg);
                 let mirror = inplane_direction(ti);
                 let r = dielectric(ti.cos(), n);
-                let curve = engine.inplane(ti_deg, &scatter_deg, alpha).unwrap();
+                let curve = engine.inplane(ti, &scatter, alpha).unwrap();
                 for p in &curve.points {
                     let d = inplane_direction(p.scatter_deg.to_radians());
                     if mirror.dot(d) > alpha.cos() {
@@ -232,5 +232,5 @@ fn rejects_bad_input() {
         half_angle: 0.0,
     };
     assert!(engine.detect(DVec3::Z, &[det]).is_err());
-    assert!(engine.inplane(95.0, &[0.0], 0.01).is_err());
+    assert!(engine.inplane(95f64.to_radians(), &[0.0], 0.01).is_err());
 }
