@@ -7,7 +7,7 @@ use clap::Args;
 use gonio_instrument::compare::{Comparison, compare};
 use gonio_instrument::curves::read_csv;
 use gonio_scatter::InplaneCurve;
-use gonio_scatter::geometry::cone_solid_angle;
+use gonio_scatter::geometry::{STARR_APERTURE_DEG, cone_solid_angle};
 use std::path::{Path, PathBuf};
 
 #[derive(Args)]
@@ -24,7 +24,7 @@ pub struct CompareArgs {
     #[arg(long)]
     wavelength_nm: Option<f64>,
     /// Detector half-angle in degrees, to derive the BRDF of files that give only reflectance.
-    #[arg(long, default_value_t = 1.4)]
+    #[arg(long, default_value_t = STARR_APERTURE_DEG)]
     aperture_deg: f64,
     /// Plot both sets of curves on a log axis into this PNG.
     #[arg(short, long)]

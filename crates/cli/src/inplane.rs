@@ -11,6 +11,7 @@ use gonio_brdf::Ior;
 use gonio_instrument::validity;
 use gonio_io::Progress;
 use gonio_scatter::analytic::{AnalyticModel, GaussianModel};
+use gonio_scatter::geometry::{STARR_APERTURE_DEG, STARR_INCIDENCES_DEG};
 use gonio_scatter::inplane::AnalyticMethod;
 use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions, Spot, average_curves};
 use gonio_scatter::ray::{RayEngine, RayOptions};
@@ -33,7 +34,7 @@ pub struct InplaneArgs {
     method: Vec<Method>,
     /// Incidence angles in degrees from the surface normal, comma-separated (default: the NIST
     /// STARR geometry, 20,45,60,70).
-    #[arg(long, value_delimiter = ',', default_value = "20,45,60,70")]
+    #[arg(long, value_delimiter = ',', default_values_t = STARR_INCIDENCES_DEG)]
     incidence_deg: Vec<f64>,
     /// Signed scattering angles in degrees, START:STOP:STEP (both ends included) or a
     /// comma-separated list. The specular direction of incidence ti is at +ti; negative angles
@@ -41,7 +42,7 @@ pub struct InplaneArgs {
     #[arg(long, default_value = "-75:75:1", allow_hyphen_values = true)]
     scatter_deg: String,
     /// Detector half-angle in degrees (the cone each detector collects; NIST STARR: 1.4).
-    #[arg(long, default_value_t = 1.4)]
+    #[arg(long, default_value_t = STARR_APERTURE_DEG)]
     aperture_deg: f64,
     /// Refractive index (real part) of the material under the surface.
     #[arg(long, default_value_t = 1.55)]

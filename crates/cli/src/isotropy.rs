@@ -7,6 +7,7 @@ use crate::inplane::Method;
 use anyhow::{Result, ensure};
 use clap::Args;
 use gonio_instrument::isotropy::{self, IsotropyConfig, Orientation, RotationCheck};
+use gonio_scatter::geometry::{STARR_APERTURE_DEG, STARR_INCIDENCES_DEG};
 use gonio_scatter::{Goniometer, InplaneCurve};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -35,10 +36,10 @@ pub struct IsotropyArgs {
     wavelength_nm: f64,
     /// Incidence angles in degrees from the normal, comma-separated (NIST STARR: 20,45,60,70).
     /// Scatter angles are -75..75° in 1° steps.
-    #[arg(long, value_delimiter = ',', default_value = "20,45,60,70")]
+    #[arg(long, value_delimiter = ',', default_values_t = STARR_INCIDENCES_DEG)]
     incidence_deg: Vec<f64>,
     /// Detector half-angle in degrees.
-    #[arg(long, default_value_t = 1.4)]
+    #[arg(long, default_value_t = STARR_APERTURE_DEG)]
     aperture_deg: f64,
     /// Refractive index of the coating.
     #[arg(long, default_value_t = 1.55)]
