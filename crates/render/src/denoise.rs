@@ -27,10 +27,10 @@
 //! of samples is smoothed); `docs/render.md` gives the measured error against converged
 //! references. The raw estimate stays available (`denoise = false`, the default).
 
-use crate::BrdfSampling;
 use crate::image::Image;
 use crate::path::{facing_frame, sample_brdf};
 use crate::scene::{PrimKind, Scene};
+use crate::settings::BrdfSampling;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 

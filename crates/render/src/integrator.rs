@@ -14,6 +14,7 @@ use crate::error::{RenderError, Result};
 use crate::image::Image;
 use crate::path::{Sampler, Tristimulus, mix, radiance};
 use crate::scene::Scene;
+use crate::settings::{BrdfSampling, ColourMode, Settings};
 use crate::spectral::{SpectralFilmSetup, SpectralPath};
 use glam::DVec2;
 use gonio_brdf::Rgb;
@@ -21,16 +22,6 @@ use gonio_io::Progress;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
-
-/// How BRDF samples are drawn.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum BrdfSampling {
-    /// Each material's own importance sampler (analytic lobes, alias method for tables).
-    #[default]
-    Importance,
-    /// Cosine-weighted directions for every material (for comparison with importance sampling).
-    Cosine,
-}
 
 /// Settings of a render. Settings left `None` come from the scene's `[render]` table, then
 /// from the defaults: 64 samples per pixel, seed 0, 8 bounces.
@@ -53,29 +44,6 @@ pub struct RenderOptions {
     pub denoise: Option<bool>,
     /// Where to report the tiles rendered (stage `rendering`; default: nowhere).
     pub progress: Progress,
-}
-
-/// How colour is carried along a path.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum ColourMode {
-    /// The tristimulus shortcut: every BRDF and light in linear sRGB (spectral tables reduced
-    /// under D65 by their band weights), multiplied channel by channel along the path.
-    #[default]
-    Tristimulus,
-    /// Hero-wavelength spectral rendering (Wilkie et al. 2014): four wavelengths per path,
-    /// spectral tables evaluated at them, RGB materials and lights turned into spectra, and the
-    /// spectral values turned into colour at the film (D65, CIE 1931 2°). See
-    /// [`crate::spectral`].
-    Spectral,
-}
-
-/// The settings of one render, every choice made.
-pub(crate) struct Settings {
-    pub spp: u32,
-    pub seed: u32,
-    pub max_bounces: u32,
-    pub sampling: BrdfSampling,
-    pub colour: ColourMode,
 }
 
 /// What a render cost.

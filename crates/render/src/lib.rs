@@ -26,16 +26,18 @@ pub mod light;
 pub mod material;
 mod path;
 pub mod scene;
+pub mod settings;
 pub mod spectral;
+pub mod spectral_table;
 pub mod surface;
 
 pub use error::{RenderError, Result};
 pub use image::{Display, Image, ToneCurve};
 pub use integrator::{
-    BrdfSampling, ColourMode, Estimate, RenderOptions, RenderStats, render, render_estimate,
-    render_picture,
+    Estimate, RenderOptions, RenderStats, render, render_estimate, render_picture,
 };
 pub use scene::Scene;
+pub use settings::{BrdfSampling, ColourMode};
 
 use std::path::Path;
 

@@ -3,10 +3,10 @@
 //! `.binary`), importance-sampled with the alias-method sampler of
 //! [`gonio_brdf::table::SampledTable`], or a height map turned into a table by a scattering
 //! method (see [`crate::scene`]). A spectral table also keeps its spectra for the spectral
-//! colour mode ([`crate::spectral::SpectralTable`]).
+//! colour mode ([`crate::spectral_table::SpectralTable`]).
 
 use crate::error::{RenderError, Result};
-use crate::spectral::SpectralTable;
+use crate::spectral_table::SpectralTable;
 use gonio_brdf::formats::{astm, merl};
 use gonio_brdf::models::ModelSpec;
 use gonio_brdf::table::{BrdfTable, SampledTable};

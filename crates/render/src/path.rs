@@ -11,9 +11,9 @@
 //! modes, so that the two modes trace the same directions from the same seed.
 
 use crate::geometry::{Hit, Ray};
-use crate::integrator::{BrdfSampling, Settings};
 use crate::material::Material;
 use crate::scene::{PrimKind, Scene};
+use crate::settings::{BrdfSampling, Settings};
 use glam::{DVec2, DVec3, DVec4};
 use gonio_brdf::sampling::{Frame, cosine_hemisphere, cosine_hemisphere_pdf};
 use gonio_brdf::{Brdf, BrdfSample, Rgb};

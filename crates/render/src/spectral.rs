@@ -20,9 +20,9 @@
 //! ([`gonio_brdf::table::BrdfTable::to_rgb`]), so for a path that meets one surface under a white
 //! light the two modes agree up to Monte Carlo noise.
 //!
-//! - Spectral tables ([`SpectralTable`]) are evaluated at the path's wavelengths, linearly between
-//!   the table's bands and holding the end bands beyond them (the convention of the tristimulus
-//!   band weights, [`gonio_color::SpectralToXyz`]).
+//! - Spectral tables ([`SpectralTable`](crate::spectral_table::SpectralTable)) are evaluated at
+//!   the path's wavelengths, linearly between the table's bands and holding the end bands beyond
+//!   them (the convention of the tristimulus band weights, [`gonio_color::SpectralToXyz`]).
 //! - Everything given in linear sRGB (light and environment radiances, analytic models, RGB and
 //!   monochrome tables) becomes a spectrum by [`RgbUpsampling`]: a fixed linear combination of
 //!   three smooth basis spectra whose coefficients are solved so that the spectrum's colour under
@@ -32,17 +32,16 @@
 //!   mode; for a light of RGB c the emitted spectral radiance is `s_c(λ) · D65(λ)` on the film's
 //!   scale.
 
-use crate::integrator::BrdfSampling;
 use crate::material::Material;
 use crate::path::{Shading, mix, sample_brdf};
+use crate::settings::BrdfSampling;
 use glam::{DMat3, DVec2, DVec3, DVec4};
 use gonio_brdf::Rgb;
 use gonio_brdf::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
-use gonio_brdf::table::{BrdfTable, Channels, SampledTable};
 use gonio_color::{
     Colorimetry, HERO_COUNT, HeroSampler, Illuminant, Observer, SpectralFilm, Spectrum,
 };
-use std::sync::{Arc, LazyLock};
+use std::sync::LazyLock;
 
 /// The illuminant of the film (and of the tristimulus shortcut's reduction).
 pub const ILLUMINANT: Illuminant = Illuminant::D65;
@@ -106,62 +105,6 @@ fn basis(wavelength_nm: f64) -> [f64; 3] {
     let red = logistic(GREEN_RED_NM);
     let blue = 1.0 - logistic(BLUE_GREEN_NM);
     [red, 1.0 - red - blue, blue]
-}
-
-/// A spectral table with its importance sampler, evaluated at a path's wavelengths.
-#[derive(Clone)]
-pub struct SpectralTable {
-    sampled: Arc<SampledTable>,
-}
-
-impl SpectralTable {
-    /// The spectral view of `sampled`; `None` unless its channels are spectral.
-    pub fn new(sampled: Arc<SampledTable>) -> Option<SpectralTable> {
-        matches!(sampled.table().channels(), Channels::Spectral { .. })
-            .then_some(SpectralTable { sampled })
-    }
-
-    /// The table.
-    pub fn table(&self) -> &BrdfTable {
-        self.sampled.table()
-    }
-
-    /// `f(wi, wo)` in 1/sr at each of `wavelengths_nm`: the table's channels interpolated at the
-    /// pair of directions, then linearly between bands (end bands held beyond the range).
-    pub fn eval(&self, wo: DVec3, wi: DVec3, wavelengths_nm: &[f64; HERO_COUNT]) -> DVec4 {
-        let table = self.sampled.table();
-        let Channels::Spectral {
-            wavelengths_nm: bands,
-        } = table.channels()
-        else {
-            unreachable!("SpectralTable::new admits spectral tables only");
-        };
-        let mut stack = [0.0f64; 64];
-        let mut heap = Vec::new();
-        let values = if bands.len() <= stack.len() {
-            &mut stack[..bands.len()]
-        } else {
-            heap.resize(bands.len(), 0.0);
-            &mut heap[..]
-        };
-        table.eval_channels(wo, wi, values);
-        DVec4::from_array(wavelengths_nm.map(|w| band_value(bands, values, w)))
-    }
-}
-
-/// The value at `wavelength_nm` of a spectrum given at `bands`: linear between bands, the end
-/// values held beyond them.
-fn band_value(bands: &[f64], values: &[f64], wavelength_nm: f64) -> f64 {
-    let last = bands.len() - 1;
-    if wavelength_nm <= bands[0] {
-        return values[0];
-    }
-    if wavelength_nm >= bands[last] {
-        return values[last];
-    }
-    let i = bands.partition_point(|&b| b <= wavelength_nm) - 1;
-    let t = (wavelength_nm - bands[i]) / (bands[i + 1] - bands[i]);
-    values[i] + t * (values[i + 1] - values[i])
 }
 
 /// The wavelength pdf of pbrt-v4 (`VisibleWavelengthsPDF`), per nm, over 360–830 nm.
@@ -281,7 +224,7 @@ impl Shading for SpectralPath {
         // The directions of the tristimulus mode (SampledTable::sample), spectral values.
         let (wi, pdf) = match how {
             BrdfSampling::Importance => {
-                let sampler = table.sampled.sampler();
+                let sampler = table.sampled().sampler();
                 let wi = sampler.sample_direction(wo, u)?;
                 (wi, sampler.pdf(wo, wi))
             }
@@ -362,17 +305,5 @@ mod tests {
         for v in rgb {
             assert!((v - 1.0).abs() < 1e-3, "{rgb:?}");
         }
-    }
-
-    #[test]
-    fn band_values_interpolate_and_hold_the_ends() {
-        let bands = [400.0, 410.0, 430.0];
-        let values = [1.0, 2.0, 4.0];
-        assert_eq!(band_value(&bands, &values, 380.0), 1.0);
-        assert_eq!(band_value(&bands, &values, 405.0), 1.5);
-        assert_eq!(band_value(&bands, &values, 420.0), 3.0);
-        assert_eq!(band_value(&bands, &values, 430.0), 4.0);
-        assert_eq!(band_value(&bands, &values, 700.0), 4.0);
-        assert_eq!(band_value(&[550.0], &[0.3], 700.0), 0.3);
     }
 }

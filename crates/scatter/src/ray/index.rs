@@ -9,7 +9,7 @@
 //! x component lies in `[cos(min(acos d_x + alpha, π)), cos(max(acos d_x - alpha, 0))]`; the
 //! same holds for y.
 
-use super::trace::Ray;
+use super::reflected::Ray;
 use crate::geometry::Detector;
 
 /// What a detector collected: sums of the rays' reflectance shares and the number of rays.

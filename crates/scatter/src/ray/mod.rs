@@ -30,6 +30,7 @@ mod hemisphere;
 mod horizon;
 mod index;
 mod march;
+mod reflected;
 mod trace;
 
 #[cfg(test)]
@@ -53,7 +54,8 @@ use index::{BinMask, DirectionIndex, Sums};
 use march::HeightField;
 use ndarray::Array2;
 use rayon::prelude::*;
-use trace::{Facet, Ray, Tracer};
+use reflected::Ray;
+use trace::{Facet, Tracer};
 
 /// Options of the ray method.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -11,6 +11,7 @@
 
 use super::index::BinMask;
 use super::march::{Fate, HeightField};
+use super::reflected::Ray;
 use glam::DVec3;
 use gonio_brdf::Ior;
 use ndarray::Array2;
@@ -24,20 +25,6 @@ pub(crate) struct Facet {
     pub n: DVec3,
     /// Row-major index of its grid point, `iy · nx + ix`.
     pub index: usize,
-}
-
-/// A reflected ray leaving the surface, with its share of the reflectance (unpolarised, and
-/// for s and p polarisation when asked for).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Ray {
-    /// Unit direction, `z > 0`, in the detectors' frame.
-    pub d: DVec3,
-    /// Unpolarised reflectance carried.
-    pub w: f64,
-    /// Reflectance carried for s polarisation (0 unless polarisation is tracked).
-    pub ws: f64,
-    /// Reflectance carried for p polarisation (0 unless polarisation is tracked).
-    pub wp: f64,
 }
 
 /// Everything a facet needs to trace light for one incidence.

@@ -157,7 +157,6 @@ fn rough_matches_beckmann_series_and_ray_method() {
     let (kirchhoff, maps) = kirchhoff_average(sigma, t, alpha, 16);
     let series = series_average(&maps, alpha);
     let ws = worst(&kirchhoff, &series);
-    let scatter_deg: Vec<f64> = scatter().iter().map(|s| s.to_degrees()).collect();
     let options = RayOptions {
         ior: Ior::Dielectric(N),
         normals: NormalMethod::Spline,
@@ -170,7 +169,7 @@ fn rough_matches_beckmann_series_and_ray_method() {
             vec![
                 RayEngine::new(m, options)
                     .unwrap()
-                    .inplane(20.0, &scatter_deg, alpha)
+                    .inplane(ti, &scatter(), alpha)
                     .unwrap(),
             ]
         })
