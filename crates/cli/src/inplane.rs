@@ -11,7 +11,7 @@ use gonio_brdf::Ior;
 use gonio_instrument::validity;
 use gonio_io::Progress;
 use gonio_scatter::analytic::{AnalyticModel, GaussianModel};
-use gonio_scatter::geometry::{STARR_APERTURE_DEG, STARR_INCIDENCES_DEG};
+use gonio_scatter::geometry::{STARR_APERTURE_DEG, STARR_INCIDENCES_DEG, label_value};
 use gonio_scatter::inplane::AnalyticMethod;
 use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions, Spot, average_curves};
 use gonio_scatter::ray::{RayEngine, RayOptions};
@@ -149,15 +149,24 @@ pub fn run(args: InplaneArgs) -> Result<()> {
         }
     }
     curves.extend(model_curves(&args, &gonio)?);
-    // Write the angles in degrees exactly as the user gave them (the library works in radians,
-    // and 60° → rad → deg is 59.99999999999999).
+    // Write the angles and wavelengths exactly as the user gave them (the library works in
+    // radians and metres, and 60° → rad → deg is 59.99999999999999): each label the library
+    // wrote is matched with the given value it came from.
+    let incidences = gonio.incidences_deg();
+    let wavelengths: Vec<f64> = args
+        .wavelength_nm
+        .iter()
+        .map(|w| label_value(w * 1e-9 * 1e9))
+        .collect();
     for curve in &mut curves {
-        if let Some(k) = gonio
-            .incidences_deg()
-            .iter()
-            .position(|&t| t == curve.incidence_deg)
-        {
+        if let Some(k) = incidences.iter().position(|&t| t == curve.incidence_deg) {
             curve.incidence_deg = args.incidence_deg[k];
+        }
+        if let Some(k) = wavelengths
+            .iter()
+            .position(|&w| Some(w) == curve.wavelength_nm)
+        {
+            curve.wavelength_nm = Some(args.wavelength_nm[k]);
         }
         for (p, &ts) in curve.points.iter_mut().zip(&scatter_deg) {
             p.scatter_deg = ts;
@@ -399,16 +408,7 @@ fn kirchhoff_curves(
             .with_context(|| format!("{}", path.display()))?;
         sets.push(curves);
     }
-    // Label the curves (wavelength-major, then incidence) with the wavelengths as written.
-    let mut curves = average_curves(&sets)?;
-    let labels = args
-        .wavelength_nm
-        .iter()
-        .flat_map(|&w| args.incidence_deg.iter().map(move |_| w));
-    for (curve, w) in curves.iter_mut().zip(labels) {
-        curve.wavelength_nm = Some(w);
-    }
-    Ok(curves)
+    Ok(average_curves(&sets)?)
 }
 
 fn model_curves(args: &InplaneArgs, gonio: &Goniometer) -> Result<Vec<InplaneCurve>> {
@@ -435,18 +435,7 @@ fn model_curves(args: &InplaneArgs, gonio: &Goniometer) -> Result<Vec<InplaneCur
             surface: &model,
             model: kind,
         };
-        let mut these = method.inplane_curves(gonio, &args.wavelength_nm, &Progress::silent())?;
-        if kind.is_wave() {
-            // Wavelength-major, then incidence: label them with the wavelengths as written.
-            let labels = args
-                .wavelength_nm
-                .iter()
-                .flat_map(|&w| args.incidence_deg.iter().map(move |_| w));
-            for (curve, w) in these.iter_mut().zip(labels) {
-                curve.wavelength_nm = Some(w);
-            }
-        }
-        curves.append(&mut these);
+        curves.extend(method.inplane_curves(gonio, &args.wavelength_nm, &Progress::silent())?);
     }
     Ok(curves)
 }

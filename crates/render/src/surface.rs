@@ -124,12 +124,8 @@ pub fn table(desc: &SurfaceDesc, dir: &Path, scene: &Path, name: &str) -> Result
     // The default turns depend on the map (its Str), which the stamp identifies; an explicit
     // count is part of the surface's identity too.
     let cache = TableCache::new(dir.join(".gonio-cache"));
-    let cached = cache.path(
-        &format!("{stamp}|azimuths={:?}", desc.azimuths),
-        &ray_options,
-        &TableOptions::isotropic(),
-    );
-    cache.get_or_compute(&cached, || {
+    let surface = format!("{stamp}|azimuths={:?}", desc.azimuths);
+    cache.get_or_compute(&surface, &ray_options, &TableOptions::isotropic(), || {
         let map = match &source {
             Source::File(path) => {
                 let channel = desc

@@ -13,7 +13,7 @@ use super::TableOptions;
 use crate::ray::RayOptions;
 use gonio_brdf::gbrdf;
 use gonio_brdf::table::BrdfTable;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Revision of the tables [`super::ray_table`] makes from the same inputs. Raise it with every
 /// change that alters a table's values, so that caches written before are not read.
@@ -41,20 +41,23 @@ impl TableCache {
         self.dir.join(format!("{:016x}.gbrdf", fnv1a(&inputs)))
     }
 
-    /// The cached table at `path` (from [`TableCache::path`]), or the one `compute` makes,
-    /// which is then written there.
+    /// The cached table of these inputs (as for [`TableCache::path`]), or the one `compute`
+    /// makes, which is then written there.
     pub fn get_or_compute<E>(
         &self,
-        path: &Path,
+        surface: &str,
+        ray: &RayOptions,
+        table: &TableOptions,
         compute: impl FnOnce() -> Result<BrdfTable, E>,
     ) -> Result<BrdfTable, E> {
-        if let Ok(table) = gbrdf::read(path) {
+        let path = self.path(surface, ray, table);
+        if let Ok(table) = gbrdf::read(&path) {
             return Ok(table);
         }
         let table = compute()?;
         if std::fs::create_dir_all(&self.dir).is_ok() {
             // A cache that cannot be written only costs time on the next load.
-            let _ = gbrdf::write(&table, path);
+            let _ = gbrdf::write(&table, &path);
         }
         Ok(table)
     }
@@ -104,7 +107,7 @@ mod tests {
         let mut computed = 0;
         for _ in 0..2 {
             let t = cache
-                .get_or_compute(&path, || {
+                .get_or_compute("map a", &ray, &table, || {
                     computed += 1;
                     make()
                 })
