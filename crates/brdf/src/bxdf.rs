@@ -5,6 +5,11 @@
 //! toward the light and `wo` toward the viewer (the convention of pbrt-v4, Pharr, Jakob &
 //! Humphreys, *Physically Based Rendering*, 4th ed., 2023, and of `docs/brdf-models.md`).
 //! Following pbrt-v4, sampling returns the value, the direction and the pdf together.
+//!
+//! A BRDF is given in colour (linear sRGB, [`Brdf::eval`]); one that also has a spectrum (a
+//! spectral table) says so through [`Brdf::spectral`], whose [`SpectralBrdf`] evaluates it at
+//! any wavelengths. A spectral renderer asks for that view and turns the colour of every other
+//! BRDF into a spectrum itself.
 
 use glam::{DVec2, DVec3};
 
@@ -34,4 +39,21 @@ pub trait Brdf: Send + Sync {
 
     /// The pdf (per steradian) with which [`Brdf::sample`] returns `wi` given `wo`.
     fn pdf(&self, wo: DVec3, wi: DVec3) -> f64;
+
+    /// The BRDF's spectrum, for one that has one; `None` (the default) for a BRDF given in
+    /// colour only.
+    fn spectral(&self) -> Option<&dyn SpectralBrdf> {
+        None
+    }
+}
+
+/// A BRDF that has a spectrum: its values at any wavelengths, and its importance sampling
+/// without the colour value that [`Brdf::sample`] computes beside the direction.
+pub trait SpectralBrdf: Send + Sync {
+    /// `f(wi, wo)` in 1/sr at each of `wavelengths_nm`, written into `out` (same length); zero
+    /// when either direction is below the surface.
+    fn eval_at(&self, wo: DVec3, wi: DVec3, wavelengths_nm: &[f64], out: &mut [f64]);
+
+    /// The direction and pdf of [`Brdf::sample`] for the same `wo` and `u`, without its value.
+    fn sample_direction(&self, wo: DVec3, u: DVec2) -> Option<(DVec3, f64)>;
 }

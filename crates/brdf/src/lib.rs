@@ -13,6 +13,6 @@ pub mod sampling;
 pub mod table;
 pub mod validate;
 
-pub use bxdf::{Brdf, BrdfSample, Rgb};
+pub use bxdf::{Brdf, BrdfSample, Rgb, SpectralBrdf};
 pub use error::{BrdfError, Result};
 pub use fresnel::Ior;

@@ -28,7 +28,6 @@ mod path;
 pub mod scene;
 pub mod settings;
 pub mod spectral;
-pub mod spectral_table;
 pub mod surface;
 
 pub use error::{RenderError, Result};

@@ -2,11 +2,10 @@
 //! crate (its [`ModelSpec`]), a tabulated BRDF read from a file (`.gbrdf`, Cornell `.astm`, MERL
 //! `.binary`), importance-sampled with the alias-method sampler of
 //! [`gonio_brdf::table::SampledTable`], or a height map turned into a table by a scattering
-//! method (see [`crate::scene`]). A spectral table also keeps its spectra for the spectral
-//! colour mode ([`crate::spectral_table::SpectralTable`]).
+//! method (see [`crate::scene`]). A spectral table is seen at the path's wavelengths in the
+//! spectral colour mode through its [`gonio_brdf::SpectralBrdf`] view.
 
 use crate::error::{RenderError, Result};
-use crate::spectral_table::SpectralTable;
 use gonio_brdf::formats::{astm, merl};
 use gonio_brdf::models::ModelSpec;
 use gonio_brdf::table::{BrdfTable, SampledTable};
@@ -19,12 +18,10 @@ use std::sync::Arc;
 pub struct Material {
     /// Its name in the scene file.
     pub name: String,
-    /// The BRDF in the shading frame (z = shading normal, x = surface tangent), in linear sRGB.
+    /// The BRDF in the shading frame (z = shading normal, x = surface tangent), in linear sRGB;
+    /// a spectral one ([`Brdf::spectral`]) is read at the path's wavelengths in the spectral
+    /// mode.
     pub brdf: Arc<dyn Brdf>,
-    /// For a spectral table, the same table evaluated at the wavelengths of a path (spectral
-    /// mode); `None` for every other BRDF, whose linear sRGB the spectral mode turns into a
-    /// spectrum. Set it to `None` when replacing `brdf`.
-    pub spectral: Option<SpectralTable>,
 }
 
 impl Material {
@@ -33,19 +30,12 @@ impl Material {
         Material {
             name: name.into(),
             brdf,
-            spectral: None,
         }
     }
 
-    /// A material of a tabulated BRDF, importance-sampled by the alias method; a spectral table
-    /// keeps its spectra for the spectral mode.
+    /// A material of a tabulated BRDF, importance-sampled by the alias method.
     pub fn from_table(name: impl Into<String>, table: BrdfTable) -> Material {
-        let sampled = Arc::new(SampledTable::new(table));
-        Material {
-            name: name.into(),
-            spectral: SpectralTable::new(sampled.clone()),
-            brdf: sampled,
-        }
+        Material::new(name, Arc::new(SampledTable::new(table)))
     }
 }
 

@@ -20,7 +20,7 @@
 //! ([`gonio_brdf::table::BrdfTable::to_rgb`]), so for a path that meets one surface under a white
 //! light the two modes agree up to Monte Carlo noise.
 //!
-//! - Spectral tables ([`SpectralTable`](crate::spectral_table::SpectralTable)) are evaluated at
+//! - Spectral tables (any BRDF with a [`gonio_brdf::SpectralBrdf`] view) are evaluated at
 //!   the path's wavelengths, linearly between the table's bands and holding the end bands beyond
 //!   them (the convention of the tristimulus band weights, [`gonio_color::SpectralToXyz`]).
 //! - Everything given in linear sRGB (light and environment radiances, analytic models, RGB and
@@ -36,8 +36,8 @@ use crate::material::Material;
 use crate::path::{Shading, mix, sample_brdf};
 use crate::settings::BrdfSampling;
 use glam::{DMat3, DVec2, DVec3, DVec4};
-use gonio_brdf::Rgb;
 use gonio_brdf::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
+use gonio_brdf::{Rgb, SpectralBrdf};
 use gonio_color::{
     Colorimetry, HERO_COUNT, HeroSampler, Illuminant, Observer, SpectralFilm, Spectrum,
 };
@@ -204,8 +204,8 @@ impl Shading for SpectralPath {
     }
 
     fn eval(&self, material: &Material, wo: DVec3, wi: DVec3) -> DVec4 {
-        match &material.spectral {
-            Some(table) => table.eval(wo, wi, &self.wavelengths_nm),
+        match material.brdf.spectral() {
+            Some(spectral) => self.eval_spectral(spectral, wo, wi),
             None => self.carry_rgb(material.brdf.eval(wo, wi)),
         }
     }
@@ -217,23 +217,28 @@ impl Shading for SpectralPath {
         u: DVec2,
         how: BrdfSampling,
     ) -> Option<(DVec3, DVec4, f64)> {
-        let Some(table) = &material.spectral else {
+        let Some(spectral) = material.brdf.spectral() else {
             return sample_brdf(material.brdf.as_ref(), wo, u, how)
                 .map(|s| (s.wi, self.carry_rgb(s.f), s.pdf));
         };
-        // The directions of the tristimulus mode (SampledTable::sample), spectral values.
+        // The directions of the tristimulus mode (Brdf::sample), spectral values.
         let (wi, pdf) = match how {
-            BrdfSampling::Importance => {
-                let sampler = table.sampled().sampler();
-                let wi = sampler.sample_direction(wo, u)?;
-                (wi, sampler.pdf(wo, wi))
-            }
+            BrdfSampling::Importance => spectral.sample_direction(wo, u)?,
             BrdfSampling::Cosine => {
                 let wi = cosine_hemisphere(u);
                 (wi, cosine_hemisphere_pdf(wi.z))
             }
         };
-        (pdf > 0.0).then(|| (wi, table.eval(wo, wi, &self.wavelengths_nm), pdf))
+        (pdf > 0.0).then(|| (wi, self.eval_spectral(spectral, wo, wi), pdf))
+    }
+}
+
+impl SpectralPath {
+    /// A spectral BRDF at the path's four wavelengths.
+    fn eval_spectral(&self, spectral: &dyn SpectralBrdf, wo: DVec3, wi: DVec3) -> DVec4 {
+        let mut values = [0.0; HERO_COUNT];
+        spectral.eval_at(wo, wi, &self.wavelengths_nm, &mut values);
+        DVec4::from_array(values)
     }
 }
 

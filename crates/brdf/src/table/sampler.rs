@@ -16,7 +16,7 @@
 
 use super::BrdfTable;
 use super::coords::dir;
-use crate::bxdf::{Brdf, BrdfSample, Rgb};
+use crate::bxdf::{Brdf, BrdfSample, Rgb, SpectralBrdf};
 use crate::sampling::{AliasTable, cosine_hemisphere, cosine_hemisphere_pdf};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -314,6 +314,10 @@ impl Brdf for SampledTable {
 
     fn pdf(&self, wo: DVec3, wi: DVec3) -> f64 {
         self.sampler.pdf(wo, wi)
+    }
+
+    fn spectral(&self) -> Option<&dyn SpectralBrdf> {
+        self.spectral_view()
     }
 }
 
