@@ -195,7 +195,92 @@ fn offset(p: DVec3, n: DVec3) -> DVec3 {
     p + n * (1e-7 * (1.0 + p.abs().max_element()))
 }
 
-/// Radiance along `ray`, as `shading` carries it.
+/// What a light sample needs of the surface interaction it lights.
+struct Interaction<'a> {
+    /// The hit point.
+    p: DVec3,
+    /// The point rays leave from (off the surface on the side of `ng`).
+    origin: DVec3,
+    /// The geometric normal, on the side the path arrived from.
+    ng: DVec3,
+    /// The shading frame.
+    frame: Frame,
+    /// Toward the viewer, local frame.
+    wo: DVec3,
+    /// The material.
+    material: &'a Material,
+}
+
+/// The weight of a light's emission that a BRDF sample of density `brdf_pdf` found (`None`: a
+/// camera ray, which no light sample could have found): the power heuristic against the light
+/// sample that could have, of density `light_pdf()` (called only when needed).
+fn emission_weight(brdf_pdf: Option<f64>, light_pdf: impl FnOnce() -> f64) -> f64 {
+    brdf_pdf.map_or(1.0, |pdf| power(pdf, light_pdf()))
+}
+
+/// Next-event estimation (pbrt-v4's `SampleLd`): one light chosen uniformly, sampled toward the
+/// interaction, its reflected radiance when unoccluded (before the path's throughput), weighted
+/// against the BRDF sample that could have found it. `last`: no BRDF sample follows (the
+/// longest path), so the light sample takes the full weight. Draws three dimensions of the
+/// sampler whether or not the scene has lights, so that paths stay in step.
+fn sample_ld<S: Shading>(
+    scene: &Scene,
+    shading: &S,
+    at: &Interaction,
+    sampling: BrdfSampling,
+    last: bool,
+    sampler: &mut Sampler,
+    rays: &mut u64,
+) -> S::C {
+    let n_lights = scene.lights.len();
+    if n_lights == 0 {
+        sampler.next();
+        sampler.next2();
+        return S::C::ZERO;
+    }
+    let p_select = 1.0 / n_lights as f64;
+    let k = ((sampler.next() * n_lights as f64) as usize).min(n_lights - 1);
+    let u = sampler.next2();
+    let Some(ls) = scene.lights[k].sample(at.p, u, scene.accel.shapes()) else {
+        return S::C::ZERO;
+    };
+    let wi = at.frame.to_local(ls.wi);
+    if !(wi.z > 0.0 && ls.wi.dot(at.ng) > 0.0 && ls.li != Rgb::ZERO && ls.pdf > 0.0) {
+        return S::C::ZERO;
+    }
+    let f = shading.eval(at.material, at.wo, wi);
+    if f == S::C::ZERO {
+        return S::C::ZERO;
+    }
+    *rays += 1;
+    let shadow = Ray {
+        origin: at.origin,
+        dir: ls.wi,
+    };
+    // Stop short of the light itself (the origin is offset too).
+    let t_max = if ls.dist.is_finite() {
+        ls.dist * (1.0 - 1e-5)
+    } else {
+        f64::INFINITY
+    };
+    if scene.accel.occluded(&shadow, 0.0, t_max) {
+        return S::C::ZERO;
+    }
+    let pdf_l = p_select * ls.pdf;
+    let w = if ls.delta || last {
+        1.0
+    } else {
+        power(
+            pdf_l,
+            brdf_pdf(at.material.brdf.as_ref(), at.wo, wi, sampling),
+        )
+    };
+    f * shading.carry_rgb(ls.li) * (wi.z * w / pdf_l)
+}
+
+/// Radiance along `ray`, as `shading` carries it: at each interaction a light sample
+/// ([`sample_ld`]) and a BRDF sample that continues the path, whose emission found on the way is
+/// weighted against the light sample ([`emission_weight`]).
 pub(crate) fn radiance<S: Shading>(
     scene: &Scene,
     opts: &Settings,
@@ -205,8 +290,7 @@ pub(crate) fn radiance<S: Shading>(
     rays: &mut u64,
 ) -> S::C {
     let shapes = scene.accel.shapes();
-    let n_lights = scene.lights.len();
-    let p_select = 1.0 / n_lights.max(1) as f64;
+    let p_select = 1.0 / scene.lights.len().max(1) as f64;
     let mut l = S::C::ZERO;
     let mut beta = S::C::ONE;
     // Density of the BRDF sample that produced `ray` (None: a camera ray).
@@ -217,11 +301,8 @@ pub(crate) fn radiance<S: Shading>(
         let Some(hit) = scene.accel.intersect(&ray, 0.0, f64::INFINITY) else {
             for light in scene.lights.iter().filter(|l| l.is_infinite()) {
                 let le = shading.carry_rgb(light.le(ray.dir));
-                let w = prev_pdf.map_or(1.0, |pdf| {
-                    power(
-                        pdf,
-                        p_select * light.pdf(prev_p, ray.dir, DVec3::ZERO, shapes),
-                    )
+                let w = emission_weight(prev_pdf, || {
+                    p_select * light.pdf(prev_p, ray.dir, DVec3::ZERO, shapes)
                 });
                 l += beta * le * w;
             }
@@ -231,58 +312,30 @@ pub(crate) fn radiance<S: Shading>(
             PrimKind::Emitter(k) => {
                 let light = &scene.lights[k];
                 let le = shading.carry_rgb(light.emitted(hit.ng, ray.dir));
-                let w = prev_pdf.map_or(1.0, |pdf| {
-                    power(pdf, p_select * light.pdf(prev_p, ray.dir, hit.p, shapes))
+                let w = emission_weight(prev_pdf, || {
+                    p_select * light.pdf(prev_p, ray.dir, hit.p, shapes)
                 });
                 l += beta * le * w;
                 break;
             }
             PrimKind::Surface(m) => &scene.materials[m],
         };
-        let brdf: &dyn Brdf = material.brdf.as_ref();
         let (ng, frame) = facing_frame(&hit, ray.dir);
         let wo = frame.to_local(-ray.dir);
         if wo.z <= 0.0 {
             break;
         }
-        let origin = offset(hit.p, ng);
-
-        // Next-event estimation: one light chosen uniformly.
-        if n_lights > 0 {
-            let k = ((sampler.next() * n_lights as f64) as usize).min(n_lights - 1);
-            let u = sampler.next2();
-            if let Some(ls) = scene.lights[k].sample(hit.p, u, shapes) {
-                let wi = frame.to_local(ls.wi);
-                if wi.z > 0.0 && ls.wi.dot(ng) > 0.0 && ls.li != Rgb::ZERO && ls.pdf > 0.0 {
-                    let f = shading.eval(material, wo, wi);
-                    if f != S::C::ZERO {
-                        *rays += 1;
-                        let shadow = Ray { origin, dir: ls.wi };
-                        // Stop short of the light itself (the origin is offset too).
-                        let t_max = if ls.dist.is_finite() {
-                            ls.dist * (1.0 - 1e-5)
-                        } else {
-                            f64::INFINITY
-                        };
-                        if !scene.accel.occluded(&shadow, 0.0, t_max) {
-                            let pdf_l = p_select * ls.pdf;
-                            // At the last interaction no BRDF sample follows, so the light
-                            // sample is the only strategy there and takes the full weight.
-                            let w = if ls.delta || bounce == opts.max_bounces {
-                                1.0
-                            } else {
-                                power(pdf_l, brdf_pdf(brdf, wo, wi, opts.sampling))
-                            };
-                            l += beta * f * shading.carry_rgb(ls.li) * (wi.z * w / pdf_l);
-                        }
-                    }
-                }
-            }
-        } else {
-            sampler.next();
-            sampler.next2();
-        }
-        if bounce == opts.max_bounces {
+        let at = Interaction {
+            p: hit.p,
+            origin: offset(hit.p, ng),
+            ng,
+            frame,
+            wo,
+            material,
+        };
+        let last = bounce == opts.max_bounces;
+        l += beta * sample_ld(scene, shading, &at, opts.sampling, last, sampler, rays);
+        if last {
             break;
         }
 
@@ -299,7 +352,7 @@ pub(crate) fn radiance<S: Shading>(
         prev_pdf = Some(pdf);
         prev_p = hit.p;
         ray = Ray {
-            origin,
+            origin: at.origin,
             dir: wi_world.normalize(),
         };
         let u_rr = sampler.next();
