@@ -92,7 +92,8 @@ pub struct MaterialDesc {
     pub surface: Option<crate::surface::SurfaceDesc>,
 }
 
-/// The transform fields every shape and planar light accepts.
+/// Where a shape or a planar light is placed: scale, then rotations about x, y and z, then the
+/// translation. The fields sit beside a shape's own (`translate = [...]` in its table).
 #[derive(Debug, Clone, Copy, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TransformDesc {
@@ -120,60 +121,134 @@ impl TransformDesc {
     }
 }
 
-/// `[[shapes]]`.
+/// `[[shapes]]`: a shape's geometry, its material and its transform.
 #[derive(Debug, Clone, Deserialize)]
-#[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
-pub enum ShapeDesc {
+#[serde(try_from = "ShapeFields")]
+pub struct ShapeDesc {
+    /// The material's name in `[materials]`.
+    pub material: String,
+    /// The shape before its transform.
+    pub geometry: Geometry,
+    /// Where it is placed.
+    pub transform: TransformDesc,
+}
+
+/// A shape before its transform (`type = "sphere"`, …).
+#[derive(Debug, Clone)]
+pub enum Geometry {
     /// A sphere of `radius` (default 1) at `center` (default origin).
     Sphere {
-        material: String,
-        #[serde(default)]
-        center: Option<[f64; 3]>,
-        #[serde(default)]
-        radius: Option<f64>,
-        #[serde(default)]
-        translate: Option<[f64; 3]>,
-        #[serde(default)]
-        rotate_deg: Option<[f64; 3]>,
-        #[serde(default)]
-        scale: Option<Reflectance>,
+        /// Centre, m.
+        center: [f64; 3],
+        /// Radius, m.
+        radius: f64,
     },
     /// A rectangle `size = [w, h]` (default 1 × 1) centred at the origin in the x-y plane,
-    /// normal +z, then transformed.
+    /// normal +z.
     Rectangle {
-        material: String,
-        #[serde(default)]
-        size: Option<[f64; 2]>,
-        #[serde(default)]
-        translate: Option<[f64; 3]>,
-        #[serde(default)]
-        rotate_deg: Option<[f64; 3]>,
-        #[serde(default)]
-        scale: Option<Reflectance>,
+        /// Width and height, m.
+        size: [f64; 2],
     },
     /// A disk of `radius` (default 1) centred at the origin in the x-y plane, normal +z.
     Disk {
-        material: String,
-        #[serde(default)]
-        radius: Option<f64>,
-        #[serde(default)]
-        translate: Option<[f64; 3]>,
-        #[serde(default)]
-        rotate_deg: Option<[f64; 3]>,
-        #[serde(default)]
-        scale: Option<Reflectance>,
+        /// Radius, m.
+        radius: f64,
     },
     /// A Wavefront OBJ mesh (every object in the file), smooth-shaded where it has normals.
     Mesh {
-        material: String,
+        /// The OBJ file.
         file: PathBuf,
-        #[serde(default)]
-        translate: Option<[f64; 3]>,
-        #[serde(default)]
-        rotate_deg: Option<[f64; 3]>,
-        #[serde(default)]
-        scale: Option<Reflectance>,
     },
+}
+
+impl Geometry {
+    /// The `type` of the shape in the scene file.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Geometry::Sphere { .. } => "sphere",
+            Geometry::Rectangle { .. } => "rectangle",
+            Geometry::Disk { .. } => "disk",
+            Geometry::Mesh { .. } => "mesh",
+        }
+    }
+}
+
+/// The kinds of shape.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum ShapeKind {
+    Sphere,
+    Rectangle,
+    Disk,
+    Mesh,
+}
+
+/// A `[[shapes]]` table as written: every field any shape takes, checked against its `type` by
+/// [`ShapeDesc::try_from`]. The transform's fields are written here once for every kind.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ShapeFields {
+    #[serde(rename = "type")]
+    kind: ShapeKind,
+    material: String,
+    center: Option<[f64; 3]>,
+    radius: Option<f64>,
+    size: Option<[f64; 2]>,
+    file: Option<PathBuf>,
+    translate: Option<[f64; 3]>,
+    rotate_deg: Option<[f64; 3]>,
+    scale: Option<Reflectance>,
+}
+
+impl TryFrom<ShapeFields> for ShapeDesc {
+    type Error = String;
+
+    fn try_from(f: ShapeFields) -> std::result::Result<ShapeDesc, String> {
+        // The fields given that the shape's kind does not take, by name.
+        let given = [
+            ("center", f.center.is_some()),
+            ("radius", f.radius.is_some()),
+            ("size", f.size.is_some()),
+            ("file", f.file.is_some()),
+        ];
+        let (name, takes): (&str, &[&str]) = match f.kind {
+            ShapeKind::Sphere => ("sphere", &["center", "radius"]),
+            ShapeKind::Rectangle => ("rectangle", &["size"]),
+            ShapeKind::Disk => ("disk", &["radius"]),
+            ShapeKind::Mesh => ("mesh", &["file"]),
+        };
+        if let Some((field, _)) = given.iter().find(|(n, g)| *g && !takes.contains(n)) {
+            return Err(format!(
+                "a {name} takes `{}` and the transform (`translate`, `rotate_deg`, `scale`), \
+                 not `{field}`",
+                takes.join("`, `")
+            ));
+        }
+        let geometry = match f.kind {
+            ShapeKind::Sphere => Geometry::Sphere {
+                center: f.center.unwrap_or([0.0; 3]),
+                radius: f.radius.unwrap_or(1.0),
+            },
+            ShapeKind::Rectangle => Geometry::Rectangle {
+                size: f.size.unwrap_or([1.0, 1.0]),
+            },
+            ShapeKind::Disk => Geometry::Disk {
+                radius: f.radius.unwrap_or(1.0),
+            },
+            ShapeKind::Mesh => Geometry::Mesh {
+                file: f.file.ok_or("a mesh needs `file`, the OBJ file")?,
+            },
+        };
+        Ok(ShapeDesc {
+            material: f.material,
+            geometry,
+            transform: TransformDesc {
+                translate: f.translate,
+                rotate_deg: f.rotate_deg,
+                scale: f.scale,
+            },
+        })
+    }
 }
 
 /// `[[lights]]`.
@@ -191,7 +266,8 @@ pub enum LightDesc {
         radius: f64,
         radiance: Reflectance,
     },
-    /// Rectangular area light (like the rectangle shape), emitting from its +z side.
+    /// Rectangular area light (like the rectangle shape), emitting from its +z side; its
+    /// `translate`, `rotate_deg` and `scale` make a [`TransformDesc`].
     Rectangle {
         radiance: Reflectance,
         #[serde(default)]
@@ -261,198 +337,263 @@ impl Scene {
         Scene::build(&desc, path)
     }
 
-    /// Build the scene of a parsed description.
+    /// Build the scene of a parsed description, section by section.
     pub fn build(desc: &SceneDesc, path: &Path) -> Result<Scene> {
-        let dir = path.parent().unwrap_or(Path::new("."));
-        let resolve = |p: &Path| {
-            if p.is_absolute() {
-                p.to_path_buf()
-            } else {
-                dir.join(p)
-            }
+        let file = SceneFile {
+            path,
+            dir: path.parent().unwrap_or(Path::new(".")),
         };
-        let bad = |problem: String| RenderError::scene(path, problem);
-
-        let c = &desc.camera;
-        if c.width == 0 || c.height == 0 || c.width > 1 << 15 || c.height > 1 << 15 {
-            return Err(bad(format!(
-                "[camera]: width and height must be 1 to 32768 pixels, got {} × {}",
-                c.width, c.height
-            )));
-        }
-        let camera = Camera::new(
-            DVec3::from_array(c.position),
-            DVec3::from_array(c.look_at),
-            DVec3::from_array(c.up),
-            c.fov_deg,
-            c.width,
-            c.height,
-        )
-        .ok_or_else(|| {
-            bad(
-                "[camera]: position and look_at must differ, up must not be parallel to the \
-                 view direction, and fov_deg must be between 0 and 180"
-                    .into(),
-            )
-        })?;
-
-        let mut materials = Vec::new();
-        let mut material_index = BTreeMap::new();
-        for (name, m) in &desc.materials {
-            let material = match (&m.brdf, &m.table, &m.surface) {
-                (Some(spec), None, None) => {
-                    Material::new(name.clone(), material::from_model(spec, path, name)?)
-                }
-                (None, Some(file), None) => {
-                    Material::from_table(name.clone(), material::read_table(&resolve(file))?)
-                }
-                (None, None, Some(surface)) => Material::from_table(
-                    name.clone(),
-                    crate::surface::table(surface, dir, path, name)?,
-                ),
-                _ => {
-                    return Err(bad(format!(
-                        "material `{name}`: give exactly one of `brdf`, `table`, `surface`"
-                    )));
-                }
-            };
-            material_index.insert(name.clone(), materials.len());
-            materials.push(material);
-        }
-
-        let mut shapes = Vec::new();
-        let mut prims = Vec::new();
-        for (k, s) in desc.shapes.iter().enumerate() {
-            let (material, local, transform) = shape_of(s, &resolve, path, k)?;
-            let Some(&mi) = material_index.get(material) else {
-                return Err(bad(format!(
-                    "shape {} ({}): material `{material}` is not defined; defined: {}",
-                    k + 1,
-                    shape_name(s),
-                    desc.materials
-                        .keys()
-                        .cloned()
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                )));
-            };
-            for shape in local {
-                let shape = shape.transformed(&transform).ok_or_else(|| {
-                    bad(format!(
-                        "shape {}: a sphere needs a uniform scale (one number)",
-                        k + 1
-                    ))
-                })?;
-                shapes.push(shape);
-                prims.push(PrimKind::Surface(mi));
-            }
-        }
-
-        let mut lights = Vec::new();
-        for (k, l) in desc.lights.iter().enumerate() {
-            let rgb = |r: &Reflectance, what: &str| -> Result<glam::DVec3> {
-                let c = r.rgb();
-                if c.is_finite() && c.min_element() >= 0.0 {
-                    Ok(c)
-                } else {
-                    Err(bad(format!(
-                        "light {}: `{what}` must be non-negative",
-                        k + 1
-                    )))
-                }
-            };
-            let light = match l {
-                LightDesc::Point {
-                    position,
-                    intensity,
-                } => Light::Point {
-                    position: DVec3::from_array(*position),
-                    intensity: rgb(intensity, "intensity")?,
-                },
-                LightDesc::Sphere {
-                    center,
-                    radius,
-                    radiance,
-                } => {
-                    if radius.is_nan() || *radius <= 0.0 {
-                        return Err(bad(format!("light {}: `radius` must be positive", k + 1)));
-                    }
-                    shapes.push(Shape::Sphere {
-                        centre: DVec3::from_array(*center),
-                        radius: *radius,
-                    });
-                    prims.push(PrimKind::Emitter(lights.len()));
-                    Light::Area {
-                        prim: shapes.len() - 1,
-                        radiance: rgb(radiance, "radiance")?,
-                    }
-                }
-                LightDesc::Rectangle {
-                    radiance,
-                    size,
-                    translate,
-                    rotate_deg,
-                    scale,
-                } => {
-                    let t = TransformDesc {
-                        translate: *translate,
-                        rotate_deg: *rotate_deg,
-                        scale: *scale,
-                    };
-                    let shape = rectangle(size.unwrap_or([1.0, 1.0]))
-                        .transformed(&t.matrix())
-                        .expect("planar shapes take any transform");
-                    if shape.area().is_nan() || shape.area() <= 0.0 {
-                        return Err(bad(format!("light {}: the rectangle has no area", k + 1)));
-                    }
-                    shapes.push(shape);
-                    prims.push(PrimKind::Emitter(lights.len()));
-                    Light::Area {
-                        prim: shapes.len() - 1,
-                        radiance: rgb(radiance, "radiance")?,
-                    }
-                }
-                LightDesc::Environment {
-                    file,
-                    scale,
-                    rotate_deg,
-                } => {
-                    let image = Image::read(&resolve(file))?;
-                    Light::Environment(EnvMap::new(
-                        image,
-                        scale.unwrap_or(1.0),
-                        rotate_deg.unwrap_or(0.0).to_radians(),
-                    ))
-                }
-                LightDesc::Sky { radiance } => Light::Sky {
-                    radiance: rgb(radiance, "radiance")?,
-                },
-            };
-            lights.push(light);
-        }
-
+        let camera = build_camera(&desc.camera, &file)?;
+        let (materials, material_index) = build_materials(&desc.materials, &file)?;
+        let mut prims = Prims::default();
+        build_shapes(&desc.shapes, &material_index, &file, &mut prims)?;
+        let lights = build_lights(&desc.lights, &file, &mut prims)?;
         Ok(Scene {
             camera,
             display: Display {
-                exposure: c.exposure,
-                tone: c.tone,
+                exposure: desc.camera.exposure,
+                tone: desc.camera.tone,
             },
             render: desc.render.clone(),
-            accel: Accel::new(shapes),
-            prims,
+            accel: Accel::new(prims.shapes),
+            prims: prims.kinds,
             materials,
             lights,
         })
     }
 }
 
-fn shape_name(s: &ShapeDesc) -> &'static str {
-    match s {
-        ShapeDesc::Sphere { .. } => "sphere",
-        ShapeDesc::Rectangle { .. } => "rectangle",
-        ShapeDesc::Disk { .. } => "disk",
-        ShapeDesc::Mesh { .. } => "mesh",
+/// The scene file being built: its errors name it, and relative paths start in its directory.
+struct SceneFile<'a> {
+    path: &'a Path,
+    dir: &'a Path,
+}
+
+impl SceneFile<'_> {
+    /// A path from the file, relative to its directory unless absolute.
+    fn resolve(&self, p: &Path) -> PathBuf {
+        if p.is_absolute() {
+            p.to_path_buf()
+        } else {
+            self.dir.join(p)
+        }
     }
+
+    /// An error in the file.
+    fn bad(&self, problem: String) -> RenderError {
+        RenderError::scene(self.path, problem)
+    }
+}
+
+/// The primitives gathered from the shapes and the area lights, with what each is.
+#[derive(Default)]
+struct Prims {
+    shapes: Vec<Shape>,
+    kinds: Vec<PrimKind>,
+}
+
+impl Prims {
+    fn push(&mut self, shape: Shape, kind: PrimKind) {
+        self.shapes.push(shape);
+        self.kinds.push(kind);
+    }
+}
+
+/// `[camera]`.
+fn build_camera(c: &CameraDesc, file: &SceneFile) -> Result<Camera> {
+    if c.width == 0 || c.height == 0 || c.width > 1 << 15 || c.height > 1 << 15 {
+        return Err(file.bad(format!(
+            "[camera]: width and height must be 1 to 32768 pixels, got {} × {}",
+            c.width, c.height
+        )));
+    }
+    Camera::new(
+        DVec3::from_array(c.position),
+        DVec3::from_array(c.look_at),
+        DVec3::from_array(c.up),
+        c.fov_deg,
+        c.width,
+        c.height,
+    )
+    .ok_or_else(|| {
+        file.bad(
+            "[camera]: position and look_at must differ, up must not be parallel to the \
+             view direction, and fov_deg must be between 0 and 180"
+                .into(),
+        )
+    })
+}
+
+/// `[materials]`: the materials and each one's index by name.
+fn build_materials(
+    descs: &BTreeMap<String, MaterialDesc>,
+    file: &SceneFile,
+) -> Result<(Vec<Material>, BTreeMap<String, usize>)> {
+    let mut materials = Vec::new();
+    let mut index = BTreeMap::new();
+    for (name, m) in descs {
+        let material = match (&m.brdf, &m.table, &m.surface) {
+            (Some(spec), None, None) => {
+                Material::new(name.clone(), material::from_model(spec, file.path, name)?)
+            }
+            (None, Some(table), None) => {
+                Material::from_table(name.clone(), material::read_table(&file.resolve(table))?)
+            }
+            (None, None, Some(surface)) => Material::from_table(
+                name.clone(),
+                crate::surface::table(surface, file.dir, file.path, name)?,
+            ),
+            _ => {
+                return Err(file.bad(format!(
+                    "material `{name}`: give exactly one of `brdf`, `table`, `surface`"
+                )));
+            }
+        };
+        index.insert(name.clone(), materials.len());
+        materials.push(material);
+    }
+    Ok((materials, index))
+}
+
+/// `[[shapes]]`: each shape's primitives, transformed, with its material.
+fn build_shapes(
+    descs: &[ShapeDesc],
+    material_index: &BTreeMap<String, usize>,
+    file: &SceneFile,
+    prims: &mut Prims,
+) -> Result<()> {
+    for (k, s) in descs.iter().enumerate() {
+        let bad = |p: &str| file.bad(format!("shape {} ({}): {p}", k + 1, s.geometry.name()));
+        let Some(&mi) = material_index.get(&s.material) else {
+            let defined = material_index.keys().cloned().collect::<Vec<_>>();
+            return Err(bad(&format!(
+                "material `{}` is not defined; defined: {}",
+                s.material,
+                defined.join(", ")
+            )));
+        };
+        let local = match &s.geometry {
+            Geometry::Sphere { center, radius } => {
+                if radius.is_nan() || *radius <= 0.0 {
+                    return Err(bad("`radius` must be positive"));
+                }
+                vec![Shape::Sphere {
+                    centre: DVec3::from_array(*center),
+                    radius: *radius,
+                }]
+            }
+            Geometry::Rectangle { size } => {
+                if !(size[0] > 0.0 && size[1] > 0.0) {
+                    return Err(bad("`size` must be positive"));
+                }
+                vec![rectangle(*size)]
+            }
+            Geometry::Disk { radius } => {
+                if radius.is_nan() || *radius <= 0.0 {
+                    return Err(bad("`radius` must be positive"));
+                }
+                vec![Shape::Planar {
+                    origin: DVec3::ZERO,
+                    u: DVec3::X * *radius,
+                    v: DVec3::Y * *radius,
+                    disk: true,
+                }]
+            }
+            Geometry::Mesh { file: obj } => read_obj(&file.resolve(obj))?,
+        };
+        let transform = s.transform.matrix();
+        for shape in local {
+            let shape = shape
+                .transformed(&transform)
+                .ok_or_else(|| bad("a sphere needs a uniform scale (one number)"))?;
+            prims.push(shape, PrimKind::Surface(mi));
+        }
+    }
+    Ok(())
+}
+
+/// `[[lights]]`; area lights add their primitives.
+fn build_lights(descs: &[LightDesc], file: &SceneFile, prims: &mut Prims) -> Result<Vec<Light>> {
+    let mut lights = Vec::new();
+    for (k, l) in descs.iter().enumerate() {
+        let bad = |p: &str| file.bad(format!("light {}: {p}", k + 1));
+        let rgb = |r: &Reflectance, what: &str| -> Result<DVec3> {
+            let c = r.rgb();
+            if c.is_finite() && c.min_element() >= 0.0 {
+                Ok(c)
+            } else {
+                Err(bad(&format!("`{what}` must be non-negative")))
+            }
+        };
+        let light = match l {
+            LightDesc::Point {
+                position,
+                intensity,
+            } => Light::Point {
+                position: DVec3::from_array(*position),
+                intensity: rgb(intensity, "intensity")?,
+            },
+            LightDesc::Sphere {
+                center,
+                radius,
+                radiance,
+            } => {
+                if radius.is_nan() || *radius <= 0.0 {
+                    return Err(bad("`radius` must be positive"));
+                }
+                let sphere = Shape::Sphere {
+                    centre: DVec3::from_array(*center),
+                    radius: *radius,
+                };
+                prims.push(sphere, PrimKind::Emitter(lights.len()));
+                Light::Area {
+                    prim: prims.shapes.len() - 1,
+                    radiance: rgb(radiance, "radiance")?,
+                }
+            }
+            LightDesc::Rectangle {
+                radiance,
+                size,
+                translate,
+                rotate_deg,
+                scale,
+            } => {
+                let placed = TransformDesc {
+                    translate: *translate,
+                    rotate_deg: *rotate_deg,
+                    scale: *scale,
+                };
+                let shape = rectangle(size.unwrap_or([1.0, 1.0]))
+                    .transformed(&placed.matrix())
+                    .expect("planar shapes take any transform");
+                if shape.area().is_nan() || shape.area() <= 0.0 {
+                    return Err(bad("the rectangle has no area"));
+                }
+                prims.push(shape, PrimKind::Emitter(lights.len()));
+                Light::Area {
+                    prim: prims.shapes.len() - 1,
+                    radiance: rgb(radiance, "radiance")?,
+                }
+            }
+            LightDesc::Environment {
+                file: map,
+                scale,
+                rotate_deg,
+            } => {
+                let image = Image::read(&file.resolve(map))?;
+                Light::Environment(EnvMap::new(
+                    image,
+                    scale.unwrap_or(1.0),
+                    rotate_deg.unwrap_or(0.0).to_radians(),
+                ))
+            }
+            LightDesc::Sky { radiance } => Light::Sky {
+                radiance: rgb(radiance, "radiance")?,
+            },
+        };
+        lights.push(light);
+    }
+    Ok(lights)
 }
 
 /// The centred rectangle `size[0] × size[1]` in the x-y plane, normal +z.
@@ -463,97 +604,6 @@ fn rectangle(size: [f64; 2]) -> Shape {
         v: DVec3::Y * (0.5 * size[1]),
         disk: false,
     }
-}
-
-/// The material name, the untransformed primitives and the transform of a shape.
-fn shape_of<'a>(
-    s: &'a ShapeDesc,
-    resolve: &dyn Fn(&Path) -> PathBuf,
-    scene: &Path,
-    k: usize,
-) -> Result<(&'a str, Vec<Shape>, DAffine3)> {
-    let bad =
-        |p: String| RenderError::scene(scene, format!("shape {} ({}): {p}", k + 1, shape_name(s)));
-    let (material, translate, rotate_deg, scale, shapes) = match s {
-        ShapeDesc::Sphere {
-            material,
-            center,
-            radius,
-            translate,
-            rotate_deg,
-            scale,
-        } => {
-            let r = radius.unwrap_or(1.0);
-            if r.is_nan() || r <= 0.0 {
-                return Err(bad("`radius` must be positive".into()));
-            }
-            let centre = DVec3::from_array(center.unwrap_or([0.0; 3]));
-            (
-                material,
-                translate,
-                rotate_deg,
-                scale,
-                vec![Shape::Sphere { centre, radius: r }],
-            )
-        }
-        ShapeDesc::Rectangle {
-            material,
-            size,
-            translate,
-            rotate_deg,
-            scale,
-        } => {
-            let size = size.unwrap_or([1.0, 1.0]);
-            if !(size[0] > 0.0 && size[1] > 0.0) {
-                return Err(bad("`size` must be positive".into()));
-            }
-            (
-                material,
-                translate,
-                rotate_deg,
-                scale,
-                vec![rectangle(size)],
-            )
-        }
-        ShapeDesc::Disk {
-            material,
-            radius,
-            translate,
-            rotate_deg,
-            scale,
-        } => {
-            let r = radius.unwrap_or(1.0);
-            if r.is_nan() || r <= 0.0 {
-                return Err(bad("`radius` must be positive".into()));
-            }
-            let disk = Shape::Planar {
-                origin: DVec3::ZERO,
-                u: DVec3::X * r,
-                v: DVec3::Y * r,
-                disk: true,
-            };
-            (material, translate, rotate_deg, scale, vec![disk])
-        }
-        ShapeDesc::Mesh {
-            material,
-            file,
-            translate,
-            rotate_deg,
-            scale,
-        } => (
-            material,
-            translate,
-            rotate_deg,
-            scale,
-            read_obj(&resolve(file))?,
-        ),
-    };
-    let t = TransformDesc {
-        translate: *translate,
-        rotate_deg: *rotate_deg,
-        scale: *scale,
-    };
-    Ok((material, shapes, t.matrix()))
 }
 
 /// The triangles of every object of a Wavefront OBJ file.

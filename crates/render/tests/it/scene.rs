@@ -163,6 +163,19 @@ fn errors_name_the_file_and_the_problem() {
             "[[lights]]\ntype = \"sky\"\nradiance = 1\ncolour = 2\n",
             "colour",
         ),
+        // A field another kind of shape takes, or none takes, is named.
+        (
+            "[[shapes]]\ntype = \"rectangle\"\nmaterial = \"m\"\nradius = 2\n",
+            "a rectangle takes `size` and the transform (`translate`, `rotate_deg`, `scale`), not `radius`",
+        ),
+        (
+            "[[shapes]]\ntype = \"disk\"\nmaterial = \"m\"\nrotate = [0, 0, 1]\n",
+            "rotate",
+        ),
+        (
+            "[[shapes]]\ntype = \"mesh\"\nmaterial = \"m\"\n",
+            "a mesh needs `file`",
+        ),
     ];
     for (body, want) in cases {
         let err = load(body, dir.path()).err().expect(body).to_string();
