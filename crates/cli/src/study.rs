@@ -11,7 +11,7 @@ use gonio_instrument::GlossReport;
 use gonio_instrument::curves::write_csv;
 use gonio_instrument::study::{self, PeakRow, Sample, SampleResult, StudyConfig};
 use gonio_scatter::InplaneCurve;
-use gonio_surface::synth::{Acf, GaussianSurface};
+use gonio_surface::synth::GaussianSurface;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -127,18 +127,9 @@ pub fn synthetic_samples(
     sq_nm
         .iter()
         .map(|&sq| {
-            let map = GaussianSurface {
-                sq: sq * 1e-9,
-                corr_length,
-                acf: Acf::Gaussian,
-                nx: size,
-                ny: size,
-                dx,
-                dy: dx,
-                seed,
-            }
-            .generate()
-            .with_context(|| format!("synthesising the Sq = {sq} nm surface"))?;
+            let map = GaussianSurface::square(sq * 1e-9, corr_length, size, dx, seed)
+                .generate()
+                .with_context(|| format!("synthesising the Sq = {sq} nm surface"))?;
             Ok(Sample {
                 label: format!("sq{sq}nm"),
                 map,

@@ -13,23 +13,14 @@ use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions};
 use gonio_scatter::ray::{RayEngine, RayOptions};
 use gonio_scatter::table::{TableOptions, kirchhoff_table, ray_table};
 use gonio_surface::HeightMap;
-use gonio_surface::synth::{Acf, GaussianSurface};
+use gonio_surface::synth::GaussianSurface;
 use std::hint::black_box;
 use std::time::Duration;
 
 fn surface(n: usize) -> HeightMap {
-    GaussianSurface {
-        sq: 0.3e-6,
-        corr_length: 6e-6,
-        acf: Acf::Gaussian,
-        nx: n,
-        ny: n,
-        dx: 0.5e-6,
-        dy: 0.5e-6,
-        seed: 1,
-    }
-    .generate()
-    .expect("synthetic surface")
+    GaussianSurface::square(0.3e-6, 6e-6, n, 0.5e-6, 1)
+        .generate()
+        .expect("synthetic surface")
 }
 
 fn ray(c: &mut Criterion) {

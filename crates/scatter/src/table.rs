@@ -512,24 +512,15 @@ fn fill(
 mod tests {
     use super::*;
     use crate::ray::RayOptions;
-    use gonio_surface::synth::{Acf, GaussianSurface};
+    use gonio_surface::synth::GaussianSurface;
 
     /// Binning each facet's precomputed normal gives the deposits of binning each ray's half
     /// vector `wi + wo`, to rounding, at normal, oblique and grazing incidence.
     #[test]
     fn facet_normals_are_the_half_vectors() {
-        let map = GaussianSurface {
-            sq: 0.3e-6,
-            corr_length: 6e-6,
-            acf: Acf::Gaussian,
-            nx: 96,
-            ny: 96,
-            dx: 0.5e-6,
-            dy: 0.5e-6,
-            seed: 5,
-        }
-        .generate()
-        .unwrap();
+        let map = GaussianSurface::square(0.3e-6, 6e-6, 96, 0.5e-6, 5)
+            .generate()
+            .unwrap();
         let engine = RayEngine::new(&map, RayOptions::default()).unwrap();
         assert!(engine.half_vectors_are_normals());
         let grid = TableOptions::isotropic().slice_grid();

@@ -406,16 +406,7 @@ mod tests {
     /// two passes stay well under 1% of Sq.
     #[test]
     fn rotation_there_and_back_recovers_the_surface() {
-        let req = crate::synth::GaussianSurface {
-            sq: 1e-7,
-            corr_length: 4e-6,
-            acf: crate::synth::Acf::Gaussian,
-            nx: 128,
-            ny: 128,
-            dx: 0.5e-6,
-            dy: 0.5e-6,
-            seed: 9,
-        };
+        let req = crate::synth::GaussianSurface::square(1e-7, 4e-6, 128, 0.5e-6, 9);
         let map = req.generate().unwrap();
         let angle = 30f64.to_radians();
         let back = rotate(&rotate(&map, angle).unwrap(), -angle).unwrap();

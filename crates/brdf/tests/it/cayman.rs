@@ -19,7 +19,7 @@ fn held_out_geometries_are_reproduced() {
     assert_eq!(held.len(), 144);
 
     // Per band, every value above the noise floor.
-    let per_band = residual_of(&held, NOISE_FLOOR_PER_SR, |s, out| {
+    let per_band = residual_of(held, NOISE_FLOOR_PER_SR, |s, out| {
         table.eval_channels(s.wo, s.wi, out)
     });
     // Per geometry, the mean over the 31 bands (every held-out geometry).
@@ -39,9 +39,9 @@ fn held_out_geometries_are_reproduced() {
         fit.bandwidths()
     );
     assert!(per_band.count > 1000, "{per_band:?}");
-    // No regression: the figures of the fit before issue 14's change of coordinates (3.12% per
-    // band, 2.82% band mean; deterministic for any thread count) rounded up to the next 0.1%.
-    // After it, on the 90 × 90 × 48 import grid: 2.98% and 2.82%, as the fit evaluated directly
+    // No regression: the figures of the fit before its coordinates were made regular at the
+    // specular direction (3.12% per band, 2.82% band mean; deterministic for any thread count)
+    // rounded up to the next 0.1%. After it, on the 90 × 90 × 48 import grid: 2.98% and 2.82%, as the fit evaluated directly
     // at the held-out geometries (3.01%, 2.81%); the 45 × 45 × 48 grid's smoothing happened to
     // lower them (2.88%, 2.58%).
     assert!(per_band.median_relative <= 0.032, "{per_band:?}");

@@ -23,17 +23,28 @@ use gonio_brdf::table::colour::{ColourSpace, reduce};
 use gonio_color::{Illuminant, Lab, Observer, SpectralToXyz, Xyz, ciede2000, white};
 use std::f64::consts::PI;
 
+/// The Cayman table as `gonio brdf import` makes it (through the library's import, not the
+/// shared fit of `common`), imported once for both tests.
+fn imported() -> &'static BrdfTable {
+    static TABLE: std::sync::LazyLock<BrdfTable> = std::sync::LazyLock::new(|| {
+        astm::import(&cayman_path(), astm::default_resolution())
+            .unwrap()
+            .0
+    });
+    &TABLE
+}
+
 #[test]
 fn measured_and_tabulated_cayman_colours_agree() {
     let path = cayman_path();
     let file = astm::read(&path).unwrap();
-    let (spectral, _) = astm::import(&path, astm::default_resolution()).unwrap();
+    let spectral = imported();
     let all: Vec<&Sample> = file.samples.iter().collect();
     for (illuminant, observer) in [
         (Illuminant::D65, Observer::Cie1931TwoDegree),
         (Illuminant::A, Observer::Cie1964TenDegree),
     ] {
-        let de = quantiles(&spectral, &all, &file.wavelengths_nm, illuminant, observer);
+        let de = quantiles(spectral, &all, &file.wavelengths_nm, illuminant, observer);
         println!(
             "{illuminant} {observer}, all {} geometries: {de}",
             all.len()
@@ -44,7 +55,7 @@ fn measured_and_tabulated_cayman_colours_agree() {
     let HeldOut { held, table, .. } = cayman_held_out();
     let held: Vec<&Sample> = held.iter().collect();
     let (illuminant, observer) = (Illuminant::D65, Observer::Cie1931TwoDegree);
-    let de = quantiles(&table, &held, &file.wavelengths_nm, illuminant, observer);
+    let de = quantiles(table, &held, &file.wavelengths_nm, illuminant, observer);
     println!(
         "{illuminant} {observer}, {} held-out geometries: {de}",
         held.len()
@@ -111,10 +122,10 @@ fn quantiles(
 fn colour_travel_is_kept() {
     let path = cayman_path();
     let file = astm::read(&path).unwrap();
-    let (spectral, _) = astm::import(&path, astm::default_resolution()).unwrap();
+    let spectral = imported();
     let (illuminant, observer) = (Illuminant::D65, Observer::Cie1931TwoDegree);
     let bands = SpectralToXyz::new(&file.wavelengths_nm, illuminant, observer).unwrap();
-    let table = reduce(&spectral, ColourSpace::Xyz, illuminant, observer).unwrap();
+    let table = reduce(spectral, ColourSpace::Xyz, illuminant, observer).unwrap();
     let w = white(illuminant, observer);
     let lab_of = |xyz_0_100: [f64; 3]| Xyz::from_array(xyz_0_100.map(|v| PI * v)).to_lab(w);
     let edges = [10.0, 20.0, 35.0, 50.0, 70.0, 180.0];

@@ -1,4 +1,4 @@
-//! The shape of imported Cornell tables where the measurement is sparse (issue 14): the specular
+//! The shape of imported Cornell tables where the measurement is sparse: the specular
 //! pole, a small ring about the specular direction, the cells beyond the measured domain, the
 //! band-to-band smoothness of the albedo and the colour of a blue paint's highlight
 //! (`cargo test -p gonio-brdf --test it import_shape -- --nocapture` prints the figures).
@@ -97,7 +97,7 @@ fn measured_second_difference(file: &AstmFile) -> f64 {
 fn specular_pole_is_single_valued() {
     for path in [cayman_path(), krylon_blue_path()] {
         let (_, table) = astm_table(&path);
-        let (spread, lo, hi) = pole_spread(&table);
+        let (spread, lo, hi) = pole_spread(table);
         println!(
             "{}: pole values {lo:.3}..{hi:.1}, largest spread {spread:.2e}",
             path.display()
@@ -154,12 +154,12 @@ fn specular_peak_is_a_round_lobe() {
     let delta = 0.2f64.to_radians();
     for path in [cayman_path(), krylon_blue_path()] {
         let (file, table) = astm_table(&path);
-        let growth = measured_specular_growth(&file);
+        let growth = measured_specular_growth(file);
         for ti in [30.0f64, 45.0, 60.0, 75.0] {
-            let r = ring(&table, ti.to_radians(), delta);
+            let r = ring(table, ti.to_radians(), delta);
             let mean = r.iter().sum::<f64>() / r.len() as f64;
-            let slope = (specular(&table, (ti + 0.5).to_radians()).ln()
-                - specular(&table, (ti - 0.5).to_radians()).ln())
+            let slope = (specular(table, (ti + 0.5).to_radians()).ln()
+                - specular(table, (ti - 0.5).to_radians()).ln())
                 / 1f64.to_radians();
             let a = delta / 2.0 * slope;
             let round: Vec<f64> = r
@@ -198,7 +198,7 @@ fn specular_peak_is_a_round_lobe() {
 fn no_phantom_peak() {
     for path in [cayman_path(), krylon_blue_path()] {
         let (file, table) = astm_table(&path);
-        let mx = file_max(&file);
+        let mx = file_max(file);
         let at_max = table.values().iter().filter(|&&v| v == mx as f32).count();
         let top = table.values().iter().copied().fold(0.0f32, f32::max) as f64;
         let fit = ScatteredFit::new(&file.samples, None).unwrap();
@@ -239,9 +239,9 @@ fn no_phantom_peak() {
 fn band_albedo_is_as_smooth_as_the_measured_spectra() {
     for path in [cayman_path(), krylon_blue_path()] {
         let (file, table) = astm_table(&path);
-        let b = measured_second_difference(&file);
+        let b = measured_second_difference(file);
         for ti in [10.0f64, 30.0, 60.0] {
-            let d = second_difference(&albedo(&table, ti.to_radians()));
+            let d = second_difference(&albedo(table, ti.to_radians()));
             println!(
                 "{}: albedo at {ti}°: {d:.4} (measured bound {b:.4})",
                 path.display()

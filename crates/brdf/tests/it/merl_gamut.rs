@@ -1,4 +1,4 @@
-//! Measured paints through a MERL file (issue 14): Cayman's linear sRGB is outside the sRGB
+//! Measured paints through a MERL file: Cayman's linear sRGB is outside the sRGB
 //! gamut in most cells (Krylon blue's in a third), which MERL readers would take as "not measured"; the export maps those
 //! colours into the gamut at constant luminance, and reading the file back keeps no cell lost
 //! and the luminance albedo within 1%.
@@ -31,7 +31,7 @@ fn round_trip(path: &std::path::Path) {
     let (_, table) = crate::common::astm_table(path);
     let dir = tempfile::tempdir().unwrap();
     let merl_path = dir.path().join("paint.binary");
-    let report = merl::write(&table, &merl_path).unwrap();
+    let report = merl::write(table, &merl_path).unwrap();
     let share = report.out_of_gamut as f64 / report.cells as f64;
     println!(
         "{}: {} of {} cells out of the sRGB gamut ({:.0}%)",

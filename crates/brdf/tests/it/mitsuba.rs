@@ -308,8 +308,8 @@ fn mitsuba3_loads_and_renders_the_spectral_cayman_file() {
     let path = dir.path().join("cayman.bsdf");
     // The default 128² value grids: 64² holds this peaked paint's albedo at 60° to 7%, 128² to
     // 3%, 256² to 2% (docs/brdf-tables.md).
-    mitsuba::write(&table, &path, MitsubaOptions::default()).unwrap();
-    let pairs = direction_pairs(&table);
+    mitsuba::write(table, &path, MitsubaOptions::default()).unwrap();
+    let pairs = direction_pairs(table);
     let tensor = TensorBrdf::read(&path).unwrap();
     let Some(report) = mitsuba3("scalar_spectral", &path, &pairs) else {
         return;
@@ -366,7 +366,7 @@ fn mitsuba3_loads_and_renders_the_spectral_cayman_file() {
     // 5%: the bound required on a measured paint's rim, which the albedo integrates.
     check_render_and_albedo(
         &report,
-        (&table, &tensor),
+        (table, &tensor),
         Some(i),
         0.05,
         "cayman (spectral)",

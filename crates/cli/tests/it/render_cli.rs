@@ -3,26 +3,9 @@
 
 use crate::common::ok;
 
-/// A white Lambertian sphere in a uniform sky of radiance 1: every pixel is 1 in either mode.
-const FURNACE: &str = r#"
-[camera]
-position = [0.0, 0.0, 4.0]
-look_at = [0.0, 0.0, 0.0]
-fov_deg = 32
-width = 16
-height = 16
-
-[materials.m]
-brdf = { model = "lambert", albedo = 1.0 }
-
-[[shapes]]
-type = "sphere"
-material = "m"
-
-[[lights]]
-type = "sky"
-radiance = 1.0
-"#;
+/// The white furnace of `examples/furnace.toml` (shared with the renderer's tests): a white
+/// Lambertian sphere in a uniform sky of radiance 1, every pixel 1 in either mode.
+const FURNACE: &str = include_str!("../../../../examples/furnace.toml");
 
 #[test]
 fn spectral_flag_selects_the_spectral_mode() {

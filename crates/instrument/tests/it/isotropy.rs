@@ -15,21 +15,12 @@ use gonio_instrument::compare::compare;
 use gonio_instrument::isotropy::{IsotropyConfig, Method, RotationCheck, check};
 use gonio_surface::HeightMap;
 use gonio_surface::ops::resample;
-use gonio_surface::synth::{Acf, GaussianSurface};
+use gonio_surface::synth::GaussianSurface;
 
 fn gaussian(n: usize, sq: f64, t: f64, d: f64, seed: u64) -> HeightMap {
-    GaussianSurface {
-        sq,
-        corr_length: t,
-        acf: Acf::Gaussian,
-        nx: n,
-        ny: n,
-        dx: d,
-        dy: d,
-        seed,
-    }
-    .generate()
-    .unwrap()
+    GaussianSurface::square(sq, t, n, d, seed)
+        .generate()
+        .unwrap()
 }
 
 /// Mean over the incidences of the RMS log10 difference of the turned map's curves.

@@ -42,7 +42,7 @@ use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions, Spot, average_curves
 use gonio_scatter::ray::{RayEngine, RayOptions};
 use gonio_surface::HeightMap;
 use gonio_surface::normals::NormalMethod;
-use gonio_surface::synth::{Acf, EPOXY_CORR_LENGTH_M, GaussianSurface};
+use gonio_surface::synth::{EPOXY_CORR_LENGTH_M, GaussianSurface};
 
 const SQ: f64 = 805e-9;
 const N: usize = 256;
@@ -53,18 +53,9 @@ const INCIDENCES_DEG: [f64; 4] = [20.0, 45.0, 60.0, 70.0];
 const STEP_DEG: f64 = 5.0;
 
 fn rough_sample(seed: u64) -> HeightMap {
-    GaussianSurface {
-        sq: SQ,
-        corr_length: EPOXY_CORR_LENGTH_M,
-        acf: Acf::Gaussian,
-        nx: N,
-        ny: N,
-        dx: DX,
-        dy: DX,
-        seed,
-    }
-    .generate()
-    .unwrap()
+    GaussianSurface::square(SQ, EPOXY_CORR_LENGTH_M, N, DX, seed)
+        .generate()
+        .unwrap()
 }
 
 /// Mean and sample variance.

@@ -5,7 +5,7 @@
 use super::*;
 use crate::geometry::spherical_direction;
 use gonio_brdf::fresnel::dielectric;
-use gonio_surface::synth::{Acf, GaussianSurface};
+use gonio_surface::synth::GaussianSurface;
 
 const DX: f64 = 0.5e-6;
 
@@ -15,18 +15,9 @@ fn plane_map(n: usize, slope_x: f64) -> HeightMap {
 }
 
 fn gaussian(n: usize, sq: f64, t: f64, seed: u64) -> HeightMap {
-    GaussianSurface {
-        sq,
-        corr_length: t,
-        acf: Acf::Gaussian,
-        nx: n,
-        ny: n,
-        dx: DX,
-        dy: DX,
-        seed,
-    }
-    .generate()
-    .unwrap()
+    GaussianSurface::square(sq, t, n, DX, seed)
+        .generate()
+        .unwrap()
 }
 
 /// A perfectly smooth surface gives `rho = R(ti)` in every detector whose cone holds the mirror

@@ -13,22 +13,13 @@ use gonio_scatter::table::{
     texture_aspect_ratio,
 };
 use gonio_surface::HeightMap;
-use gonio_surface::synth::{Acf, GaussianSurface};
+use gonio_surface::synth::GaussianSurface;
 use std::sync::OnceLock;
 
 fn gaussian(sq: f64, corr: f64, n: usize, seed: u64) -> HeightMap {
-    GaussianSurface {
-        sq,
-        corr_length: corr,
-        acf: Acf::Gaussian,
-        nx: n,
-        ny: n,
-        dx: 0.5e-6,
-        dy: 0.5e-6,
-        seed,
-    }
-    .generate()
-    .unwrap()
+    GaussianSurface::square(sq, corr, n, 0.5e-6, seed)
+        .generate()
+        .unwrap()
 }
 
 /// The reflectance the engine's rays carry for light from `theta_i`, averaged over the source

@@ -7,6 +7,7 @@ use gonio_brdf::formats::astm::{self, AstmFile};
 use gonio_brdf::formats::scattered::{Sample, ScatteredFit};
 use gonio_brdf::table::{BrdfTable, Channels};
 use std::path::{Path, PathBuf};
+use std::sync::LazyLock;
 
 /// The Cayman file, its every tenth geometry held out, and the fit of the others with its
 /// spectral table at the import resolution.
@@ -35,14 +36,18 @@ fn fit_and_table(file: &AstmFile, samples: &[Sample]) -> (ScatteredFit, BrdfTabl
 }
 
 /// The Cayman file and the spectral table of the fit of all its geometries.
-pub fn cayman_table() -> (AstmFile, BrdfTable) {
-    let file = astm::read(&cayman_path()).unwrap();
-    let (_, table) = fit_and_table(&file, &file.samples);
-    (file, table)
+pub fn cayman_table() -> &'static (AstmFile, BrdfTable) {
+    astm_table(&cayman_path())
 }
 
-/// Fit every geometry of the Cayman file but each tenth, which is held out.
-pub fn cayman_held_out() -> HeldOut {
+/// Fit every geometry of the Cayman file but each tenth, which is held out (once per test run,
+/// shared by the tests that use it).
+pub fn cayman_held_out() -> &'static HeldOut {
+    static HELD_OUT: LazyLock<HeldOut> = LazyLock::new(hold_out);
+    &HELD_OUT
+}
+
+fn hold_out() -> HeldOut {
     let file = astm::read(&cayman_path()).unwrap();
     let (mut held, mut train) = (Vec::new(), Vec::new());
     for (i, sample) in file.samples.iter().enumerate() {
@@ -63,11 +68,25 @@ pub fn krylon_blue_path() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/krylon_blue.astm")
 }
 
-/// An ASTM file and the spectral table of the fit of all its geometries.
-pub fn astm_table(path: &Path) -> (AstmFile, BrdfTable) {
-    let file = astm::read(path).unwrap();
-    let (_, table) = fit_and_table(&file, &file.samples);
-    (file, table)
+/// An ASTM file of `tests/data` (Cayman or Krylon blue) and the spectral table of the fit of
+/// all its geometries, made once per test run: the tests that read a paint's table share it
+/// (the fit takes seconds, and six tests read each paint's).
+pub fn astm_table(path: &Path) -> &'static (AstmFile, BrdfTable) {
+    fn import(path: &Path) -> (AstmFile, BrdfTable) {
+        let file = astm::read(path).unwrap();
+        let (_, table) = fit_and_table(&file, &file.samples);
+        (file, table)
+    }
+    static CAYMAN: LazyLock<(AstmFile, BrdfTable)> = LazyLock::new(|| import(&cayman_path()));
+    static KRYLON_BLUE: LazyLock<(AstmFile, BrdfTable)> =
+        LazyLock::new(|| import(&krylon_blue_path()));
+    if path == cayman_path() {
+        &CAYMAN
+    } else if path == krylon_blue_path() {
+        &KRYLON_BLUE
+    } else {
+        panic!("{}: not a paint of tests/data", path.display())
+    }
 }
 
 /// An oracle (an independent implementation run by a test: Mitsuba 3, Radiance) is missing:

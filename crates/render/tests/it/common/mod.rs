@@ -4,26 +4,9 @@
 use gonio_render::{ColourMode, RenderOptions, Scene};
 use std::path::Path;
 
-/// A unit sphere seen from 4 m in a uniform sky of radiance 1.
-pub const FURNACE: &str = r#"
-[camera]
-position = [0.0, 0.0, 4.0]
-look_at = [0.0, 0.0, 0.0]
-fov_deg = 32
-width = 40
-height = 40
-
-[materials.m]
-brdf = { model = "lambert", albedo = 1.0 }
-
-[[shapes]]
-type = "sphere"
-material = "m"
-
-[[lights]]
-type = "sky"
-radiance = 1.0
-"#;
+/// The white furnace of `examples/furnace.toml` (shared with the command line's tests): a unit
+/// sphere of albedo 1 seen from 4 m in a uniform sky of radiance 1, every pixel 1.
+pub const FURNACE: &str = include_str!("../../../../../examples/furnace.toml");
 
 /// A scene from TOML text (relative paths resolve against the working directory).
 pub fn scene(text: &str) -> Scene {
