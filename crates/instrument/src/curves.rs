@@ -21,9 +21,9 @@ const COLUMNS: [&str; 7] = [
 
 /// Write curves as CSV to `path` atomically ([`gonio_io::write_atomic`]).
 pub fn write_csv(path: &Path, curves: &[InplaneCurve]) -> Result<(), InstrumentError> {
-    let io_err = |source| InstrumentError::Io {
+    let io_err = |error| InstrumentError::Io {
         path: path.display().to_string(),
-        source,
+        error,
     };
     gonio_io::write_atomic(path, |w| write_csv_to(w, curves).map_err(io_err), io_err)
 }

@@ -8,11 +8,11 @@ pub enum InstrumentError {
     #[error("{path}: {message}")]
     Read { path: String, message: String },
     /// A file could not be read or written.
-    #[error("{path}: {source}")]
+    #[error("{path}: {error}")]
     Io {
         path: String,
-        #[source]
-        source: std::io::Error,
+        /// What went wrong; printed in the message, so not also returned as `source()`.
+        error: std::io::Error,
     },
     /// An input or option is out of range.
     #[error("{0}")]

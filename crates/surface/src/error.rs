@@ -7,11 +7,11 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum SurfaceError {
     /// The file could not be opened, read or written.
-    #[error("{path}: {source}")]
+    #[error("{path}: {error}")]
     Io {
         path: PathBuf,
-        #[source]
-        source: std::io::Error,
+        /// What went wrong; printed in the message, so not also returned as `source()`.
+        error: std::io::Error,
     },
     /// The file was read but its content is not a valid height map of the detected format.
     #[error("{path}: {format}: {message}")]
@@ -48,7 +48,7 @@ impl SurfaceError {
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         SurfaceError::Io {
             path: path.into(),
-            source,
+            error: source,
         }
     }
 }
