@@ -5,12 +5,7 @@
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use gonio_brdf::{Brdf, Ior};
-use gonio_instrument::gloss::{BrdfSpecimen, GlossReport, measure};
-use gonio_instrument::specimens::{KirchhoffSpecimen, RaySpecimen};
-use gonio_instrument::validity;
-use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions};
-use gonio_scatter::ray::{RayEngine, RayOptions};
+use gonio_instrument::meter::{self, MapMethod};
 use std::path::PathBuf;
 
 #[derive(Args)]
@@ -44,8 +39,6 @@ enum GlossMethod {
 }
 
 pub fn run(args: GlossArgs) -> Result<()> {
-    let mut warnings =
-        validity::check_index(args.index).map_err(|e| anyhow::anyhow!("--index: {e}"))?;
     anyhow::ensure!(
         args.wavelength_nm.is_finite() && args.wavelength_nm > 0.0,
         "--wavelength-nm {}: must be positive",
@@ -55,52 +48,20 @@ pub fn run(args: GlossArgs) -> Result<()> {
         .input
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("gbrdf"));
-    let report: GlossReport = if is_table {
-        let table = gonio_brdf::gbrdf::read(&args.input)?;
-        // Gloss is a photometric reading: the luminance (Rec. 709 / sRGB Y) of the BRDF's channels.
-        let specimen = BrdfSpecimen::new(|wi, wo| {
-            let f = table.eval(wo, wi);
-            0.2126 * f.x + 0.7152 * f.y + 0.0722 * f.z
-        });
-        measure(&specimen)?
+    let reading = if is_table {
+        meter::read_table(&gonio_brdf::gbrdf::read(&args.input)?)
     } else {
         let map = crate::surface::read(&args.input)?;
-        let meter = validity::meter_readings();
-        match args.method {
-            GlossMethod::Ray => {
-                let levelled = gonio_surface::ops::level(&map)
-                    .with_context(|| format!("{}: levelling", args.input.display()))?;
-                let sq = gonio_surface::stats::height_parameters(&levelled).0;
-                warnings.extend(validity::ray_warnings(
-                    sq,
-                    validity::PHOTOMETRIC_WAVELENGTH,
-                    &meter,
-                ));
-                let options = RayOptions {
-                    ior: Ior::Dielectric(args.index),
-                    ..RayOptions::default()
-                };
-                let engine = RayEngine::new(&map, options)
-                    .with_context(|| format!("{}: ray method", args.input.display()))?;
-                measure(&RaySpecimen { engine: &engine })?
-            }
-            GlossMethod::Kirchhoff => {
-                let options = KirchhoffOptions::new(Ior::Dielectric(args.index));
-                let engine = Kirchhoff::new(&map, options)
-                    .with_context(|| format!("{}: Kirchhoff", args.input.display()))?;
-                warnings.extend(validity::kirchhoff_warnings(
-                    engine.spot().diameter,
-                    args.wavelength_nm * 1e-9,
-                    &meter,
-                ));
-                measure(&KirchhoffSpecimen {
-                    engine: &engine,
-                    wavelength: args.wavelength_nm * 1e-9,
-                })?
-            }
-        }
-    };
-    warnings.extend(validity::doi_warning(&report));
+        let method = match args.method {
+            GlossMethod::Ray => MapMethod::Ray,
+            GlossMethod::Kirchhoff => MapMethod::Kirchhoff {
+                wavelength_nm: args.wavelength_nm,
+            },
+        };
+        meter::read_height_map(&map, method, args.index)
+    }
+    .with_context(|| args.input.display().to_string())?;
+    let (report, warnings) = (reading.report, reading.warnings);
     for w in &warnings {
         eprintln!("warning: {w}");
     }

@@ -1,23 +1,19 @@
 //! `gonio inplane`: in-plane BRDF curves of a surface, as a goniometer sweeping the plane of
-//! incidence would measure them, by one or more methods. Each method yields a list of
-//! [`InplaneCurve`]s; the curves of all methods are written to one CSV (and optionally plotted
-//! and printed as JSON). Adding a method is adding a [`Method`] variant and its branch in
-//! [`run`].
+//! incidence would measure them, by one or more methods. The flags become an
+//! [`InplaneRequest`] that [`gonio_instrument::inplane::compute`] answers (the Python package
+//! asks the same); the curves of all methods are written to one CSV (and optionally plotted and
+//! printed as JSON).
 
 use crate::plot::{self, LinePlot, Series};
 use anyhow::{Context, Result, bail, ensure};
 use clap::{Args, ValueEnum};
 use gonio_brdf::Ior;
-use gonio_instrument::validity;
-use gonio_io::Progress;
-use gonio_scatter::analytic::{AnalyticModel, GaussianModel};
-use gonio_scatter::geometry::{STARR_APERTURE_DEG, STARR_INCIDENCES_DEG, label_value};
-use gonio_scatter::inplane::AnalyticMethod;
-use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions, Spot, average_curves};
-use gonio_scatter::ray::{RayEngine, RayOptions};
-use gonio_scatter::{Goniometer, InplaneCurve, InplaneMethod};
+use gonio_instrument::inplane::{self, InplaneRequest};
+use gonio_scatter::InplaneCurve;
+use gonio_scatter::analytic::AnalyticModel;
+use gonio_scatter::geometry::{STARR_APERTURE_DEG, STARR_INCIDENCES_DEG};
+use gonio_scatter::ray::RayOptions;
 use gonio_surface::normals::NormalMethod;
-use indicatif::ProgressBar;
 use num_complex::Complex64;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -128,50 +124,22 @@ enum Normals {
 pub fn run(args: InplaneArgs) -> Result<()> {
     let scatter_deg = parse_angles(&args.scatter_deg)?;
     check_args(&args)?;
-    let mut warnings = gonio_instrument::validity::check_index(args.index)
-        .map_err(|e| anyhow::anyhow!("--index: {e}"))?;
-    let gonio = Goniometer::from_degrees(&args.incidence_deg, &scatter_deg, args.aperture_deg);
-    let steps = args.method.len() * args.incidence_deg.len();
-    let progress = crate::progress::bar(steps as u64);
-    let mut curves: Vec<InplaneCurve> = Vec::new();
-    // Without a height map only the analytic models run.
-    let methods: &[Method] = if args.surface.is_none() && !args.model.is_empty() {
-        &[]
-    } else {
-        &args.method
+    let request = request(&args, scatter_deg);
+    let map = match &args.surface {
+        Some(path) => Some(crate::surface::read(path)?),
+        None if args.model.is_empty() => bail!(
+            "give a height map (gonio inplane SURFACE --method ray ...) or analytic models \
+             (--model beckmann --sq-nm 100 --corr-um 5 ...)"
+        ),
+        None => None,
     };
-    for method in methods {
-        match method {
-            Method::Ray => curves.extend(ray_curves(&args, &gonio, &progress, &mut warnings)?),
-            Method::Kirchhoff => {
-                curves.extend(kirchhoff_curves(&args, &gonio, &progress, &mut warnings)?)
-            }
-        }
-    }
-    curves.extend(model_curves(&args, &gonio)?);
-    // Write the angles and wavelengths exactly as the user gave them (the library works in
-    // radians and metres, and 60° → rad → deg is 59.99999999999999): each label the library
-    // wrote is matched with the given value it came from.
-    let incidences = gonio.incidences_deg();
-    let wavelengths: Vec<f64> = args
-        .wavelength_nm
-        .iter()
-        .map(|w| label_value(w * 1e-9 * 1e9))
-        .collect();
-    for curve in &mut curves {
-        if let Some(k) = incidences.iter().position(|&t| t == curve.incidence_deg) {
-            curve.incidence_deg = args.incidence_deg[k];
-        }
-        if let Some(k) = wavelengths
-            .iter()
-            .position(|&w| Some(w) == curve.wavelength_nm)
-        {
-            curve.wavelength_nm = Some(args.wavelength_nm[k]);
-        }
-        for (p, &ts) in curve.points.iter_mut().zip(&scatter_deg) {
-            p.scatter_deg = ts;
-        }
-    }
+    let progress = crate::progress::bar(request.steps());
+    let computed = inplane::compute(map.as_ref(), &request, &crate::progress::ticking(&progress))
+        .with_context(|| match &args.surface {
+        Some(path) => path.display().to_string(),
+        None => "analytic models".to_string(),
+    })?;
+    let (curves, warnings) = (computed.curves, computed.warnings);
     progress.finish_and_clear();
     for w in &warnings {
         eprintln!("warning: {w}");
@@ -292,152 +260,50 @@ fn parse_angles(spec: &str) -> Result<Vec<f64>> {
     Ok(angles)
 }
 
-fn ray_curves(
-    args: &InplaneArgs,
-    gonio: &Goniometer,
-    progress: &ProgressBar,
-    warnings: &mut Vec<String>,
-) -> Result<Vec<InplaneCurve>> {
-    let Some(path) = &args.surface else {
-        bail!("--method ray needs a height map: gonio inplane SURFACE --method ray ...");
-    };
-    progress.set_message(format!("reading {}", path.display()));
-    let map = crate::surface::read(path)?;
-    // The ray curves are judged at the longest wavelength given (the smallest Rayleigh
-    // roughness), 550 nm when none is.
-    let wavelength = args
-        .wavelength_nm
-        .iter()
-        .copied()
-        .fold(None, |a: Option<f64>, w| Some(a.map_or(w, |a| a.max(w))))
-        .map_or(validity::PHOTOMETRIC_WAVELENGTH, |w| w * 1e-9);
-    let levelled =
-        gonio_surface::ops::level(&map).with_context(|| format!("{}", path.display()))?;
-    warnings.extend(validity::ray_warnings(
-        gonio_surface::stats::height_parameters(&levelled).0,
-        wavelength,
-        &validity::inplane_readings(&args.incidence_deg, args.aperture_deg.to_radians()),
-    ));
-    let options = RayOptions {
-        ior: ior(args),
-        normals: match args.normals {
-            Normals::Plane => NormalMethod::Plane,
-            Normals::Spline => NormalMethod::Spline,
+/// The library's request from the command line.
+fn request(args: &InplaneArgs, scatter_deg: Vec<f64>) -> InplaneRequest {
+    InplaneRequest {
+        methods: args
+            .method
+            .iter()
+            .map(|m| match m {
+                Method::Ray => inplane::Method::Ray,
+                Method::Kirchhoff => inplane::Method::Kirchhoff,
+            })
+            .collect(),
+        incidence_deg: args.incidence_deg.clone(),
+        scatter_deg,
+        aperture_deg: args.aperture_deg,
+        ior: match args.index_imag {
+            Some(k) if k > 0.0 => Ior::Conductor(Complex64::new(args.index, k)),
+            _ => Ior::Dielectric(args.index),
         },
-        shadowing: !args.no_shadowing,
-        second_bounce: args.second_bounce,
-        azimuths: args.azimuths,
-        polarised: false,
-    };
-    progress.set_message("ray: facet normals");
-    let engine = RayEngine::new(&map, options).with_context(|| format!("{}", path.display()))?;
-    let mut curves = engine.inplane_curves(gonio, &[], &crate::progress::ticking(progress))?;
-    for curve in &mut curves {
-        curve.wavelength_nm = match args.wavelength_nm.as_slice() {
-            [w] => Some(*w),
-            _ => None,
-        };
+        wavelength_nm: args.wavelength_nm.clone(),
+        ray: RayOptions {
+            normals: match args.normals {
+                Normals::Plane => NormalMethod::Plane,
+                Normals::Spline => NormalMethod::Spline,
+            },
+            shadowing: !args.no_shadowing,
+            second_bounce: args.second_bounce,
+            azimuths: args.azimuths,
+            ..RayOptions::default()
+        },
+        spot_um: args.spot_um,
+        spots: args.spots,
+        models: args
+            .model
+            .iter()
+            .map(|m| match m {
+                Model::Beckmann => AnalyticModel::Beckmann,
+                Model::Geometric => AnalyticModel::Geometric,
+                Model::Microfacet => AnalyticModel::Microfacet,
+                Model::Smooth => AnalyticModel::Smooth,
+            })
+            .collect(),
+        sq_nm: args.sq_nm,
+        corr_um: args.corr_um,
     }
-    Ok(curves)
-}
-
-/// The coating's index from --index and --index-imag.
-fn ior(args: &InplaneArgs) -> Ior {
-    match args.index_imag {
-        Some(k) if k > 0.0 => Ior::Conductor(Complex64::new(args.index, k)),
-        _ => Ior::Dielectric(args.index),
-    }
-}
-
-/// Wavelengths in metres, or an error naming what needs them.
-fn wavelengths_m(args: &InplaneArgs, what: &str) -> Result<Vec<f64>> {
-    ensure!(
-        !args.wavelength_nm.is_empty(),
-        "{what} depends on the wavelength: add --wavelength-nm, e.g. --wavelength-nm 500,550,600"
-    );
-    Ok(args.wavelength_nm.iter().map(|w| w * 1e-9).collect())
-}
-
-fn kirchhoff_curves(
-    args: &InplaneArgs,
-    gonio: &Goniometer,
-    progress: &ProgressBar,
-    warnings: &mut Vec<String>,
-) -> Result<Vec<InplaneCurve>> {
-    let Some(path) = &args.surface else {
-        bail!(
-            "--method kirchhoff needs a height map: gonio inplane SURFACE --method kirchhoff ..."
-        );
-    };
-    let wavelengths = wavelengths_m(args, "--method kirchhoff")?;
-    progress.set_message(format!("reading {}", path.display()));
-    let map = crate::surface::read(path)?;
-    let spots = match (args.spot_um, args.spots) {
-        (None, 1) => vec![Spot::largest(&map)],
-        (None, _) => bail!(
-            "--spots {} needs --spot-um, the diameter of each spot",
-            args.spots
-        ),
-        (Some(d), n) => {
-            Spot::tiled(&map, d * 1e-6, n).with_context(|| format!("{}", path.display()))?
-        }
-    };
-    let longest = wavelengths.iter().copied().fold(0.0, f64::max);
-    warnings.extend(validity::kirchhoff_warnings(
-        spots[0].diameter,
-        longest,
-        &validity::inplane_readings(&args.incidence_deg, args.aperture_deg.to_radians()),
-    ));
-    let detectors = spots.len() * wavelengths.len() * gonio.incidences.len() * gonio.scatter.len();
-    progress.inc_length((detectors - gonio.incidences.len()) as u64);
-    let mut sets = Vec::new();
-    for (i, spot) in spots.iter().enumerate() {
-        progress.set_message(format!("kirchhoff: spot {}/{}", i + 1, spots.len()));
-        let options = KirchhoffOptions {
-            spot: Some(*spot),
-            ..KirchhoffOptions::new(ior(args))
-        };
-        let engine =
-            Kirchhoff::new(&map, options).with_context(|| format!("{}", path.display()))?;
-        let curves = engine
-            .inplane_curves(
-                gonio,
-                &args.wavelength_nm,
-                &crate::progress::ticking(progress),
-            )
-            .with_context(|| format!("{}", path.display()))?;
-        sets.push(curves);
-    }
-    Ok(average_curves(&sets)?)
-}
-
-fn model_curves(args: &InplaneArgs, gonio: &Goniometer) -> Result<Vec<InplaneCurve>> {
-    if args.model.is_empty() {
-        return Ok(Vec::new());
-    }
-    let (Some(sq), Some(corr)) = (args.sq_nm, args.corr_um) else {
-        bail!("--model needs the surface's --sq-nm and --corr-um");
-    };
-    let model = GaussianModel::new(sq * 1e-9, corr * 1e-6, ior(args))?;
-    let mut curves = Vec::new();
-    for m in &args.model {
-        let kind = match m {
-            Model::Beckmann => AnalyticModel::Beckmann,
-            Model::Geometric => AnalyticModel::Geometric,
-            Model::Microfacet => AnalyticModel::Microfacet,
-            Model::Smooth => AnalyticModel::Smooth,
-        };
-        // Ray-optics models do not depend on the wavelength: one curve per incidence.
-        if kind.is_wave() {
-            wavelengths_m(args, &format!("--model {}", kind.name()))?;
-        }
-        let method = AnalyticMethod {
-            surface: &model,
-            model: kind,
-        };
-        curves.extend(method.inplane_curves(gonio, &args.wavelength_nm, &Progress::silent())?);
-    }
-    Ok(curves)
 }
 
 pub fn plot_curves(path: &Path, curves: &[InplaneCurve]) -> Result<()> {

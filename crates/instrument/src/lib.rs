@@ -1,5 +1,6 @@
-//! Virtual instruments for gonio: gloss meters (ISO 2813 / ASTM D523), reflection haze (ASTM E430,
-//! ASTM D4039) and distinctness of image (ASTM E430), the comparison of measured and computed
+//! Virtual instruments for gonio: in-plane curves by several methods at once (`inplane`), gloss
+//! meters (ISO 2813 / ASTM D523), reflection haze (ASTM E430, ASTM D4039) and distinctness of
+//! image (ASTM E430) on a height map or a table (`gloss`, `meter`), the comparison of measured and computed
 //! in-plane curves, the isotropy check (the curves of a map and of the map turned about its
 //! normal), and the validity warnings of a virtual reading (`validity`).
 
@@ -7,7 +8,9 @@ pub mod compare;
 pub mod curves;
 pub mod error;
 pub mod gloss;
+pub mod inplane;
 pub mod isotropy;
+pub mod meter;
 mod quadrature;
 pub mod specimens;
 pub mod study;
