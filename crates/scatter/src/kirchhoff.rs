@@ -148,8 +148,10 @@ pub struct Kirchhoff {
 }
 
 impl Kirchhoff {
-    /// Set up the engine. Fails if the spot does not lie on the map or holds fewer than 8 × 8
-    /// points, or the phase tolerance is not positive.
+    /// Set up the engine for the map less its least-squares plane (the sample's mean plane is
+    /// the instrument's reference, as for [`crate::ray::RayEngine::new`]). Fails if the spot does
+    /// not lie on the map or holds fewer than 8 × 8 points, or the phase tolerance is not
+    /// positive.
     pub fn new(map: &HeightMap, options: KirchhoffOptions) -> Result<Self> {
         let spot = options.spot.unwrap_or_else(|| Spot::largest(map));
         let (w, h) = map_extent(map);
@@ -187,6 +189,8 @@ impl Kirchhoff {
                 options.phase_tolerance
             )));
         }
+        // The sample as an instrument sees it: angles from its mean plane (see RayEngine::new).
+        let map = &gonio_surface::ops::level(map)?;
         let spline = BicubicSpline::from_map(map)?;
         let (curvature, slope) = facets::spot_percentiles(map.heights(), map.dx(), map.dy(), &spot);
         Ok(Kirchhoff {

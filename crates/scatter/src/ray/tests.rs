@@ -63,9 +63,10 @@ fn flat_map_reflects_fresnel_into_specular_only() {
 
 use crate::geometry::cone_solid_angle;
 
-/// A tilted plane `h = p x` (normal tilted toward the source): every facet intercepts
-/// `wi·n / n_z = cos ti + p sin ti` per unit mean-plane area, so the detector on its mirror
-/// direction reads `R(wi·n) (1 + p tan ti)`.
+/// A tilted plane `h = p x` (normal tilted toward the source) taken as it is
+/// (`from_normals`; `new` would level it): every facet intercepts `wi·n / n_z = cos ti + p sin ti`
+/// per unit mean-plane area, so the detector on its mirror direction reads
+/// `R(wi·n) (1 + p tan ti)`.
 #[test]
 fn tilted_plane_weights_by_intercepted_area() {
     let p = 0.1;
@@ -77,7 +78,8 @@ fn tilted_plane_weights_by_intercepted_area() {
             polarised: true,
             ..RayOptions::default()
         };
-        let engine = RayEngine::new(&map, options).unwrap();
+        let normals = facet_normals(&map, options.normals);
+        let engine = RayEngine::from_normals(&map, normals, options).unwrap();
         for ti_deg in [10.0f64, 30.0, 50.0] {
             let wi = incidence_direction(ti_deg.to_radians());
             let c = wi.dot(n);
@@ -97,6 +99,24 @@ fn tilted_plane_weights_by_intercepted_area() {
             assert_eq!(reading.hits, 38 * 38);
         }
     }
+}
+
+/// `new` takes angles from the map's mean plane: a tilted plane reflects as a flat one.
+#[test]
+fn new_levels_the_map() {
+    let engine = RayEngine::new(&plane_map(40, 0.1), RayOptions::default()).unwrap();
+    let flat = RayEngine::new(&plane_map(40, 0.0), RayOptions::default()).unwrap();
+    let wi = incidence_direction(30f64.to_radians());
+    let det = Detector {
+        direction: DVec3::new(-wi.x, -wi.y, wi.z),
+        half_angle: 0.5f64.to_radians(),
+    };
+    let (a, b) = (
+        engine.detect(wi, &[det]).unwrap()[0],
+        flat.detect(wi, &[det]).unwrap()[0],
+    );
+    assert!((a.reflectance - b.reflectance).abs() < 1e-12, "{a:?} {b:?}");
+    assert_eq!(a.hits, b.hits);
 }
 
 /// The direction index finds exactly the hits of a plain loop over every ray, for detectors

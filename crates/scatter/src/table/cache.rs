@@ -16,8 +16,9 @@ use gonio_brdf::table::BrdfTable;
 use std::path::PathBuf;
 
 /// Revision of the tables [`super::ray_table`] makes from the same inputs. Raise it with every
-/// change that alters a table's values, so that caches written before are not read.
-pub const TABLE_REVISION: u32 = 1;
+/// change that alters a table's values, so that caches written before are not read. Revision 2:
+/// the ray method levels the map (angles from its mean plane).
+pub const TABLE_REVISION: u32 = 2;
 
 /// Tables cached as `.gbrdf` files in one directory.
 #[derive(Debug, Clone)]
