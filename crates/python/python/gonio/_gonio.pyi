@@ -1,0 +1,103 @@
+"""Type stubs of gonio's compiled module (crates/python/src). Lengths in metres unless a name
+says otherwise, angles in degrees, BRDFs in 1/sr."""
+
+from os import PathLike
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+class Surface:
+    """A height map: heights in metres on a grid of spacings dx, dy (m), NaN where not measured."""
+
+    @staticmethod
+    def from_array(heights: npt.ArrayLike, dx: float, dy: float | None = None) -> Surface: ...
+    @staticmethod
+    def from_topography(topography: Any) -> Surface: ...
+    def to_topography(self) -> Any: ...
+    @property
+    def heights(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def dx(self) -> float: ...
+    @property
+    def dy(self) -> float: ...
+    @property
+    def shape(self) -> tuple[int, int]: ...
+    @property
+    def metadata(self) -> dict[str, Any]: ...
+    def statistics(self) -> dict[str, Any]: ...
+    def level(self) -> Surface: ...
+    def crop(self, x0: int, y0: int, nx: int, ny: int) -> Surface: ...
+    def rotate(self, deg: float) -> Surface: ...
+
+def read_surface(path: str | PathLike[str], channel: str | int | None = None) -> Surface: ...
+def synthesize(
+    sq: float, corr: float, size: int, dx: float, acf: str = "gaussian", seed: int = 1
+) -> Surface: ...
+
+class Table:
+    """A tabulated BRDF (mono, rgb, xyz or spectral channels)."""
+
+    @staticmethod
+    def open(path: str | PathLike[str]) -> Table: ...
+    def eval(
+        self, wi: npt.ArrayLike, wo: npt.ArrayLike, channels: bool = False
+    ) -> npt.NDArray[np.float64]: ...
+    def albedo(self, theta_i_deg: float, phi_i_deg: float = 0.0) -> npt.NDArray[np.float64]: ...
+    @property
+    def channels(self) -> str: ...
+    @property
+    def wavelengths_nm(self) -> list[float] | None: ...
+    @property
+    def resolution(self) -> list[int]: ...
+    def save(self, path: str | PathLike[str]) -> None: ...
+    def export(self, format: str, path: str | PathLike[str], step_deg: float = 1.0) -> None: ...
+
+def import_table(path: str | PathLike[str], resolution: list[int] | None = None) -> Table: ...
+def tabulate(model_json: str, resolution: list[int], mono: bool = False) -> Table: ...
+def compute_table(
+    surface: Surface,
+    method: str,
+    index: float,
+    index_imag: float | None,
+    wavelength_nm: list[float],
+    resolution: list[int],
+    incidence_azimuths: int | None,
+    shadowing: bool,
+    source: str,
+) -> Table: ...
+def inplane_columns(
+    surface: Surface | None,
+    methods: list[str],
+    incidence_deg: list[float],
+    scatter_deg: list[float],
+    aperture_deg: float,
+    index: float,
+    index_imag: float | None,
+    wavelength_nm: list[float],
+    sq_nm: float | None,
+    corr_um: float | None,
+    shadowing: bool,
+    second_bounce: bool,
+    normals: str,
+    azimuths: int,
+    spot_um: float | None,
+    spots: int,
+) -> tuple[dict[str, Any], list[str]]: ...
+def gloss_json(specimen: Surface | Table, method: str, index: float, wavelength_nm: float) -> str: ...
+def render_scene(
+    path: str | None,
+    json: str | None,
+    base_dir: str,
+    spp: int | None,
+    seed: int | None,
+    max_bounces: int | None,
+    denoise: bool | None,
+    spectral: bool,
+    threads: int | None,
+) -> npt.NDArray[np.float32]: ...
+def xyz(
+    wavelengths_nm: list[float], values: list[float], illuminant: str = "D65", observer: int = 2
+) -> dict[str, Any]: ...

@@ -1,0 +1,32 @@
+//! `gonio._gonio`, the compiled half of the Python package `gonio` (built by maturin from
+//! `crates/python`; the pure-Python half in `python/gonio` turns its columns into pandas
+//! DataFrames and runs studies on Dask). Every function is a thin call into gonio's crates:
+//! the physics is theirs, so Python and the command line give the same numbers. Long
+//! computations release the GIL (`Python::detach`) and run on rayon's threads, so that Python
+//! threads and Dask workers compute in parallel.
+
+mod color;
+mod error;
+mod instruments;
+mod render;
+mod surface;
+mod table;
+
+use pyo3::prelude::*;
+
+#[pymodule]
+fn _gonio(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_class::<surface::Surface>()?;
+    m.add_function(wrap_pyfunction!(surface::read_surface, m)?)?;
+    m.add_function(wrap_pyfunction!(surface::synthesize, m)?)?;
+    m.add_function(wrap_pyfunction!(instruments::inplane_columns, m)?)?;
+    m.add_function(wrap_pyfunction!(instruments::gloss_json, m)?)?;
+    m.add_class::<table::Table>()?;
+    m.add_function(wrap_pyfunction!(table::import_table, m)?)?;
+    m.add_function(wrap_pyfunction!(table::tabulate, m)?)?;
+    m.add_function(wrap_pyfunction!(table::compute_table, m)?)?;
+    m.add_function(wrap_pyfunction!(render::render_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(color::xyz, m)?)?;
+    Ok(())
+}
