@@ -43,6 +43,7 @@ def main() -> None:
     serial = time.perf_counter() - t0
     down = np.mean([len(pickle.dumps(t)) for t in tasks])
     up = np.mean([len(pickle.dumps(f)) for f in frames])
+    print(f"serial: {serial:.1f} s for {len(tasks)} tasks", flush=True)
 
     from dask.distributed import Client, LocalCluster
 
