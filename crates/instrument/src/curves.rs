@@ -9,7 +9,8 @@ use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::Path;
 
-const COLUMNS: [&str; 7] = [
+/// The columns of the in-plane CSV, in order (the Python package's DataFrames take the same).
+pub const COLUMNS: [&str; 7] = [
     "method",
     "wavelength_nm",
     "incidence_deg",

@@ -17,6 +17,7 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _gonio(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("COLUMNS", gonio_instrument::curves::COLUMNS.to_vec())?;
     m.add_class::<surface::Surface>()?;
     m.add_function(wrap_pyfunction!(surface::read_surface, m)?)?;
     m.add_function(wrap_pyfunction!(surface::synthesize, m)?)?;

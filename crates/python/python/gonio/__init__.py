@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 import pandas as pd
@@ -47,16 +47,7 @@ __all__ = [
 #: Incidence angles of the NIST STARR in-plane set-up, degrees.
 STARR_INCIDENCES_DEG = (20.0, 45.0, 60.0, 70.0)
 #: Columns of :func:`inplane`'s DataFrame (those of ``gonio inplane``'s CSV).
-COLUMNS = (
-    "method",
-    "wavelength_nm",
-    "incidence_deg",
-    "scatter_deg",
-    "brdf_per_sr",
-    "reflectance",
-    "rel_uncertainty",
-)
-_MODELS = ("beckmann", "geometric", "microfacet", "smooth")
+COLUMNS = tuple(_gonio.COLUMNS)
 
 
 def _surface(surface: Surface | str | os.PathLike, channel: Any = None) -> Surface:

@@ -8,6 +8,8 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
+#: The columns of gonio inplane's CSV, in order.
+COLUMNS: list[str]
 
 class Surface:
     """A height map: heights in metres on a grid of spacings dx, dy (m), NaN where not measured."""
