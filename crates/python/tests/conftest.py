@@ -36,3 +36,14 @@ def gonio_cli() -> Path:
         capture_output=True,
     )
     return ROOT / "target" / "debug" / "gonio"
+
+
+def cli_map(gonio_cli: Path, path: Path, sq_nm: float, seed: int) -> Path:
+    """A 128² Gaussian map (T = 6 µm, 0.5 µm spacing) written by the CLI's synthesis to
+    ``path`` (an X3P file), for tests that give the same file to the CLI and to Python."""
+    subprocess.run(
+        [gonio_cli, "surface", "gen", "--sq-nm", str(sq_nm), "--corr-um", "6", "--size", "128",
+         "--dx-um", "0.5", "--seed", str(seed), "-o", path],
+        check=True, capture_output=True,
+    )
+    return path

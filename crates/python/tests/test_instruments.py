@@ -14,6 +14,7 @@ import pandas as pd
 import pytest
 
 import gonio
+from conftest import cli_map
 
 
 def csv_text(df: pd.DataFrame) -> str:
@@ -56,13 +57,8 @@ def csv_text(df: pd.DataFrame) -> str:
 
 
 def test_dataframe_equals_the_cli_csv(gonio_cli, tmp_path):
-    path = tmp_path / "map.x3p"
     # A map written by the CLI's synthesis; the CLI and Python both read this file.
-    subprocess.run(
-        [gonio_cli, "surface", "gen", "--sq-nm", "200", "--corr-um", "6", "--size", "128",
-         "--dx-um", "0.5", "--seed", "7", "-o", path],
-        check=True, capture_output=True,
-    )
+    path = cli_map(gonio_cli, tmp_path / "map.x3p", 200, 7)
     args = ["--method", "ray,kirchhoff", "--incidence-deg", "20,60", "--scatter-deg=-70:70:5",
             "--wavelength-nm", "550", "--model", "beckmann,geometric", "--sq-nm", "200",
             "--corr-um", "6"]

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import gonio
-from conftest import BRDF_DATA
+from conftest import BRDF_DATA, cli_map
 
 
 def unit(theta_deg, phi_deg):
@@ -76,12 +76,7 @@ def test_measured_paint_imports_and_exports(tmp_path):
 
 
 def test_table_of_a_height_map_equals_the_cli_table(gonio_cli, tmp_path):
-    path = tmp_path / "map.x3p"
-    subprocess.run(
-        [gonio_cli, "surface", "gen", "--sq-nm", "300", "--corr-um", "6", "--size", "128",
-         "--dx-um", "0.5", "--seed", "5", "-o", path],
-        check=True, capture_output=True,
-    )
+    path = cli_map(gonio_cli, tmp_path / "map.x3p", 300, 5)
     cli = tmp_path / "cli.gbrdf"
     subprocess.run(
         [gonio_cli, "brdf", "compute", path, "--resolution", "16,18,36",
