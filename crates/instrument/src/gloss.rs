@@ -594,72 +594,6 @@ mod tests {
         midpoint_reading_on(f, &g, (32, 32), 60)
     }
 
-    /// DOI and the haze readings of analytic Beckmann surfaces agree with the independent
-    /// midpoint integration of the same microfacet model over the apertures.
-    ///
-    /// Tolerances: each reading of the meter (32 × 32 Gauss-Legendre over the receptor, 8 × 8
-    /// over the source) and of the reference agree within 1% (measured: within 0.3%). DOI is
-    /// `100 (1 − R0.3/Rs)`; a relative error e in each of R0.3 and Rs moves it by at most
-    /// `100 · 2e · R0.3/Rs`, i.e. 2 DOI units at e = 1% when R0.3 ≈ Rs (rough end) and less
-    /// where DOI is high: the test holds `|ΔDOI| ≤ 2 (R0.3/Rs) + 0.05`. Haze readings are a
-    /// reading over the standard's exact Fresnel reflectance: 1% relative. The D4039 index is a
-    /// difference of two gloss readings each within 1%: `0.01 (GU60 + GU20)` absolute.
-    #[test]
-    fn beckmann_doi_and_haze_match_independent_integration() {
-        let std_r =
-            |deg: f64| gonio_brdf::fresnel::dielectric(deg.to_radians().cos(), STANDARD_INDEX);
-        for m in [0.005, 0.01, 0.02, 0.05, 0.15] {
-            let f = microfacet(m, 1.55);
-            let ours = measure(&BrdfSpecimen::new(microfacet(m, 1.55))).unwrap();
-            let slit = e430::doi_receptor();
-            let src = e430::source();
-            let rs = reference(&f, 30.0, src, slit, 0.0);
-            let r03 =
-                0.5 * (reference(&f, 30.0, src, slit, 0.3) + reference(&f, 30.0, src, slit, -0.3));
-            let doi_ref = 100.0 * (rs - r03) / rs;
-            let tol = 2.0 * r03 / rs + 0.05;
-            assert!(
-                (ours.doi - doi_ref).abs() <= tol,
-                "m = {m}: DOI {} vs {doi_ref} (tolerance {tol})",
-                ours.doi
-            );
-            let haze = |theta: f64, source: Aperture, receptor: Aperture, offset: f64| {
-                100.0
-                    * 0.5
-                    * (reference(&f, theta, source, receptor, offset)
-                        + reference(&f, theta, source, receptor, -offset))
-                    / std_r(theta)
-            };
-            let a = e430::receptor();
-            let iso20 = Geometry::iso2813(20).unwrap();
-            for (name, got, want) in [
-                ("haze 2°", ours.haze, haze(30.0, src, a, 2.0)),
-                ("haze 5°", ours.haze_wide, haze(30.0, src, a, 5.0)),
-                (
-                    "haze 20°",
-                    ours.haze_20,
-                    haze(20.0, iso20.source, e430::b_receptor(), 1.9),
-                ),
-            ] {
-                assert!(
-                    (got / want - 1.0).abs() < 0.01,
-                    "m = {m}: {name} {got} vs {want}"
-                );
-            }
-            let gu = |deg: u32| {
-                let g = Geometry::iso2813(deg).unwrap();
-                100.0 * midpoint_reading(&f, &g) / std_r(deg as f64)
-            };
-            let (gu20, gu60) = (gu(20), gu(60));
-            assert!(
-                (ours.haze_d4039 - (gu60 - gu20)).abs() < 0.01 * (gu60 + gu20),
-                "m = {m}: D4039 {} vs {}",
-                ours.haze_d4039,
-                gu60 - gu20
-            );
-        }
-    }
-
     /// DOI over a roughness series: 100 for a mirror, falling monotonically with the rms slope,
     /// near 0 for a matte surface. For a Lambertian specimen Rs and R0.3 differ only through
     /// `cos θo`, and the mean of ±0.3° cancels the first order: `(cos(θ+δ) + cos(θ−δ))/2 =
@@ -699,5 +633,82 @@ mod tests {
             (matte - expect).abs() < 1e-9,
             "Lambertian DOI {matte} vs {expect}"
         );
+    }
+
+    /// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
+    mod slow {
+        use super::*;
+
+        /// DOI and the haze readings of analytic Beckmann surfaces agree with the independent
+        /// midpoint integration of the same microfacet model over the apertures.
+        ///
+        /// Tolerances: each reading of the meter (32 × 32 Gauss-Legendre over the receptor, 8 × 8
+        /// over the source) and of the reference agree within 1% (measured: within 0.3%). DOI is
+        /// `100 (1 − R0.3/Rs)`; a relative error e in each of R0.3 and Rs moves it by at most
+        /// `100 · 2e · R0.3/Rs`, i.e. 2 DOI units at e = 1% when R0.3 ≈ Rs (rough end) and less
+        /// where DOI is high: the test holds `|ΔDOI| ≤ 2 (R0.3/Rs) + 0.05`. Haze readings are a
+        /// reading over the standard's exact Fresnel reflectance: 1% relative. The D4039 index is a
+        /// difference of two gloss readings each within 1%: `0.01 (GU60 + GU20)` absolute.
+        #[test]
+        fn beckmann_doi_and_haze_match_independent_integration() {
+            let std_r =
+                |deg: f64| gonio_brdf::fresnel::dielectric(deg.to_radians().cos(), STANDARD_INDEX);
+            // One roughness per thread: the reference integrations are serial and independent.
+            let check = |m: f64| {
+                let f = microfacet(m, 1.55);
+                let ours = measure(&BrdfSpecimen::new(microfacet(m, 1.55))).unwrap();
+                let slit = e430::doi_receptor();
+                let src = e430::source();
+                let rs = reference(&f, 30.0, src, slit, 0.0);
+                let r03 = 0.5
+                    * (reference(&f, 30.0, src, slit, 0.3) + reference(&f, 30.0, src, slit, -0.3));
+                let doi_ref = 100.0 * (rs - r03) / rs;
+                let tol = 2.0 * r03 / rs + 0.05;
+                assert!(
+                    (ours.doi - doi_ref).abs() <= tol,
+                    "m = {m}: DOI {} vs {doi_ref} (tolerance {tol})",
+                    ours.doi
+                );
+                let haze = |theta: f64, source: Aperture, receptor: Aperture, offset: f64| {
+                    100.0
+                        * 0.5
+                        * (reference(&f, theta, source, receptor, offset)
+                            + reference(&f, theta, source, receptor, -offset))
+                        / std_r(theta)
+                };
+                let a = e430::receptor();
+                let iso20 = Geometry::iso2813(20).unwrap();
+                for (name, got, want) in [
+                    ("haze 2°", ours.haze, haze(30.0, src, a, 2.0)),
+                    ("haze 5°", ours.haze_wide, haze(30.0, src, a, 5.0)),
+                    (
+                        "haze 20°",
+                        ours.haze_20,
+                        haze(20.0, iso20.source, e430::b_receptor(), 1.9),
+                    ),
+                ] {
+                    assert!(
+                        (got / want - 1.0).abs() < 0.01,
+                        "m = {m}: {name} {got} vs {want}"
+                    );
+                }
+                let gu = |deg: u32| {
+                    let g = Geometry::iso2813(deg).unwrap();
+                    100.0 * midpoint_reading(&f, &g) / std_r(deg as f64)
+                };
+                let (gu20, gu60) = (gu(20), gu(60));
+                assert!(
+                    (ours.haze_d4039 - (gu60 - gu20)).abs() < 0.01 * (gu60 + gu20),
+                    "m = {m}: D4039 {} vs {}",
+                    ours.haze_d4039,
+                    gu60 - gu20
+                );
+            };
+            std::thread::scope(|scope| {
+                for m in [0.005, 0.01, 0.02, 0.05, 0.15] {
+                    scope.spawn(move || check(m));
+                }
+            });
+        }
     }
 }

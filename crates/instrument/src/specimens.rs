@@ -162,36 +162,6 @@ mod tests {
         assert!(ray.doi_uncertainty < 1e-9, "{}", ray.doi_uncertainty);
     }
 
-    /// The DOI uncertainty the jackknife over the map's patches predicts is the spread DOI
-    /// really has from one map of a surface to the next: eight maps of one Gaussian surface
-    /// (Sq 201 nm, T 6 µm, 256² at 0.5 µm, the epoxy sample's statistics on a quarter of its
-    /// area), whose 0.1° DOI slits catch few rays. The standard deviation of eight values is
-    /// itself uncertain by about 1/√(2·7) = 27%, the mean jackknife estimate by a few per cent
-    /// more; the bound, a factor 2 either way, is beyond three of those standard errors.
-    #[test]
-    fn doi_uncertainty_predicts_the_spread_between_maps() {
-        use gonio_surface::synth::GaussianSurface;
-        let (mut dois, mut predicted) = (Vec::new(), Vec::new());
-        for seed in 1..=8 {
-            let map = GaussianSurface::square(201e-9, 6e-6, 256, 0.5e-6, seed)
-                .generate()
-                .unwrap();
-            let engine = RayEngine::new(&map, RayOptions::default()).unwrap();
-            let r = measure(&RaySpecimen { engine: &engine }).unwrap();
-            dois.push(r.doi);
-            predicted.push(r.doi_uncertainty);
-        }
-        let mean = dois.iter().sum::<f64>() / 8.0;
-        let spread = (dois.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / 7.0).sqrt();
-        let u = predicted.iter().sum::<f64>() / 8.0;
-        eprintln!("DOI {dois:.2?}: spread {spread:.2}, predicted {u:.2}");
-        assert!(spread > 0.0 && u > 0.0);
-        assert!(
-            (0.5..=2.0).contains(&(spread / u)),
-            "spread {spread} vs predicted {u}"
-        );
-    }
-
     /// A flat patch through the Kirchhoff approximation: the lobe is the spot's diffraction
     /// pattern, so the gloss is the smooth surface's within the energy the pattern puts outside
     /// the receptor. That pattern is about λ/(L cos θ) wide in the plane of incidence: for a
@@ -214,6 +184,41 @@ mod tests {
             assert!(
                 (k / s - 1.0).abs() < 0.01,
                 "{deg}°: Kirchhoff {k} GU vs smooth {s} GU"
+            );
+        }
+    }
+
+    /// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
+    mod slow {
+        use super::*;
+
+        /// The DOI uncertainty the jackknife over the map's patches predicts is the spread DOI
+        /// really has from one map of a surface to the next: eight maps of one Gaussian surface
+        /// (Sq 201 nm, T 6 µm, 256² at 0.5 µm, the epoxy sample's statistics on a quarter of its
+        /// area), whose 0.1° DOI slits catch few rays. The standard deviation of eight values is
+        /// itself uncertain by about 1/√(2·7) = 27%, the mean jackknife estimate by a few per cent
+        /// more; the bound, a factor 2 either way, is beyond three of those standard errors.
+        #[test]
+        fn doi_uncertainty_predicts_the_spread_between_maps() {
+            use gonio_surface::synth::GaussianSurface;
+            let (mut dois, mut predicted) = (Vec::new(), Vec::new());
+            for seed in 1..=8 {
+                let map = GaussianSurface::square(201e-9, 6e-6, 256, 0.5e-6, seed)
+                    .generate()
+                    .unwrap();
+                let engine = RayEngine::new(&map, RayOptions::default()).unwrap();
+                let r = measure(&RaySpecimen { engine: &engine }).unwrap();
+                dois.push(r.doi);
+                predicted.push(r.doi_uncertainty);
+            }
+            let mean = dois.iter().sum::<f64>() / 8.0;
+            let spread = (dois.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / 7.0).sqrt();
+            let u = predicted.iter().sum::<f64>() / 8.0;
+            eprintln!("DOI {dois:.2?}: spread {spread:.2}, predicted {u:.2}");
+            assert!(spread > 0.0 && u > 0.0);
+            assert!(
+                (0.5..=2.0).contains(&(spread / u)),
+                "spread {spread} vs predicted {u}"
             );
         }
     }

@@ -10,7 +10,6 @@
 
 pub mod channel;
 pub mod error;
-mod fft2;
 pub mod heightmap;
 pub mod io;
 pub mod normals;

@@ -17,9 +17,9 @@
 //! (no extrapolation), except within 1e-9 of a spacing of the edge.
 
 use crate::error::{Result, SurfaceError};
-use crate::fft2;
 use crate::heightmap::HeightMap;
 use glam::DVec2;
+use gonio_fft::fft2;
 use ndarray::{Array2, ArrayView2};
 use rayon::prelude::*;
 

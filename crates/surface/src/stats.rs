@@ -25,9 +25,9 @@
 //!   `max(2π/Lx, 2π/Ly)` up to the smaller Nyquist wavenumber.
 
 use crate::error::{Result, SurfaceError};
-use crate::fft2;
 use crate::heightmap::HeightMap;
 use crate::ops::{self, per_row};
+use gonio_fft::fft2;
 use ndarray::{Array2, Zip};
 use rayon::prelude::*;
 

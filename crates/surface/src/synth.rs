@@ -12,9 +12,9 @@
 //! plane is not subtracted, so the raw rms may exceed `sq` by the tiny tilt of one realisation.
 
 use crate::error::{Result, SurfaceError};
-use crate::fft2;
 use crate::heightmap::HeightMap;
 use crate::ops;
+use gonio_fft::fft2;
 use ndarray::{Array2, Zip};
 use rand_distr::{Distribution, StandardNormal};
 use rand_pcg::Pcg64;

@@ -34,35 +34,6 @@ fn imported() -> &'static BrdfTable {
     &TABLE
 }
 
-#[test]
-fn measured_and_tabulated_cayman_colours_agree() {
-    let path = cayman_path();
-    let file = astm::read(&path).unwrap();
-    let spectral = imported();
-    let all: Vec<&Sample> = file.samples.iter().collect();
-    for (illuminant, observer) in [
-        (Illuminant::D65, Observer::Cie1931TwoDegree),
-        (Illuminant::A, Observer::Cie1964TenDegree),
-    ] {
-        let de = quantiles(spectral, &all, &file.wavelengths_nm, illuminant, observer);
-        println!(
-            "{illuminant} {observer}, all {} geometries: {de}",
-            all.len()
-        );
-        assert!(de.median < 2.0, "median CIEDE2000 {}", de.median);
-    }
-
-    let HeldOut { held, table, .. } = cayman_held_out();
-    let held: Vec<&Sample> = held.iter().collect();
-    let (illuminant, observer) = (Illuminant::D65, Observer::Cie1931TwoDegree);
-    let de = quantiles(table, &held, &file.wavelengths_nm, illuminant, observer);
-    println!(
-        "{illuminant} {observer}, {} held-out geometries: {de}",
-        held.len()
-    );
-    assert!(de.median < 2.0, "held-out median CIEDE2000 {}", de.median);
-}
-
 /// Median, 90th percentile and maximum of CIEDE2000.
 struct Quantiles {
     median: f64,
@@ -112,72 +83,6 @@ fn quantiles(
         p90: q(0.9),
         max: q(1.0),
     }
-}
-
-/// Colour travel: the Cayman colour, averaged (in CIELAB) over the geometries in bins of
-/// aspecular angle (between the detector and the mirror direction of the light), turns from
-/// turquoise near the specular direction to blue far from it. The table keeps each bin's mean
-/// colour within 1 ΔE00 and the hue travel within 3°.
-#[test]
-fn colour_travel_is_kept() {
-    let path = cayman_path();
-    let file = astm::read(&path).unwrap();
-    let spectral = imported();
-    let (illuminant, observer) = (Illuminant::D65, Observer::Cie1931TwoDegree);
-    let bands = SpectralToXyz::new(&file.wavelengths_nm, illuminant, observer).unwrap();
-    let table = reduce(spectral, ColourSpace::Xyz, illuminant, observer).unwrap();
-    let w = white(illuminant, observer);
-    let lab_of = |xyz_0_100: [f64; 3]| Xyz::from_array(xyz_0_100.map(|v| PI * v)).to_lab(w);
-    let edges = [10.0, 20.0, 35.0, 50.0, 70.0, 180.0];
-    let mut hues = Vec::new();
-    for pair in edges.windows(2) {
-        let (mut measured, mut tabulated, mut n) = ([0.0; 3], [0.0; 3], 0.0);
-        for s in &file.samples {
-            let mirror = DVec3::new(-s.wi.x, -s.wi.y, s.wi.z);
-            let aspecular_deg = mirror.dot(s.wo).clamp(-1.0, 1.0).acos().to_degrees();
-            if aspecular_deg < pair[0] || aspecular_deg >= pair[1] {
-                continue;
-            }
-            let mut x = [0.0; 3];
-            table.eval_channels(s.wo, s.wi, &mut x);
-            let m = lab_of(bands.xyz(&s.values).unwrap().to_array());
-            let t = lab_of(x.map(|v| 100.0 * v));
-            for (acc, lab) in [(&mut measured, m), (&mut tabulated, t)] {
-                acc[0] += lab.l;
-                acc[1] += lab.a;
-                acc[2] += lab.b;
-            }
-            n += 1.0;
-        }
-        let mean = |a: [f64; 3]| Lab {
-            l: a[0] / n,
-            a: a[1] / n,
-            b: a[2] / n,
-        };
-        let (m, t) = (mean(measured), mean(tabulated));
-        println!(
-            "aspecular {}-{}°: {n} geometries; measured L* {:.1} C* {:.1} h {:.1}°; table L* {:.1} \
-             C* {:.1} h {:.1}°",
-            pair[0],
-            pair[1],
-            m.l,
-            m.chroma(),
-            m.hue_deg(),
-            t.l,
-            t.chroma(),
-            t.hue_deg()
-        );
-        assert!(ciede2000(m, t) < 1.0, "{m:?} vs {t:?}");
-        hues.push((m.hue_deg(), t.hue_deg()));
-    }
-    let (first, last) = (hues[0], hues[hues.len() - 1]);
-    let travel = (last.0 - first.0, last.1 - first.1);
-    println!(
-        "hue travel: measured {:.1}°, table {:.1}°",
-        travel.0, travel.1
-    );
-    assert!(travel.0 > 20.0, "the data's hue travel {:.1}°", travel.0);
-    assert!((travel.0 - travel.1).abs() < 3.0, "{travel:?}");
 }
 
 /// What the tristimulus shortcut (render in linear sRGB, multiply colours at each bounce) costs
@@ -236,4 +141,104 @@ fn tristimulus_shortcut_error_on_two_bounces() {
         q(1.0)
     );
     assert!(de.iter().all(|d| d.is_finite()));
+}
+
+/// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
+mod slow {
+    use super::*;
+
+    /// Colour travel: the Cayman colour, averaged (in CIELAB) over the geometries in bins of
+    /// aspecular angle (between the detector and the mirror direction of the light), turns from
+    /// turquoise near the specular direction to blue far from it. The table keeps each bin's mean
+    /// colour within 1 ΔE00 and the hue travel within 3°.
+    #[test]
+    fn colour_travel_is_kept() {
+        let path = cayman_path();
+        let file = astm::read(&path).unwrap();
+        let spectral = imported();
+        let (illuminant, observer) = (Illuminant::D65, Observer::Cie1931TwoDegree);
+        let bands = SpectralToXyz::new(&file.wavelengths_nm, illuminant, observer).unwrap();
+        let table = reduce(spectral, ColourSpace::Xyz, illuminant, observer).unwrap();
+        let w = white(illuminant, observer);
+        let lab_of = |xyz_0_100: [f64; 3]| Xyz::from_array(xyz_0_100.map(|v| PI * v)).to_lab(w);
+        let edges = [10.0, 20.0, 35.0, 50.0, 70.0, 180.0];
+        let mut hues = Vec::new();
+        for pair in edges.windows(2) {
+            let (mut measured, mut tabulated, mut n) = ([0.0; 3], [0.0; 3], 0.0);
+            for s in &file.samples {
+                let mirror = DVec3::new(-s.wi.x, -s.wi.y, s.wi.z);
+                let aspecular_deg = mirror.dot(s.wo).clamp(-1.0, 1.0).acos().to_degrees();
+                if aspecular_deg < pair[0] || aspecular_deg >= pair[1] {
+                    continue;
+                }
+                let mut x = [0.0; 3];
+                table.eval_channels(s.wo, s.wi, &mut x);
+                let m = lab_of(bands.xyz(&s.values).unwrap().to_array());
+                let t = lab_of(x.map(|v| 100.0 * v));
+                for (acc, lab) in [(&mut measured, m), (&mut tabulated, t)] {
+                    acc[0] += lab.l;
+                    acc[1] += lab.a;
+                    acc[2] += lab.b;
+                }
+                n += 1.0;
+            }
+            let mean = |a: [f64; 3]| Lab {
+                l: a[0] / n,
+                a: a[1] / n,
+                b: a[2] / n,
+            };
+            let (m, t) = (mean(measured), mean(tabulated));
+            println!(
+                "aspecular {}-{}°: {n} geometries; measured L* {:.1} C* {:.1} h {:.1}°; table L* {:.1} \
+                 C* {:.1} h {:.1}°",
+                pair[0],
+                pair[1],
+                m.l,
+                m.chroma(),
+                m.hue_deg(),
+                t.l,
+                t.chroma(),
+                t.hue_deg()
+            );
+            assert!(ciede2000(m, t) < 1.0, "{m:?} vs {t:?}");
+            hues.push((m.hue_deg(), t.hue_deg()));
+        }
+        let (first, last) = (hues[0], hues[hues.len() - 1]);
+        let travel = (last.0 - first.0, last.1 - first.1);
+        println!(
+            "hue travel: measured {:.1}°, table {:.1}°",
+            travel.0, travel.1
+        );
+        assert!(travel.0 > 20.0, "the data's hue travel {:.1}°", travel.0);
+        assert!((travel.0 - travel.1).abs() < 3.0, "{travel:?}");
+    }
+
+    #[test]
+    fn measured_and_tabulated_cayman_colours_agree() {
+        let path = cayman_path();
+        let file = astm::read(&path).unwrap();
+        let spectral = imported();
+        let all: Vec<&Sample> = file.samples.iter().collect();
+        for (illuminant, observer) in [
+            (Illuminant::D65, Observer::Cie1931TwoDegree),
+            (Illuminant::A, Observer::Cie1964TenDegree),
+        ] {
+            let de = quantiles(spectral, &all, &file.wavelengths_nm, illuminant, observer);
+            println!(
+                "{illuminant} {observer}, all {} geometries: {de}",
+                all.len()
+            );
+            assert!(de.median < 2.0, "median CIEDE2000 {}", de.median);
+        }
+
+        let HeldOut { held, table, .. } = cayman_held_out();
+        let held: Vec<&Sample> = held.iter().collect();
+        let (illuminant, observer) = (Illuminant::D65, Observer::Cie1931TwoDegree);
+        let de = quantiles(table, &held, &file.wavelengths_nm, illuminant, observer);
+        println!(
+            "{illuminant} {observer}, {} held-out geometries: {de}",
+            held.len()
+        );
+        assert!(de.median < 2.0, "held-out median CIEDE2000 {}", de.median);
+    }
 }

@@ -231,76 +231,81 @@ fn no_phantom_peak() {
     }
 }
 
-/// Band-to-band smoothness. The directional albedo is a positive weighted integral of f,
-/// `a_c = ∫ f_c w`, so `|Δ²a_c| <= ∫ |Δ²f_c| w <= B ∫ mean(f) w = B mean(a)` whenever every
-/// spectrum `f(·)` has `|Δ²f_c| <= B mean(f)`: the albedo may be no rougher across bands than
-/// the roughest measured spectrum, `B` taken over the measured in-plane spectra.
-#[test]
-fn band_albedo_is_as_smooth_as_the_measured_spectra() {
-    for path in [cayman_path(), krylon_blue_path()] {
-        let (file, table) = astm_table(&path);
-        let b = measured_second_difference(file);
-        for ti in [10.0f64, 30.0, 60.0] {
-            let d = second_difference(&albedo(table, ti.to_radians()));
-            println!(
-                "{}: albedo at {ti}°: {d:.4} (measured bound {b:.4})",
-                path.display()
-            );
-            assert!(d <= b, "albedo second difference {d} against {b} at {ti}°");
-        }
-    }
-}
+/// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
+mod slow {
+    use super::*;
 
-/// The blue paint's highlight is the colour of its measurement: at the specular cells nearer
-/// normal than any measured geometry (theta_d < 10°; the file starts at theta_i = 10°), the
-/// table's 700/440 nm ratio lies within the range of the measured near-specular
-/// (theta_h < 1°) ratios, widened by the two bands' fit residuals. A clamp to the file's
-/// maximum (measured at 80°, where the spectrum is not that of the 10° specular) shows up as a
-/// ratio outside the range.
-#[test]
-fn blue_highlight_keeps_its_measured_colour() {
-    let (file, table) = astm_table(&krylon_blue_path());
-    let wl = &file.wavelengths_nm;
-    let c440 = wl.iter().position(|&w| w == 440.0).unwrap();
-    let c700 = wl.iter().position(|&w| w == 700.0).unwrap();
-    let ratios: Vec<f64> = file
-        .samples
-        .iter()
-        .filter(|s| HalfDiff::from_dirs(s.wi, s.wo).unwrap().theta_h < 1f64.to_radians())
-        .map(|s| s.values[c700] / s.values[c440])
-        .collect();
-    assert!(ratios.len() >= 5, "{ratios:?}");
-    // Each band is reproduced at the measured points to its own residual, fitted separately: a
-    // ratio of two bands may move by the sum of their median residuals beyond the measured
-    // range (and by 1e-6 for the f32 cells).
-    let fit = ScatteredFit::new(&file.samples, None).unwrap();
-    let per_band = fit.residual_per_band(&file.samples);
-    let slack = per_band[c440] + per_band[c700] + 1e-6;
-    println!(
-        "median residual at 440 nm {:.4}, at 700 nm {:.4}",
-        per_band[c440], per_band[c700]
-    );
-    let lo = ratios.iter().copied().fold(f64::INFINITY, f64::min) * (1.0 - slack);
-    let hi = ratios.iter().copied().fold(0.0, f64::max) * (1.0 + slack);
-    let res = table.resolution();
-    let (mut rmin, mut rmax, mut vmax) = (f64::INFINITY, 0.0f64, [0.0f64; 2]);
-    for td in (0..res.theta_d)
-        .take_while(|&td| res.cell_angles(res.cell_index(0, 0, td, 0)).theta_d < 10f64.to_radians())
-    {
-        for pd in 0..res.phi_d {
-            let v = table.cell_values(res.cell_index(0, 0, td, pd));
-            let (a, b) = (v[c440] as f64, v[c700] as f64);
-            rmin = rmin.min(b / a);
-            rmax = rmax.max(b / a);
-            vmax = [vmax[0].max(a), vmax[1].max(b)];
+    /// The blue paint's highlight is the colour of its measurement: at the specular cells nearer
+    /// normal than any measured geometry (theta_d < 10°; the file starts at theta_i = 10°), the
+    /// table's 700/440 nm ratio lies within the range of the measured near-specular
+    /// (theta_h < 1°) ratios, widened by the two bands' fit residuals. A clamp to the file's
+    /// maximum (measured at 80°, where the spectrum is not that of the 10° specular) shows up as a
+    /// ratio outside the range.
+    #[test]
+    fn blue_highlight_keeps_its_measured_colour() {
+        let (file, table) = astm_table(&krylon_blue_path());
+        let wl = &file.wavelengths_nm;
+        let c440 = wl.iter().position(|&w| w == 440.0).unwrap();
+        let c700 = wl.iter().position(|&w| w == 700.0).unwrap();
+        let ratios: Vec<f64> = file
+            .samples
+            .iter()
+            .filter(|s| HalfDiff::from_dirs(s.wi, s.wo).unwrap().theta_h < 1f64.to_radians())
+            .map(|s| s.values[c700] / s.values[c440])
+            .collect();
+        assert!(ratios.len() >= 5, "{ratios:?}");
+        // Each band is reproduced at the measured points to its own residual, fitted separately: a
+        // ratio of two bands may move by the sum of their median residuals beyond the measured
+        // range (and by 1e-6 for the f32 cells).
+        let fit = ScatteredFit::new(&file.samples, None).unwrap();
+        let per_band = fit.residual_per_band(&file.samples);
+        let slack = per_band[c440] + per_band[c700] + 1e-6;
+        println!(
+            "median residual at 440 nm {:.4}, at 700 nm {:.4}",
+            per_band[c440], per_band[c700]
+        );
+        let lo = ratios.iter().copied().fold(f64::INFINITY, f64::min) * (1.0 - slack);
+        let hi = ratios.iter().copied().fold(0.0, f64::max) * (1.0 + slack);
+        let res = table.resolution();
+        let (mut rmin, mut rmax, mut vmax) = (f64::INFINITY, 0.0f64, [0.0f64; 2]);
+        for td in (0..res.theta_d).take_while(|&td| {
+            res.cell_angles(res.cell_index(0, 0, td, 0)).theta_d < 10f64.to_radians()
+        }) {
+            for pd in 0..res.phi_d {
+                let v = table.cell_values(res.cell_index(0, 0, td, pd));
+                let (a, b) = (v[c440] as f64, v[c700] as f64);
+                rmin = rmin.min(b / a);
+                rmax = rmax.max(b / a);
+                vmax = [vmax[0].max(a), vmax[1].max(b)];
+            }
+        }
+        println!(
+            "specular below 10°: 440 nm up to {:.3}, 700 nm up to {:.3}, ratio {rmin:.6}..{rmax:.6} (measured {lo:.6}..{hi:.6})",
+            vmax[0], vmax[1]
+        );
+        assert!(
+            rmin >= lo && rmax <= hi,
+            "ratios {rmin}..{rmax} outside {lo}..{hi}"
+        );
+    }
+
+    /// Band-to-band smoothness. The directional albedo is a positive weighted integral of f,
+    /// `a_c = ∫ f_c w`, so `|Δ²a_c| <= ∫ |Δ²f_c| w <= B ∫ mean(f) w = B mean(a)` whenever every
+    /// spectrum `f(·)` has `|Δ²f_c| <= B mean(f)`: the albedo may be no rougher across bands than
+    /// the roughest measured spectrum, `B` taken over the measured in-plane spectra.
+    #[test]
+    fn band_albedo_is_as_smooth_as_the_measured_spectra() {
+        for path in [cayman_path(), krylon_blue_path()] {
+            let (file, table) = astm_table(&path);
+            let b = measured_second_difference(file);
+            for ti in [10.0f64, 30.0, 60.0] {
+                let d = second_difference(&albedo(table, ti.to_radians()));
+                println!(
+                    "{}: albedo at {ti}°: {d:.4} (measured bound {b:.4})",
+                    path.display()
+                );
+                assert!(d <= b, "albedo second difference {d} against {b} at {ti}°");
+            }
         }
     }
-    println!(
-        "specular below 10°: 440 nm up to {:.3}, 700 nm up to {:.3}, ratio {rmin:.6}..{rmax:.6} (measured {lo:.6}..{hi:.6})",
-        vmax[0], vmax[1]
-    );
-    assert!(
-        rmin >= lo && rmax <= hi,
-        "ratios {rmin}..{rmax} outside {lo}..{hi}"
-    );
 }

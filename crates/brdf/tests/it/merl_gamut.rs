@@ -15,18 +15,6 @@
 
 use gonio_brdf::formats::merl;
 
-#[test]
-fn saturated_paints_survive_a_merl_round_trip() {
-    // Cayman: 81% of cells out of gamut, a negative red albedo; Krylon blue: 34%, an albedo
-    // inside the gamut.
-    for path in [
-        crate::common::cayman_path(),
-        crate::common::krylon_blue_path(),
-    ] {
-        round_trip(&path);
-    }
-}
-
 fn round_trip(path: &std::path::Path) {
     let (_, table) = crate::common::astm_table(path);
     let dir = tempfile::tempdir().unwrap();
@@ -83,5 +71,22 @@ fn round_trip(path: &std::path::Path) {
             lum(got),
             lum(want)
         );
+    }
+}
+
+/// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
+mod slow {
+    use super::*;
+
+    #[test]
+    fn saturated_paints_survive_a_merl_round_trip() {
+        // Cayman: 81% of cells out of gamut, a negative red albedo; Krylon blue: 34%, an albedo
+        // inside the gamut.
+        for path in [
+            crate::common::cayman_path(),
+            crate::common::krylon_blue_path(),
+        ] {
+            round_trip(&path);
+        }
     }
 }

@@ -233,19 +233,24 @@ pub(super) fn render_section(dir: &Path) -> Result<Section> {
 mod tests {
     use super::*;
 
-    #[test]
-    fn a_copied_scene_builds_from_the_files_beside_it() {
-        let dir = tempfile::tempdir().unwrap();
-        let copy = copy_scene(&Path::new(EXAMPLES).join("metallic.toml"), dir.path()).unwrap();
-        let text = std::fs::read_to_string(&copy).unwrap();
-        for name in ["cayman.astm", "garnet_red.astm", "panel.obj", "studio.hdr"] {
-            assert!(
-                text.contains(&format!("\"{name}\"")),
-                "{name} not named bare"
-            );
-            assert!(dir.path().join(name).is_file(), "{name} not copied");
+    /// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
+    mod slow {
+        use super::*;
+
+        #[test]
+        fn a_copied_scene_builds_from_the_files_beside_it() {
+            let dir = tempfile::tempdir().unwrap();
+            let copy = copy_scene(&Path::new(EXAMPLES).join("metallic.toml"), dir.path()).unwrap();
+            let text = std::fs::read_to_string(&copy).unwrap();
+            for name in ["cayman.astm", "garnet_red.astm", "panel.obj", "studio.hdr"] {
+                assert!(
+                    text.contains(&format!("\"{name}\"")),
+                    "{name} not named bare"
+                );
+                assert!(dir.path().join(name).is_file(), "{name} not copied");
+            }
+            assert!(!text.contains(".."), "a path still leaves the folder");
+            gonio_render::scene::Scene::from_file(&copy).unwrap();
         }
-        assert!(!text.contains(".."), "a path still leaves the folder");
-        gonio_render::scene::Scene::from_file(&copy).unwrap();
     }
 }

@@ -3,112 +3,6 @@
 
 use crate::common::gonio_in as gonio;
 
-#[test]
-fn tabulate_info_export_import_fit() {
-    let tmp = tempfile::tempdir().unwrap();
-    let d = tmp.path();
-    let model = r#"{"model":"ward","specular":0.05,"alpha":0.1,"diffuse":0.4}"#;
-    let out = gonio(
-        &[
-            "brdf",
-            "tabulate",
-            "--model",
-            model,
-            "--resolution",
-            "45,32,32",
-            "-o",
-            "w.gbrdf",
-        ],
-        d,
-    );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-
-    let out = gonio(&["brdf", "info", "w.gbrdf", "--json"], d);
-    assert!(out.status.success());
-    let info: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    // Lambert 0.4 plus a Ward lobe of rho_s 0.05: albedo at normal incidence about 0.45.
-    let a0 = info["albedo"][0]["albedo"][0].as_f64().unwrap();
-    assert!((a0 - 0.45).abs() < 0.01, "{a0}");
-    assert!(info["reciprocity_error"].as_f64().unwrap() < 1e-6);
-
-    for (format, output) in [
-        ("merl", "w.binary"),
-        ("mitsuba", "w.bsdf"),
-        ("csv", "w.csv"),
-        ("pabopto", "pab"),
-    ] {
-        let out = gonio(
-            &[
-                "brdf",
-                "export",
-                "w.gbrdf",
-                "--format",
-                format,
-                "-o",
-                output,
-                "--step-deg",
-                "15",
-            ],
-            d,
-        );
-        assert!(
-            out.status.success(),
-            "{format}: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        assert!(d.join(output).exists());
-    }
-    let out = gonio(&["brdf", "import", "w.binary", "-o", "back.gbrdf"], d);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-
-    let out = gonio(
-        &[
-            "brdf",
-            "fit",
-            "w.gbrdf",
-            "--model",
-            "ward",
-            "--diffuse",
-            "--json",
-        ],
-        d,
-    );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let fit: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    let alpha = fit["parameters"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|p| p["name"] == "alpha")
-        .unwrap()["value"]
-        .as_f64()
-        .unwrap();
-    assert!((alpha - 0.1).abs() < 0.005, "{alpha}");
-
-    let out = gonio(&["brdf", "plot", "w.gbrdf", "-o", "w.png"], d);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-
-    let out = gonio(&["brdf", "info", "missing.gbrdf"], d);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("missing.gbrdf"));
-}
-
 fn succeeded(out: &std::process::Output) {
     assert!(
         out.status.success(),
@@ -117,61 +11,172 @@ fn succeeded(out: &std::process::Output) {
     );
 }
 
-/// `brdf plot --measured` draws a measurement beside the table imported from it, and refuses,
-/// with exit status 2 and the reason, a measurement whose channels are not the table's.
-#[test]
-fn plot_beside_the_measurement() {
-    let tmp = tempfile::tempdir().unwrap();
-    let d = tmp.path();
-    let astm = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../brdf/tests/data/krylon_blue.astm");
-    let astm = astm.to_str().unwrap();
-    let out = gonio(&["brdf", "import", astm, "-o", "blue.gbrdf"], d);
-    succeeded(&out);
-    let out = gonio(
-        &[
-            "brdf",
-            "plot",
-            "blue.gbrdf",
-            "-o",
-            "blue.png",
-            "--measured",
-            astm,
-        ],
-        d,
-    );
-    succeeded(&out);
-    assert!(std::fs::metadata(d.join("blue.png")).unwrap().len() > 10_000);
-    let out = gonio(
-        &[
-            "brdf",
-            "import",
-            astm,
-            "-o",
-            "rgb.gbrdf",
-            "--colour",
-            "srgb",
-        ],
-        d,
-    );
-    succeeded(&out);
-    let out = gonio(
-        &[
-            "brdf",
-            "plot",
-            "rgb.gbrdf",
-            "-o",
-            "rgb.png",
-            "--measured",
-            astm,
-        ],
-        d,
-    );
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        err.contains("31 channels") && err.contains("--colour"),
-        "{err}"
-    );
-    assert!(!d.join("rgb.png").exists());
+/// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
+mod slow {
+    use super::*;
+
+    /// `brdf plot --measured` draws a measurement beside the table imported from it, and refuses,
+    /// with exit status 2 and the reason, a measurement whose channels are not the table's.
+    #[test]
+    fn plot_beside_the_measurement() {
+        let tmp = tempfile::tempdir().unwrap();
+        let d = tmp.path();
+        let astm = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../brdf/tests/data/krylon_blue.astm");
+        let astm = astm.to_str().unwrap();
+        let out = gonio(&["brdf", "import", astm, "-o", "blue.gbrdf"], d);
+        succeeded(&out);
+        let out = gonio(
+            &[
+                "brdf",
+                "plot",
+                "blue.gbrdf",
+                "-o",
+                "blue.png",
+                "--measured",
+                astm,
+            ],
+            d,
+        );
+        succeeded(&out);
+        assert!(std::fs::metadata(d.join("blue.png")).unwrap().len() > 10_000);
+        let out = gonio(
+            &[
+                "brdf",
+                "import",
+                astm,
+                "-o",
+                "rgb.gbrdf",
+                "--colour",
+                "srgb",
+            ],
+            d,
+        );
+        succeeded(&out);
+        let out = gonio(
+            &[
+                "brdf",
+                "plot",
+                "rgb.gbrdf",
+                "-o",
+                "rgb.png",
+                "--measured",
+                astm,
+            ],
+            d,
+        );
+        assert_eq!(out.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains("31 channels") && err.contains("--colour"),
+            "{err}"
+        );
+        assert!(!d.join("rgb.png").exists());
+    }
+
+    #[test]
+    fn tabulate_info_export_import_fit() {
+        let tmp = tempfile::tempdir().unwrap();
+        let d = tmp.path();
+        let model = r#"{"model":"ward","specular":0.05,"alpha":0.1,"diffuse":0.4}"#;
+        let out = gonio(
+            &[
+                "brdf",
+                "tabulate",
+                "--model",
+                model,
+                "--resolution",
+                "45,32,32",
+                "-o",
+                "w.gbrdf",
+            ],
+            d,
+        );
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+
+        let out = gonio(&["brdf", "info", "w.gbrdf", "--json"], d);
+        assert!(out.status.success());
+        let info: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        // Lambert 0.4 plus a Ward lobe of rho_s 0.05: albedo at normal incidence about 0.45.
+        let a0 = info["albedo"][0]["albedo"][0].as_f64().unwrap();
+        assert!((a0 - 0.45).abs() < 0.01, "{a0}");
+        assert!(info["reciprocity_error"].as_f64().unwrap() < 1e-6);
+
+        for (format, output) in [
+            ("merl", "w.binary"),
+            ("mitsuba", "w.bsdf"),
+            ("csv", "w.csv"),
+            ("pabopto", "pab"),
+        ] {
+            let out = gonio(
+                &[
+                    "brdf",
+                    "export",
+                    "w.gbrdf",
+                    "--format",
+                    format,
+                    "-o",
+                    output,
+                    "--step-deg",
+                    "15",
+                ],
+                d,
+            );
+            assert!(
+                out.status.success(),
+                "{format}: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            assert!(d.join(output).exists());
+        }
+        let out = gonio(&["brdf", "import", "w.binary", "-o", "back.gbrdf"], d);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+
+        let out = gonio(
+            &[
+                "brdf",
+                "fit",
+                "w.gbrdf",
+                "--model",
+                "ward",
+                "--diffuse",
+                "--json",
+            ],
+            d,
+        );
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let fit: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let alpha = fit["parameters"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|p| p["name"] == "alpha")
+            .unwrap()["value"]
+            .as_f64()
+            .unwrap();
+        assert!((alpha - 0.1).abs() < 0.005, "{alpha}");
+
+        let out = gonio(&["brdf", "plot", "w.gbrdf", "-o", "w.png"], d);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+
+        let out = gonio(&["brdf", "info", "missing.gbrdf"], d);
+        assert_eq!(out.status.code(), Some(2));
+        assert!(String::from_utf8_lossy(&out.stderr).contains("missing.gbrdf"));
+    }
 }

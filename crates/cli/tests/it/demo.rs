@@ -8,47 +8,6 @@ fn gonio() -> Command {
     Command::new(env!("CARGO_BIN_EXE_gonio"))
 }
 
-#[test]
-fn quick_demo_writes_a_complete_report() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("out");
-    let status = gonio()
-        .args(["demo", "--quick", "-o"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(
-        status.status.success(),
-        "{}",
-        String::from_utf8_lossy(&status.stderr)
-    );
-    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
-    for title in [
-        "Surfaces: the epoxy roughness series",
-        "A real instrument file: x3p-2.x3p",
-        "Isotropy of x3p-2.x3p",
-        "The roughness study",
-    ] {
-        assert!(html.contains(title), "section '{title}' missing");
-    }
-    let images = html.matches("<img src=\"data:image/png;base64,").count();
-    assert!(images >= 8, "only {images} images");
-    assert!(!text_of(&html).contains("NaN"), "a NaN reached the report");
-    tables_are_rectangular(&html);
-    commands_name_files_beside_the_report(&html, &out);
-    summary_quotes_the_results(&html, &out);
-    if let Some(chromium) = find_chromium() {
-        check_in_browser(&chromium, &out.join("report.html"), images);
-    } else {
-        // `.ci/run` installs Chromium and sets GONIO_REQUIRE_ORACLES=1: there the check must run.
-        assert!(
-            std::env::var("GONIO_REQUIRE_ORACLES").as_deref() != Ok("1"),
-            "GONIO_REQUIRE_ORACLES=1 but chromium is not installed: the browser check cannot run"
-        );
-        eprintln!("chromium not installed: browser check skipped");
-    }
-}
-
 /// Every table of the page has as many cells in each row as in its header row.
 fn tables_are_rectangular(html: &str) {
     let tables: Vec<&str> = html
@@ -211,4 +170,50 @@ fn check_in_browser(chromium: &str, report: &Path, expected: usize) {
         "Chromium did not load every image: expected {verdict}; stderr: {}",
         String::from_utf8_lossy(&out.stderr)
     );
+}
+
+/// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
+mod slow {
+    use super::*;
+
+    #[test]
+    fn quick_demo_writes_a_complete_report() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        let status = gonio()
+            .args(["demo", "--quick", "-o"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(
+            status.status.success(),
+            "{}",
+            String::from_utf8_lossy(&status.stderr)
+        );
+        let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+        for title in [
+            "Surfaces: the epoxy roughness series",
+            "A real instrument file: x3p-2.x3p",
+            "Isotropy of x3p-2.x3p",
+            "The roughness study",
+        ] {
+            assert!(html.contains(title), "section '{title}' missing");
+        }
+        let images = html.matches("<img src=\"data:image/png;base64,").count();
+        assert!(images >= 8, "only {images} images");
+        assert!(!text_of(&html).contains("NaN"), "a NaN reached the report");
+        tables_are_rectangular(&html);
+        commands_name_files_beside_the_report(&html, &out);
+        summary_quotes_the_results(&html, &out);
+        if let Some(chromium) = find_chromium() {
+            check_in_browser(&chromium, &out.join("report.html"), images);
+        } else {
+            // `.ci/run` installs Chromium and sets GONIO_REQUIRE_ORACLES=1: there the check must run.
+            assert!(
+                std::env::var("GONIO_REQUIRE_ORACLES").as_deref() != Ok("1"),
+                "GONIO_REQUIRE_ORACLES=1 but chromium is not installed: the browser check cannot run"
+            );
+            eprintln!("chromium not installed: browser check skipped");
+        }
+    }
 }

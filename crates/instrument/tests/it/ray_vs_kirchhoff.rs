@@ -68,160 +68,166 @@ fn mean_var(v: &[f64]) -> (f64, f64) {
     )
 }
 
-#[test]
-fn ray_and_kirchhoff_curves_of_the_rough_sample_agree() {
-    let half_angle = 1.4f64.to_radians();
-    let scatter_deg: Vec<f64> = (0..=30).map(|i| -75.0 + STEP_DEG * i as f64).collect();
-    let scatter: Vec<f64> = scatter_deg.iter().map(|t| t.to_radians()).collect();
-    let incidences: Vec<f64> = INCIDENCES_DEG.iter().map(|t| t.to_radians()).collect();
-    let ior = Ior::Dielectric(1.55);
-    let (mut rays, mut waves, mut slope_ratio, mut slope_x) =
-        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    let mut spot = None;
-    for seed in 0..REALISATIONS {
-        let map = rough_sample(100 + seed);
-        let ray = RayEngine::new(
-            &map,
-            RayOptions {
-                ior,
-                ..RayOptions::default()
-            },
-        )
-        .unwrap();
-        let spline = RayEngine::new(
-            &map,
-            RayOptions {
-                ior,
-                normals: NormalMethod::Spline,
-                ..RayOptions::default()
-            },
-        )
-        .unwrap();
-        let ((px, py), (sx, sy)) = (ray.rms_slopes(), spline.rms_slopes());
-        slope_ratio.push(0.5 * (px / sx + py / sy));
-        slope_x.push(px);
-        rays.push(
-            incidences
-                .iter()
-                .map(|&ti| ray.inplane(ti, &scatter, half_angle).unwrap())
-                .collect::<Vec<_>>(),
-        );
-        let k = Kirchhoff::new(&map, KirchhoffOptions::new(ior)).unwrap();
-        spot = Some(Spot::largest(&map));
-        waves.push(
-            k.inplane(
-                &[WAVELENGTH],
-                &incidences,
-                &scatter,
-                half_angle,
-                &gonio_io::Progress::silent(),
+/// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
+mod slow {
+    use super::*;
+
+    #[test]
+    fn ray_and_kirchhoff_curves_of_the_rough_sample_agree() {
+        let half_angle = 1.4f64.to_radians();
+        let scatter_deg: Vec<f64> = (0..=30).map(|i| -75.0 + STEP_DEG * i as f64).collect();
+        let scatter: Vec<f64> = scatter_deg.iter().map(|t| t.to_radians()).collect();
+        let incidences: Vec<f64> = INCIDENCES_DEG.iter().map(|t| t.to_radians()).collect();
+        let ior = Ior::Dielectric(1.55);
+        let (mut rays, mut waves, mut slope_ratio, mut slope_x) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let mut spot = None;
+        for seed in 0..REALISATIONS {
+            let map = rough_sample(100 + seed);
+            let ray = RayEngine::new(
+                &map,
+                RayOptions {
+                    ior,
+                    ..RayOptions::default()
+                },
             )
-            .unwrap(),
-        );
-    }
-    let r = REALISATIONS as f64;
-    let ray_mean = average_curves(&rays).unwrap();
-    let wave_mean = average_curves(&waves).unwrap();
-
-    // Speckle grains at normal detection, and the spot's effective area against the map's.
-    let d = spot.unwrap().diameter;
-    let area = 0.44 * std::f64::consts::PI * d * d / 4.0;
-    let grains = std::f64::consts::PI * half_angle * half_angle * area / (WAVELENGTH * WAVELENGTH);
-    assert!((grains - 35.0).abs() < 1.0, "{grains} grains");
-    let map_area = ((N - 1) as f64 * DX).powi(2);
-    // Systematic: plane-fit slopes and shadowing.
-    let eps = 1.0 - slope_ratio.iter().sum::<f64>() / r;
-    assert!(
-        (0.0..0.03).contains(&eps),
-        "plane-fit slopes {eps} below the spline's"
-    );
-    let b = 2.6 * eps + 0.03;
-    let log10e = std::f64::consts::LOG10_E;
-    // The lobe's standard deviation in scatter angle: twice the facet tilt along the plane of
-    // incidence (facet model: a facet tilted by `a` turns the reflected ray by `2a`), about 22°.
-    let sigma = (2.0 * (slope_x.iter().sum::<f64>() / r).atan()).to_degrees();
-    let position_tol = |s_peak: f64| sigma * (6.0 * s_peak).sqrt() + 0.5 * STEP_DEG;
-
-    for (c, ti) in INCIDENCES_DEG.iter().enumerate() {
-        let (ray, wave) = (&ray_mean[c], &wave_mean[c]);
-        let peak = ray.points.iter().map(|p| p.reflectance).fold(0.0, f64::max);
-        // Variance of ln(kirchhoff/ray) of the averaged curves at each scatter angle.
-        let s2: Vec<f64> = (0..scatter.len())
-            .map(|j| {
-                let ln_ray: Vec<f64> = rays
-                    .iter()
-                    .map(|s| s[c].points[j].reflectance.ln())
-                    .collect();
-                let counting = rays
-                    .iter()
-                    .map(|s| s[c].points[j].rel_uncertainty.unwrap().powi(2))
-                    .sum::<f64>()
-                    / r;
-                let histogram = (mean_var(&ln_ray).1 - counting).max(0.0);
-                let speckle = 1.0 / (grains * scatter[j].cos());
-                (speckle + histogram * (map_area / area - 1.0) + counting) / r
-            })
-            .collect();
-        let lobe: Vec<usize> = (0..scatter.len())
-            .filter(|&j| ray.points[j].reflectance > 0.1 * peak)
-            .collect();
-        let lobe_curve = InplaneCurve {
-            points: lobe.iter().map(|&j| ray.points[j]).collect(),
-            ..ray.clone()
-        };
-        let cmp = compare(&lobe_curve, wave).unwrap();
-        let m = cmp.common_points as f64;
-        assert_eq!(cmp.common_points, lobe.len());
-        let mean_s2 = lobe.iter().map(|&j| s2[j]).sum::<f64>() / m;
-        let rms_tol = log10e * ((mean_s2 * (1.0 + 3.0 * (2.0 / m).sqrt())).sqrt() + b);
-        let j_peak = scatter_deg
-            .iter()
-            .position(|&t| t == cmp.peak_a.position_deg)
             .unwrap();
-        let s_peak = s2[j_peak].sqrt();
-        let height = (cmp.peak_b.reflectance / cmp.peak_a.reflectance).ln();
-        eprintln!(
-            "{ti}°: {} lobe points, rms_log10 {:.4} (tolerance {rms_tol:.4}), peak at {} / {}, \
-             height ratio {:.3} (tolerance ±{:.3}), FWHM {:?} / {:?}",
-            lobe.len(),
-            cmp.rms_log10,
-            cmp.peak_a.position_deg,
-            cmp.peak_b.position_deg,
-            height.exp(),
-            3.0 * s_peak + b,
-            cmp.peak_a.fwhm_deg,
-            cmp.peak_b.fwhm_deg
-        );
-        assert!(
-            cmp.rms_log10 < rms_tol,
-            "{ti}°: rms_log10 {}",
-            cmp.rms_log10
-        );
-        assert!(
-            height.abs() < 3.0 * s_peak + b,
-            "{ti}°: peak ratio {}",
-            height.exp()
-        );
-        match (cmp.peak_a.fwhm_deg, cmp.peak_b.fwhm_deg) {
-            (Some(wa), Some(wb)) => {
-                let at = |deg: f64| {
-                    let j = ((deg + 75.0) / STEP_DEG).round().clamp(0.0, 30.0) as usize;
-                    s2[j]
-                };
-                let (left, right) = (
-                    cmp.peak_a.position_deg - 0.5 * wa,
-                    cmp.peak_a.position_deg + 0.5 * wa,
-                );
-                let spread = (at(left) + at(right) + 4.0 * s_peak * s_peak).sqrt();
-                let tol = 3.0 * sigma / 1.18 * spread + eps * wa;
-                assert!((wa - wb).abs() < tol, "{ti}°: FWHM {wa} vs {wb} (±{tol})");
-            }
-            // Both lobes run past the last detector (75°) before falling to half maximum.
-            (None, None) => {}
-            (a, b) => panic!("{ti}°: only one lobe falls to half maximum: {a:?} {b:?}"),
+            let spline = RayEngine::new(
+                &map,
+                RayOptions {
+                    ior,
+                    normals: NormalMethod::Spline,
+                    ..RayOptions::default()
+                },
+            )
+            .unwrap();
+            let ((px, py), (sx, sy)) = (ray.rms_slopes(), spline.rms_slopes());
+            slope_ratio.push(0.5 * (px / sx + py / sy));
+            slope_x.push(px);
+            rays.push(
+                incidences
+                    .iter()
+                    .map(|&ti| ray.inplane(ti, &scatter, half_angle).unwrap())
+                    .collect::<Vec<_>>(),
+            );
+            let k = Kirchhoff::new(&map, KirchhoffOptions::new(ior)).unwrap();
+            spot = Some(Spot::largest(&map));
+            waves.push(
+                k.inplane(
+                    &[WAVELENGTH],
+                    &incidences,
+                    &scatter,
+                    half_angle,
+                    &gonio_io::Progress::silent(),
+                )
+                .unwrap(),
+            );
         }
-        let moved = (cmp.peak_a.position_deg - cmp.peak_b.position_deg).abs();
-        let tol = position_tol(s_peak);
-        assert!(moved <= tol, "{ti}°: peaks {moved}° apart (±{tol})");
+        let r = REALISATIONS as f64;
+        let ray_mean = average_curves(&rays).unwrap();
+        let wave_mean = average_curves(&waves).unwrap();
+
+        // Speckle grains at normal detection, and the spot's effective area against the map's.
+        let d = spot.unwrap().diameter;
+        let area = 0.44 * std::f64::consts::PI * d * d / 4.0;
+        let grains =
+            std::f64::consts::PI * half_angle * half_angle * area / (WAVELENGTH * WAVELENGTH);
+        assert!((grains - 35.0).abs() < 1.0, "{grains} grains");
+        let map_area = ((N - 1) as f64 * DX).powi(2);
+        // Systematic: plane-fit slopes and shadowing.
+        let eps = 1.0 - slope_ratio.iter().sum::<f64>() / r;
+        assert!(
+            (0.0..0.03).contains(&eps),
+            "plane-fit slopes {eps} below the spline's"
+        );
+        let b = 2.6 * eps + 0.03;
+        let log10e = std::f64::consts::LOG10_E;
+        // The lobe's standard deviation in scatter angle: twice the facet tilt along the plane of
+        // incidence (facet model: a facet tilted by `a` turns the reflected ray by `2a`), about 22°.
+        let sigma = (2.0 * (slope_x.iter().sum::<f64>() / r).atan()).to_degrees();
+        let position_tol = |s_peak: f64| sigma * (6.0 * s_peak).sqrt() + 0.5 * STEP_DEG;
+
+        for (c, ti) in INCIDENCES_DEG.iter().enumerate() {
+            let (ray, wave) = (&ray_mean[c], &wave_mean[c]);
+            let peak = ray.points.iter().map(|p| p.reflectance).fold(0.0, f64::max);
+            // Variance of ln(kirchhoff/ray) of the averaged curves at each scatter angle.
+            let s2: Vec<f64> = (0..scatter.len())
+                .map(|j| {
+                    let ln_ray: Vec<f64> = rays
+                        .iter()
+                        .map(|s| s[c].points[j].reflectance.ln())
+                        .collect();
+                    let counting = rays
+                        .iter()
+                        .map(|s| s[c].points[j].rel_uncertainty.unwrap().powi(2))
+                        .sum::<f64>()
+                        / r;
+                    let histogram = (mean_var(&ln_ray).1 - counting).max(0.0);
+                    let speckle = 1.0 / (grains * scatter[j].cos());
+                    (speckle + histogram * (map_area / area - 1.0) + counting) / r
+                })
+                .collect();
+            let lobe: Vec<usize> = (0..scatter.len())
+                .filter(|&j| ray.points[j].reflectance > 0.1 * peak)
+                .collect();
+            let lobe_curve = InplaneCurve {
+                points: lobe.iter().map(|&j| ray.points[j]).collect(),
+                ..ray.clone()
+            };
+            let cmp = compare(&lobe_curve, wave).unwrap();
+            let m = cmp.common_points as f64;
+            assert_eq!(cmp.common_points, lobe.len());
+            let mean_s2 = lobe.iter().map(|&j| s2[j]).sum::<f64>() / m;
+            let rms_tol = log10e * ((mean_s2 * (1.0 + 3.0 * (2.0 / m).sqrt())).sqrt() + b);
+            let j_peak = scatter_deg
+                .iter()
+                .position(|&t| t == cmp.peak_a.position_deg)
+                .unwrap();
+            let s_peak = s2[j_peak].sqrt();
+            let height = (cmp.peak_b.reflectance / cmp.peak_a.reflectance).ln();
+            eprintln!(
+                "{ti}°: {} lobe points, rms_log10 {:.4} (tolerance {rms_tol:.4}), peak at {} / {}, \
+                 height ratio {:.3} (tolerance ±{:.3}), FWHM {:?} / {:?}",
+                lobe.len(),
+                cmp.rms_log10,
+                cmp.peak_a.position_deg,
+                cmp.peak_b.position_deg,
+                height.exp(),
+                3.0 * s_peak + b,
+                cmp.peak_a.fwhm_deg,
+                cmp.peak_b.fwhm_deg
+            );
+            assert!(
+                cmp.rms_log10 < rms_tol,
+                "{ti}°: rms_log10 {}",
+                cmp.rms_log10
+            );
+            assert!(
+                height.abs() < 3.0 * s_peak + b,
+                "{ti}°: peak ratio {}",
+                height.exp()
+            );
+            match (cmp.peak_a.fwhm_deg, cmp.peak_b.fwhm_deg) {
+                (Some(wa), Some(wb)) => {
+                    let at = |deg: f64| {
+                        let j = ((deg + 75.0) / STEP_DEG).round().clamp(0.0, 30.0) as usize;
+                        s2[j]
+                    };
+                    let (left, right) = (
+                        cmp.peak_a.position_deg - 0.5 * wa,
+                        cmp.peak_a.position_deg + 0.5 * wa,
+                    );
+                    let spread = (at(left) + at(right) + 4.0 * s_peak * s_peak).sqrt();
+                    let tol = 3.0 * sigma / 1.18 * spread + eps * wa;
+                    assert!((wa - wb).abs() < tol, "{ti}°: FWHM {wa} vs {wb} (±{tol})");
+                }
+                // Both lobes run past the last detector (75°) before falling to half maximum.
+                (None, None) => {}
+                (a, b) => panic!("{ti}°: only one lobe falls to half maximum: {a:?} {b:?}"),
+            }
+            let moved = (cmp.peak_a.position_deg - cmp.peak_b.position_deg).abs();
+            let tol = position_tol(s_peak);
+            assert!(moved <= tol, "{ti}°: peaks {moved}° apart (±{tol})");
+        }
     }
 }

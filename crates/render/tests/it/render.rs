@@ -247,57 +247,6 @@ fn tabulated_ward_renders_like_the_analytic_ward() {
     assert!(bias < 0.01, "bias {:.2}%", 100.0 * bias);
 }
 
-#[test]
-fn importance_sampling_of_the_epoxy_table_pays() {
-    let dir = tempfile::tempdir().unwrap();
-    // A window 5 times brighter than the sky: the lobe of the table, not the light, makes
-    // the difference.
-    let mut s = env_scene(&write_environment(dir.path(), 5.0));
-    s.camera = gonio_render::camera::Camera::new(
-        DVec3::new(0.0, 0.0, 4.0),
-        DVec3::ZERO,
-        DVec3::Y,
-        30.0,
-        24,
-        24,
-    )
-    .unwrap();
-    let desc = gonio_render::surface::SurfaceDesc {
-        file: None,
-        epoxy_sq_nm: Some(201.0),
-        seed: Some(1),
-        points: Some(128),
-        method: None,
-        index: None,
-        azimuths: None,
-        channel: None,
-    };
-    let t = std::time::Instant::now();
-    let table =
-        gonio_render::surface::table(&desc, dir.path(), Path::new("test.toml"), "epoxy").unwrap();
-    eprintln!("table {:.1} s", t.elapsed().as_secs_f64());
-    s.materials[0].brdf = Arc::new(SampledTable::new(table));
-    let (reference, _) = render(&s, &opts(1024, 99, ColourMode::Tristimulus)).unwrap();
-    eprintln!("reference {:.1} s", t.elapsed().as_secs_f64());
-    let pixels = sphere_pixels(&s);
-    let rmse = |sampling: BrdfSampling| {
-        let o = RenderOptions {
-            sampling,
-            ..opts(16, 5, ColourMode::Tristimulus)
-        };
-        let (img, _) = render(&s, &o).unwrap();
-        rel_rmse(&img, &reference, &pixels)
-    };
-    let (alias, cosine) = (rmse(BrdfSampling::Importance), rmse(BrdfSampling::Cosine));
-    eprintln!(
-        "16 spp relative RMSE: alias {:.2}%, cosine {:.2}%, ratio {:.1}",
-        100.0 * alias,
-        100.0 * cosine,
-        cosine / alias
-    );
-    assert!(cosine > 5.0 * alias, "alias {alias}, cosine {cosine}");
-}
-
 /// A scene's surface file is read with its `channel` (a channel the file lacks is an error that
 /// lists the file's channels), and a line profile is refused: a table needs an areal map.
 #[test]
@@ -330,40 +279,97 @@ fn scene_surfaces_choose_a_channel_and_refuse_profiles() {
     assert!(err.contains("no such channel"), "{err}");
 }
 
-/// The denoiser on a picture with glossy and diffuse surfaces, shadows and a light's edge
-/// (`examples/plastic.toml` at 192 × 128 pixels): at 16 samples per pixel the denoised picture
-/// is much nearer a nearly converged one (256 samples, another seed) than the raw picture. The
-/// bound asks the denoising to do at least what four times the samples would do for the noise,
-/// halve the error (denoised < raw/2); the reference's own noise is 1/√16 = 25% of the raw
-/// picture's and enters both errors in quadrature. (On this scene, already smooth at 16
-/// samples, the filter's bias is most of what remains: measured 2.2% against the raw 5.4%. On
-/// smaller pictures the filter's 62-pixel reach meets edges everywhere and gains less: 3.4%
-/// against 6.0% at 96 × 64.)
-#[test]
-fn denoising_a_few_samples_comes_near_the_converged_picture() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/plastic.toml");
-    let mut desc: gonio_render::scene::SceneDesc =
-        toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
-    (desc.camera.width, desc.camera.height) = (192, 128);
-    let s = Scene::build(&desc, &path).unwrap();
-    let (reference, _) = render(&s, &opts(256, 7, ColourMode::Tristimulus)).unwrap();
-    let few = opts(16, 1, ColourMode::Tristimulus);
-    let (raw, stats) = render(&s, &few).unwrap();
-    assert!(!stats.denoised, "denoising is not the default");
-    let denoise = RenderOptions {
-        denoise: Some(true),
-        ..few
-    };
-    let (denoised, stats) = render(&s, &denoise).unwrap();
-    assert!(stats.denoised);
-    let (e_raw, e_denoised) = (
-        relative_rmse(&raw, &reference),
-        relative_rmse(&denoised, &reference),
-    );
-    eprintln!(
-        "against 256 spp: raw 16 spp {:.2}%, denoised {:.2}%",
-        100.0 * e_raw,
-        100.0 * e_denoised
-    );
-    assert!(e_denoised < 0.5 * e_raw, "{e_denoised} vs raw {e_raw}");
+/// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
+mod slow {
+    use super::*;
+
+    #[test]
+    fn importance_sampling_of_the_epoxy_table_pays() {
+        let dir = tempfile::tempdir().unwrap();
+        // A window 5 times brighter than the sky: the lobe of the table, not the light, makes
+        // the difference.
+        let mut s = env_scene(&write_environment(dir.path(), 5.0));
+        s.camera = gonio_render::camera::Camera::new(
+            DVec3::new(0.0, 0.0, 4.0),
+            DVec3::ZERO,
+            DVec3::Y,
+            30.0,
+            24,
+            24,
+        )
+        .unwrap();
+        let desc = gonio_render::surface::SurfaceDesc {
+            file: None,
+            epoxy_sq_nm: Some(201.0),
+            seed: Some(1),
+            points: Some(128),
+            method: None,
+            index: None,
+            azimuths: None,
+            channel: None,
+        };
+        let t = std::time::Instant::now();
+        let table =
+            gonio_render::surface::table(&desc, dir.path(), Path::new("test.toml"), "epoxy")
+                .unwrap();
+        eprintln!("table {:.1} s", t.elapsed().as_secs_f64());
+        s.materials[0].brdf = Arc::new(SampledTable::new(table));
+        let (reference, _) = render(&s, &opts(1024, 99, ColourMode::Tristimulus)).unwrap();
+        eprintln!("reference {:.1} s", t.elapsed().as_secs_f64());
+        let pixels = sphere_pixels(&s);
+        let rmse = |sampling: BrdfSampling| {
+            let o = RenderOptions {
+                sampling,
+                ..opts(16, 5, ColourMode::Tristimulus)
+            };
+            let (img, _) = render(&s, &o).unwrap();
+            rel_rmse(&img, &reference, &pixels)
+        };
+        let (alias, cosine) = (rmse(BrdfSampling::Importance), rmse(BrdfSampling::Cosine));
+        eprintln!(
+            "16 spp relative RMSE: alias {:.2}%, cosine {:.2}%, ratio {:.1}",
+            100.0 * alias,
+            100.0 * cosine,
+            cosine / alias
+        );
+        assert!(cosine > 5.0 * alias, "alias {alias}, cosine {cosine}");
+    }
+
+    /// The denoiser on a picture with glossy and diffuse surfaces, shadows and a light's edge
+    /// (`examples/plastic.toml` at 192 × 128 pixels): at 16 samples per pixel the denoised picture
+    /// is much nearer a nearly converged one (256 samples, another seed) than the raw picture. The
+    /// bound asks the denoising to do at least what four times the samples would do for the noise,
+    /// halve the error (denoised < raw/2); the reference's own noise is 1/√16 = 25% of the raw
+    /// picture's and enters both errors in quadrature. (On this scene, already smooth at 16
+    /// samples, the filter's bias is most of what remains: measured 2.2% against the raw 5.4%. On
+    /// smaller pictures the filter's 62-pixel reach meets edges everywhere and gains less: 3.4%
+    /// against 6.0% at 96 × 64.)
+    #[test]
+    fn denoising_a_few_samples_comes_near_the_converged_picture() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/plastic.toml");
+        let mut desc: gonio_render::scene::SceneDesc =
+            toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        (desc.camera.width, desc.camera.height) = (192, 128);
+        let s = Scene::build(&desc, &path).unwrap();
+        let (reference, _) = render(&s, &opts(256, 7, ColourMode::Tristimulus)).unwrap();
+        let few = opts(16, 1, ColourMode::Tristimulus);
+        let (raw, stats) = render(&s, &few).unwrap();
+        assert!(!stats.denoised, "denoising is not the default");
+        let denoise = RenderOptions {
+            denoise: Some(true),
+            ..few
+        };
+        let (denoised, stats) = render(&s, &denoise).unwrap();
+        assert!(stats.denoised);
+        let (e_raw, e_denoised) = (
+            relative_rmse(&raw, &reference),
+            relative_rmse(&denoised, &reference),
+        );
+        eprintln!(
+            "against 256 spp: raw 16 spp {:.2}%, denoised {:.2}%",
+            100.0 * e_raw,
+            100.0 * e_denoised
+        );
+        assert!(e_denoised < 0.5 * e_raw, "{e_denoised} vs raw {e_raw}");
+    }
 }

@@ -4,10 +4,10 @@
 //! every direction (the set-up half of the Kirchhoff engine).
 
 use super::Spot;
+use gonio_fft::Fft;
 use gonio_surface::spline::BicubicSpline;
 use num_complex::Complex64;
 use rayon::prelude::*;
-use rustfft::{Fft, FftPlanner};
 use std::sync::Arc;
 
 /// The Schwartz test function `b(t) = exp(-1/(1 - t²))` for |t| < 1, else 0 (the window of
@@ -103,7 +103,6 @@ impl FacetGrid {
             })
             .collect();
         let w2_area = cells.iter().map(|c| c[3] * c[3]).sum::<f64>() * ax * ay;
-        let mut planner = FftPlanner::new();
         FacetGrid {
             nx,
             ny,
@@ -117,8 +116,8 @@ impl FacetGrid {
             w: cells.iter().map(|c| c[3]).collect(),
             w2_area,
             invalid_cells,
-            row_fft: planner.plan_fft_inverse(nx),
-            col_fft: planner.plan_fft_inverse(ny),
+            row_fft: gonio_fft::plan_inverse(nx),
+            col_fft: gonio_fft::plan_inverse(ny),
         }
     }
 

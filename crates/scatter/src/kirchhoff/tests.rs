@@ -4,7 +4,6 @@ use crate::geometry::spherical_direction;
 use gonio_surface::synth::GaussianSurface;
 use ndarray::Array2;
 use num_complex::Complex64;
-use rustfft::FftPlanner;
 
 const N: f64 = 1.55;
 
@@ -73,7 +72,7 @@ fn flat_patch_lobe_is_window_diffraction_pattern() {
             w2 += w * w * a * a;
         }
     }
-    let fft = FftPlanner::new().plan_fft_inverse(pad);
+    let fft = gonio_fft::plan_inverse(pad);
     for row in field.chunks_exact_mut(pad) {
         fft.process(row);
     }

@@ -136,131 +136,6 @@ fn worst(a: &InplaneCurve, b: &InplaneCurve) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Moderately rough: sigma = 0.12 µm, T = 2 µm (rms slope 0.12), g = 8 at 20° and 500 nm.
-#[test]
-fn moderately_rough_matches_beckmann_series() {
-    let (sigma, t) = (0.12e-6, 2e-6);
-    let alpha = 2f64.to_radians();
-    let ti = 20f64.to_radians();
-    let g = (4.0 * std::f64::consts::PI * sigma * ti.cos() / WAVELENGTH).powi(2);
-    assert!((5.0..20.0).contains(&g), "g = {g}");
-    let (kirchhoff, maps) = kirchhoff_average(sigma, t, alpha, 8);
-    let series = series_average(&maps, alpha);
-    let w = worst(&kirchhoff, &series);
-    assert!(w < 0.15, "worst relative difference {w}");
-}
-
-/// Rough: sigma = 0.3 µm, T = 3 µm (rms slope 0.2), g = 50 at 20° and 500 nm; against the series
-/// and against the ray method on the same maps (spline normals, no shadowing, as Kirchhoff has
-/// none).
-#[test]
-fn rough_matches_beckmann_series_and_ray_method() {
-    let (sigma, t) = (0.3e-6, 3e-6);
-    let alpha = 3f64.to_radians();
-    let ti = 20f64.to_radians();
-    let g = (4.0 * std::f64::consts::PI * sigma * ti.cos() / WAVELENGTH).powi(2);
-    assert!(g > 40.0, "g = {g}");
-    let (kirchhoff, maps) = kirchhoff_average(sigma, t, alpha, 16);
-    let series = series_average(&maps, alpha);
-    let ws = worst(&kirchhoff, &series);
-    let options = RayOptions {
-        ior: Ior::Dielectric(N),
-        normals: NormalMethod::Spline,
-        shadowing: false,
-        ..RayOptions::default()
-    };
-    let rays: Vec<Vec<InplaneCurve>> = maps
-        .iter()
-        .map(|m| {
-            vec![
-                RayEngine::new(m, options)
-                    .unwrap()
-                    .inplane(ti, &scatter(), alpha)
-                    .unwrap(),
-            ]
-        })
-        .collect();
-    let ray = average_curves(&rays).unwrap().remove(0);
-    let w = worst(&kirchhoff, &ray);
-    assert!(
-        ws < 0.15,
-        "against the series: worst relative difference {ws}"
-    );
-    assert!(
-        w < 0.15,
-        "against the ray method: worst relative difference {w}"
-    );
-}
-
-/// No grating ghosts. Facets of pitch `a` act as a grating: before the facet grid was
-/// refined to keep its grating orders off the detectors, smooth maps showed the diffuse lobe
-/// imaged at `sin ts = sin ti - λ/a` (-48° at 20°, 550 nm, 0.5 µm facets) at up to 7·10⁻³ 1/sr
-/// where the true scatter is below 10⁻⁹. On the demo's smooth samples (Sq 3 and 50 nm, T = 6 µm)
-/// every detector more than 10° from specular must now read below three times the
-/// Beckmann-Spizzichino series (cone-averaged: the 3× covers the speckle of one realisation, a
-/// 1.4° cone over the 128 µm spot holds about 35 grains, 17% rms, and the realisation's own
-/// statistics in the tails) or below 10⁻⁵ of the specular detector, whichever is larger. The
-/// second bound is the floor of what the method claims: ten degrees from specular the window's
-/// diffraction pattern alone is six decades down (`flat_patch_lobe_integrates_to_fresnel`), and a
-/// ghost is the lobe's image attenuated only by `(a δ/2π)²`, about 10⁻⁴ of the lobe.
-#[test]
-fn smooth_maps_show_no_grating_ghosts() {
-    let wavelength = 550e-9;
-    let alpha = 1.4f64.to_radians();
-    let scatter: Vec<f64> = (-75..=75).map(|d| f64::from(d).to_radians()).collect();
-    let mut worst_ratio: f64 = 0.0;
-    for (sigma, seed) in [(3e-9, 21), (50e-9, 22)] {
-        let map = GaussianSurface::square(sigma, 6e-6, 257, 0.5e-6, seed)
-            .generate()
-            .unwrap();
-        let engine = Kirchhoff::new(&map, KirchhoffOptions::new(Ior::Dielectric(N))).unwrap();
-        let model = GaussianModel::new(sigma, 6e-6, Ior::Dielectric(N)).unwrap();
-        for ti_deg in [20.0f64, 60.0] {
-            let ti = ti_deg.to_radians();
-            let curve = engine
-                .inplane(
-                    &[wavelength],
-                    &[ti],
-                    &scatter,
-                    alpha,
-                    &gonio_io::Progress::silent(),
-                )
-                .unwrap()
-                .remove(0);
-            let series = model.inplane(AnalyticModel::Beckmann, wavelength, ti, &scatter, alpha);
-            let specular = engine
-                .inplane(
-                    &[wavelength],
-                    &[ti],
-                    &[ti],
-                    alpha,
-                    &gonio_io::Progress::silent(),
-                )
-                .unwrap()[0]
-                .points[0]
-                .brdf_per_sr;
-            for (p, q) in curve.points.iter().zip(&series.points) {
-                if (p.scatter_deg - ti_deg).abs() <= 10.0 {
-                    continue;
-                }
-                let bound = (3.0 * q.brdf_per_sr).max(1e-5 * specular);
-                let ratio = p.brdf_per_sr / bound;
-                worst_ratio = worst_ratio.max(ratio);
-                assert!(
-                    ratio < 1.0,
-                    "Sq {} nm, {ti_deg}°, {}°: {:.3e} 1/sr against the bound {bound:.3e} \
-                     (series {:.3e}, specular {specular:.3e})",
-                    sigma * 1e9,
-                    p.scatter_deg,
-                    p.brdf_per_sr,
-                    q.brdf_per_sr
-                );
-            }
-        }
-    }
-    eprintln!("worst ratio to the bound: {worst_ratio:.3e}");
-}
-
 /// The light a gloss receptor collects from a map too rough for one sampled grid is the mean over
 /// smaller spots. A rough map (Sq 0.3 µm, T 3 µm, rms slope 0.2) at 550 nm and 20° needs
 /// its phase sampled 3 times finer than the map for a cone about specular (590 thousand facets
@@ -342,4 +217,135 @@ fn spot_averaged_receptor_matches_ray_method() {
         (k_split / k_whole - 1.0).abs() < 0.2,
         "split {k_split} vs whole {k_whole}"
     );
+}
+
+/// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
+mod slow {
+    use super::*;
+
+    /// Rough: sigma = 0.3 µm, T = 3 µm (rms slope 0.2), g = 50 at 20° and 500 nm; against the series
+    /// and against the ray method on the same maps (spline normals, no shadowing, as Kirchhoff has
+    /// none).
+    #[test]
+    fn rough_matches_beckmann_series_and_ray_method() {
+        let (sigma, t) = (0.3e-6, 3e-6);
+        let alpha = 3f64.to_radians();
+        let ti = 20f64.to_radians();
+        let g = (4.0 * std::f64::consts::PI * sigma * ti.cos() / WAVELENGTH).powi(2);
+        assert!(g > 40.0, "g = {g}");
+        let (kirchhoff, maps) = kirchhoff_average(sigma, t, alpha, 16);
+        let series = series_average(&maps, alpha);
+        let ws = worst(&kirchhoff, &series);
+        let options = RayOptions {
+            ior: Ior::Dielectric(N),
+            normals: NormalMethod::Spline,
+            shadowing: false,
+            ..RayOptions::default()
+        };
+        let rays: Vec<Vec<InplaneCurve>> = maps
+            .iter()
+            .map(|m| {
+                vec![
+                    RayEngine::new(m, options)
+                        .unwrap()
+                        .inplane(ti, &scatter(), alpha)
+                        .unwrap(),
+                ]
+            })
+            .collect();
+        let ray = average_curves(&rays).unwrap().remove(0);
+        let w = worst(&kirchhoff, &ray);
+        assert!(
+            ws < 0.15,
+            "against the series: worst relative difference {ws}"
+        );
+        assert!(
+            w < 0.15,
+            "against the ray method: worst relative difference {w}"
+        );
+    }
+
+    /// Moderately rough: sigma = 0.12 µm, T = 2 µm (rms slope 0.12), g = 8 at 20° and 500 nm.
+    #[test]
+    fn moderately_rough_matches_beckmann_series() {
+        let (sigma, t) = (0.12e-6, 2e-6);
+        let alpha = 2f64.to_radians();
+        let ti = 20f64.to_radians();
+        let g = (4.0 * std::f64::consts::PI * sigma * ti.cos() / WAVELENGTH).powi(2);
+        assert!((5.0..20.0).contains(&g), "g = {g}");
+        let (kirchhoff, maps) = kirchhoff_average(sigma, t, alpha, 8);
+        let series = series_average(&maps, alpha);
+        let w = worst(&kirchhoff, &series);
+        assert!(w < 0.15, "worst relative difference {w}");
+    }
+
+    /// No grating ghosts. Facets of pitch `a` act as a grating: before the facet grid was
+    /// refined to keep its grating orders off the detectors, smooth maps showed the diffuse lobe
+    /// imaged at `sin ts = sin ti - λ/a` (-48° at 20°, 550 nm, 0.5 µm facets) at up to 7·10⁻³ 1/sr
+    /// where the true scatter is below 10⁻⁹. On the demo's smooth samples (Sq 3 and 50 nm, T = 6 µm)
+    /// every detector more than 10° from specular must now read below three times the
+    /// Beckmann-Spizzichino series (cone-averaged: the 3× covers the speckle of one realisation, a
+    /// 1.4° cone over the 128 µm spot holds about 35 grains, 17% rms, and the realisation's own
+    /// statistics in the tails) or below 10⁻⁵ of the specular detector, whichever is larger. The
+    /// second bound is the floor of what the method claims: ten degrees from specular the window's
+    /// diffraction pattern alone is six decades down (`flat_patch_lobe_integrates_to_fresnel`), and a
+    /// ghost is the lobe's image attenuated only by `(a δ/2π)²`, about 10⁻⁴ of the lobe.
+    #[test]
+    fn smooth_maps_show_no_grating_ghosts() {
+        let wavelength = 550e-9;
+        let alpha = 1.4f64.to_radians();
+        let scatter: Vec<f64> = (-75..=75).map(|d| f64::from(d).to_radians()).collect();
+        let mut worst_ratio: f64 = 0.0;
+        for (sigma, seed) in [(3e-9, 21), (50e-9, 22)] {
+            let map = GaussianSurface::square(sigma, 6e-6, 257, 0.5e-6, seed)
+                .generate()
+                .unwrap();
+            let engine = Kirchhoff::new(&map, KirchhoffOptions::new(Ior::Dielectric(N))).unwrap();
+            let model = GaussianModel::new(sigma, 6e-6, Ior::Dielectric(N)).unwrap();
+            for ti_deg in [20.0f64, 60.0] {
+                let ti = ti_deg.to_radians();
+                let curve = engine
+                    .inplane(
+                        &[wavelength],
+                        &[ti],
+                        &scatter,
+                        alpha,
+                        &gonio_io::Progress::silent(),
+                    )
+                    .unwrap()
+                    .remove(0);
+                let series =
+                    model.inplane(AnalyticModel::Beckmann, wavelength, ti, &scatter, alpha);
+                let specular = engine
+                    .inplane(
+                        &[wavelength],
+                        &[ti],
+                        &[ti],
+                        alpha,
+                        &gonio_io::Progress::silent(),
+                    )
+                    .unwrap()[0]
+                    .points[0]
+                    .brdf_per_sr;
+                for (p, q) in curve.points.iter().zip(&series.points) {
+                    if (p.scatter_deg - ti_deg).abs() <= 10.0 {
+                        continue;
+                    }
+                    let bound = (3.0 * q.brdf_per_sr).max(1e-5 * specular);
+                    let ratio = p.brdf_per_sr / bound;
+                    worst_ratio = worst_ratio.max(ratio);
+                    assert!(
+                        ratio < 1.0,
+                        "Sq {} nm, {ti_deg}°, {}°: {:.3e} 1/sr against the bound {bound:.3e} \
+                         (series {:.3e}, specular {specular:.3e})",
+                        sigma * 1e9,
+                        p.scatter_deg,
+                        p.brdf_per_sr,
+                        q.brdf_per_sr
+                    );
+                }
+            }
+        }
+        eprintln!("worst ratio to the bound: {worst_ratio:.3e}");
+    }
 }

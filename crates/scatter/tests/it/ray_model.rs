@@ -64,78 +64,83 @@ const SEEDS: [u64; 2] = [1, 2];
 const AZIMUTHS: usize = 8;
 const INCIDENCE_DEG: [f64; 4] = [20.0, 45.0, 60.0, 70.0];
 
-#[test]
-fn gaussian_surfaces_match_facet_model() {
-    let ior = Ior::Dielectric(1.55);
-    let half_angle = 1.4f64.to_radians();
-    let scatter_deg: Vec<f64> = (-75..=75).map(f64::from).collect();
-    let detectors: Vec<Detector> = scatter_deg
-        .iter()
-        .map(|&ts| Detector {
-            direction: inplane_direction(ts.to_radians()),
-            half_angle,
-        })
-        .collect();
-    // Sums over realisations of [incidence][detector] reflectance, ray and model.
-    let mut ray = vec![vec![0.0; detectors.len()]; INCIDENCE_DEG.len()];
-    let mut model = ray.clone();
-    for seed in SEEDS {
-        let map = GaussianSurface::square(0.3e-6, 6e-6, 1024, 0.5e-6, seed)
-            .generate()
-            .unwrap();
-        let options = RayOptions {
-            ior,
-            azimuths: AZIMUTHS,
-            ..RayOptions::default()
-        };
-        let engine = RayEngine::new(&map, options).unwrap();
-        let (sx, sy) = engine.rms_slopes();
-        // Each realisation's slopes are near the nominal per-axis 2 sigma / T / √2 = 0.0707.
-        assert!(
-            (sx / 0.0707 - 1.0).abs() < 0.1 && (sy / 0.0707 - 1.0).abs() < 0.1,
-            "{sx} {sy}"
-        );
-        for (i, &ti_deg) in INCIDENCE_DEG.iter().enumerate() {
-            let wi = incidence_direction(ti_deg.to_radians());
-            for (j, r) in engine.detect(wi, &detectors).unwrap().iter().enumerate() {
-                ray[i][j] += r.reflectance;
-            }
-            let cone_model: Vec<f64> = detectors
-                .par_iter()
-                .map(|det| {
-                    (0..AZIMUTHS)
-                        .map(|k| {
-                            let phi = 2.0 * PI * k as f64 / AZIMUTHS as f64;
-                            let wi_k = rotate_z(wi, phi);
-                            cone_reflectance(det, |wo| {
-                                facet_brdf(wi_k, rotate_z(wo, phi), sx, sy, ior)
+/// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
+mod slow {
+    use super::*;
+
+    #[test]
+    fn gaussian_surfaces_match_facet_model() {
+        let ior = Ior::Dielectric(1.55);
+        let half_angle = 1.4f64.to_radians();
+        let scatter_deg: Vec<f64> = (-75..=75).map(f64::from).collect();
+        let detectors: Vec<Detector> = scatter_deg
+            .iter()
+            .map(|&ts| Detector {
+                direction: inplane_direction(ts.to_radians()),
+                half_angle,
+            })
+            .collect();
+        // Sums over realisations of [incidence][detector] reflectance, ray and model.
+        let mut ray = vec![vec![0.0; detectors.len()]; INCIDENCE_DEG.len()];
+        let mut model = ray.clone();
+        for seed in SEEDS {
+            let map = GaussianSurface::square(0.3e-6, 6e-6, 1024, 0.5e-6, seed)
+                .generate()
+                .unwrap();
+            let options = RayOptions {
+                ior,
+                azimuths: AZIMUTHS,
+                ..RayOptions::default()
+            };
+            let engine = RayEngine::new(&map, options).unwrap();
+            let (sx, sy) = engine.rms_slopes();
+            // Each realisation's slopes are near the nominal per-axis 2 sigma / T / √2 = 0.0707.
+            assert!(
+                (sx / 0.0707 - 1.0).abs() < 0.1 && (sy / 0.0707 - 1.0).abs() < 0.1,
+                "{sx} {sy}"
+            );
+            for (i, &ti_deg) in INCIDENCE_DEG.iter().enumerate() {
+                let wi = incidence_direction(ti_deg.to_radians());
+                for (j, r) in engine.detect(wi, &detectors).unwrap().iter().enumerate() {
+                    ray[i][j] += r.reflectance;
+                }
+                let cone_model: Vec<f64> = detectors
+                    .par_iter()
+                    .map(|det| {
+                        (0..AZIMUTHS)
+                            .map(|k| {
+                                let phi = 2.0 * PI * k as f64 / AZIMUTHS as f64;
+                                let wi_k = rotate_z(wi, phi);
+                                cone_reflectance(det, |wo| {
+                                    facet_brdf(wi_k, rotate_z(wo, phi), sx, sy, ior)
+                                })
                             })
-                        })
-                        .sum::<f64>()
-                        / AZIMUTHS as f64
-                })
-                .collect();
-            for (m, c) in model[i].iter_mut().zip(&cone_model) {
-                *m += c;
+                            .sum::<f64>()
+                            / AZIMUTHS as f64
+                    })
+                    .collect();
+                for (m, c) in model[i].iter_mut().zip(&cone_model) {
+                    *m += c;
+                }
             }
         }
-    }
-    for (i, ti_deg) in INCIDENCE_DEG.iter().enumerate() {
-        let peak = model[i].iter().copied().fold(0.0, f64::max);
-        let mut compared = 0;
-        for (j, ts) in scatter_deg.iter().enumerate() {
-            if model[i][j] > 0.01 * peak {
-                let err = ray[i][j] / model[i][j] - 1.0;
-                assert!(
-                    err.abs() < 0.10,
-                    "{ti_deg}° at {ts}°: ray / model - 1 = {err:.3}"
-                );
-                compared += 1;
+        for (i, ti_deg) in INCIDENCE_DEG.iter().enumerate() {
+            let peak = model[i].iter().copied().fold(0.0, f64::max);
+            let mut compared = 0;
+            for (j, ts) in scatter_deg.iter().enumerate() {
+                if model[i][j] > 0.01 * peak {
+                    let err = ray[i][j] / model[i][j] - 1.0;
+                    assert!(
+                        err.abs() < 0.10,
+                        "{ti_deg}° at {ts}°: ray / model - 1 = {err:.3}"
+                    );
+                    compared += 1;
+                }
             }
+            assert!(
+                compared >= 20,
+                "{ti_deg}°: only {compared} angles above 1% of the peak"
+            );
         }
-        assert!(
-            compared >= 20,
-            "{ti_deg}°: only {compared} angles above 1% of the peak"
-        );
     }
 }

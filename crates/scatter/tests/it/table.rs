@@ -84,86 +84,6 @@ fn table_albedo_is_the_ray_reflectance() {
     }
 }
 
-/// An isotropic table of an anisotropic surface is the average over the azimuth of incidence:
-/// its albedo equals the azimuthal mean of the anisotropic table's albedo (24 azimuths, every
-/// 15°, on the same theta_d × phi_d grid) within 1%, the required bound, at 0°, 30° and 60°, and
-/// the azimuthal mean of the rays the engine reflects (the independent reference: the table's
-/// quadrature against the sum of the rays) within 1% too; each table's interpolation error at
-/// these angles is below 1% (`table_albedo_is_the_ray_reflectance`). The surface is a Gaussian
-/// map with its y spacing stretched four times (rms slope along y a quarter of that along x,
-/// Str below 0.3). A table of one azimuth of incidence (the former default) misses by more
-/// than 5%.
-#[test]
-fn isotropic_table_of_an_anisotropic_surface_averages_the_azimuths() {
-    let base = gaussian(0.4e-6, 4e-6, 128, 23);
-    // The unstretched map is isotropic: one turn is enough for it.
-    assert_eq!(isotropic_turns(texture_aspect_ratio(&base)), 1);
-    let map = HeightMap::new(base.heights().clone(), 0.5e-6, 2e-6).unwrap();
-    let str_ratio = texture_aspect_ratio(&map);
-    println!("Str {str_ratio:?}");
-    assert!(str_ratio.is_some_and(|s| s < STR_ANISOTROPIC));
-    let engine = RayEngine::new(&map, RayOptions::default()).unwrap();
-    let iso = ray_table(
-        &engine,
-        &TableOptions {
-            incidence_azimuths: isotropic_turns(str_ratio),
-            ..TableOptions::isotropic()
-        },
-        Provenance::default(),
-        &gonio_io::Progress::silent(),
-    )
-    .unwrap();
-    let single = ray_table(
-        &engine,
-        &TableOptions {
-            incidence_azimuths: 1,
-            ..TableOptions::isotropic()
-        },
-        Provenance::default(),
-        &gonio_io::Progress::silent(),
-    )
-    .unwrap();
-    // The anisotropic table on the isotropic default's theta_d × phi_d grid (1° × 2°) and
-    // incidences (every 2°), so that the two differ in the azimuth of incidence only (the
-    // default anisotropic table, 2° × 4° from incidences every 3.9°, is 4.5% above its rays
-    // at 60° on this map: the second-order error of its coarser steps).
-    let aniso = ray_table(
-        &engine,
-        &TableOptions {
-            resolution: Resolution::anisotropic(32, 90, 180, 24),
-            incidence_polar: TableOptions::isotropic().incidence_polar,
-            incidence_azimuths: 24,
-        },
-        Provenance::default(),
-        &gonio_io::Progress::silent(),
-    )
-    .unwrap();
-    let mut single_misses = 0.0f64;
-    for ti in [0.0f64, 30.0, 60.0] {
-        let t = ti.to_radians();
-        let mean = (0..24)
-            .map(|k| aniso.albedo(t, (15.0 * k as f64).to_radians())[0])
-            .sum::<f64>()
-            / 24.0;
-        let (a, one) = (iso.albedo(t, 0.0)[0], single.albedo(t, 0.0)[0]);
-        let azimuths: Vec<f64> = (0..24).map(|k| (15.0 * k as f64).to_radians()).collect();
-        let truth = mean_reflectance(&engine, t, &azimuths);
-        println!(
-            "{ti}°: isotropic table {a:.5}, one azimuth {one:.5}, anisotropic mean {mean:.5}, rays {truth:.5}"
-        );
-        assert!(
-            (a / truth - 1.0).abs() < 0.01,
-            "{ti}°: {a} vs the rays' {truth}"
-        );
-        assert!((a / mean - 1.0).abs() < 0.01, "{ti}°: {a} vs {mean}");
-        single_misses = single_misses.max((one / mean - 1.0).abs());
-    }
-    assert!(
-        single_misses > 0.05,
-        "the surface is not anisotropic enough to test the average ({single_misses})"
-    );
-}
-
 /// A flat map is a mirror: the table's lobe integrates to the Fresnel reflectance R(ti), even
 /// though the lobe is a delta that the table can only hold as the tent of its innermost
 /// theta_h node. (A merely smooth map spreads its rays over the first two rings, whose
@@ -189,26 +109,6 @@ fn mirror_lobe_integrates_to_fresnel() {
         let r = ior.reflectance(ti.to_radians().cos());
         assert!((albedo / r - 1.0).abs() < 0.01, "{ti}°: {albedo} vs R {r}");
     }
-}
-
-/// Fitting Beckmann's Cook-Torrance model to the ray-method table of a Gaussian surface gives a
-/// roughness m within 5% of the map's total rms slope `sqrt(sx² + sy²)`: the ray method reproduces
-/// the facet model on Gaussian slopes (`docs/ray-method.md`, "Validation"), and that model has the
-/// Beckmann D of total rms slope m (per-axis `m/√2`).
-#[test]
-fn beckmann_fit_of_a_gaussian_surface_gives_its_rms_slope() {
-    let (engine, table) = gaussian_table();
-    let (sx, sy) = engine.rms_slopes();
-    let slope = sx.hypot(sy);
-    let samples = table.fit_samples(70f64.to_radians());
-    let got = fit(FitKind::Beckmann, &samples, FitOptions::default()).unwrap();
-    let m = got.parameter("m").unwrap().value;
-    assert!(
-        (m / slope - 1.0).abs() < 0.05,
-        "fitted m {m}, rms slope {slope}; {got:?}"
-    );
-    let n = got.parameter("index").unwrap().value;
-    assert!((n - 1.55).abs() < 0.05, "fitted index {n}");
 }
 
 /// Kirchhoff in its geometric-optics limit (g = (2 k Sq cos ti)² ≫ 1) agrees with the ray
@@ -309,4 +209,109 @@ fn options_are_checked() {
     assert!(o.validate().is_ok());
     o.incidence_polar = 1;
     assert!(o.validate().is_err());
+}
+
+/// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
+mod slow {
+    use super::*;
+
+    /// An isotropic table of an anisotropic surface is the average over the azimuth of incidence:
+    /// its albedo equals the azimuthal mean of the anisotropic table's albedo (24 azimuths, every
+    /// 15°, on the same theta_d × phi_d grid) within 1%, the required bound, at 0°, 30° and 60°, and
+    /// the azimuthal mean of the rays the engine reflects (the independent reference: the table's
+    /// quadrature against the sum of the rays) within 1% too; each table's interpolation error at
+    /// these angles is below 1% (`table_albedo_is_the_ray_reflectance`). The surface is a Gaussian
+    /// map with its y spacing stretched four times (rms slope along y a quarter of that along x,
+    /// Str below 0.3). A table of one azimuth of incidence (the former default) misses by more
+    /// than 5%.
+    #[test]
+    fn isotropic_table_of_an_anisotropic_surface_averages_the_azimuths() {
+        let base = gaussian(0.4e-6, 4e-6, 128, 23);
+        // The unstretched map is isotropic: one turn is enough for it.
+        assert_eq!(isotropic_turns(texture_aspect_ratio(&base)), 1);
+        let map = HeightMap::new(base.heights().clone(), 0.5e-6, 2e-6).unwrap();
+        let str_ratio = texture_aspect_ratio(&map);
+        println!("Str {str_ratio:?}");
+        assert!(str_ratio.is_some_and(|s| s < STR_ANISOTROPIC));
+        let engine = RayEngine::new(&map, RayOptions::default()).unwrap();
+        let iso = ray_table(
+            &engine,
+            &TableOptions {
+                incidence_azimuths: isotropic_turns(str_ratio),
+                ..TableOptions::isotropic()
+            },
+            Provenance::default(),
+            &gonio_io::Progress::silent(),
+        )
+        .unwrap();
+        let single = ray_table(
+            &engine,
+            &TableOptions {
+                incidence_azimuths: 1,
+                ..TableOptions::isotropic()
+            },
+            Provenance::default(),
+            &gonio_io::Progress::silent(),
+        )
+        .unwrap();
+        // The anisotropic table on the isotropic default's theta_d × phi_d grid (1° × 2°) and
+        // incidences (every 2°), so that the two differ in the azimuth of incidence only (the
+        // default anisotropic table, 2° × 4° from incidences every 3.9°, is 4.5% above its rays
+        // at 60° on this map: the second-order error of its coarser steps).
+        let aniso = ray_table(
+            &engine,
+            &TableOptions {
+                resolution: Resolution::anisotropic(32, 90, 180, 24),
+                incidence_polar: TableOptions::isotropic().incidence_polar,
+                incidence_azimuths: 24,
+            },
+            Provenance::default(),
+            &gonio_io::Progress::silent(),
+        )
+        .unwrap();
+        let mut single_misses = 0.0f64;
+        for ti in [0.0f64, 30.0, 60.0] {
+            let t = ti.to_radians();
+            let mean = (0..24)
+                .map(|k| aniso.albedo(t, (15.0 * k as f64).to_radians())[0])
+                .sum::<f64>()
+                / 24.0;
+            let (a, one) = (iso.albedo(t, 0.0)[0], single.albedo(t, 0.0)[0]);
+            let azimuths: Vec<f64> = (0..24).map(|k| (15.0 * k as f64).to_radians()).collect();
+            let truth = mean_reflectance(&engine, t, &azimuths);
+            println!(
+                "{ti}°: isotropic table {a:.5}, one azimuth {one:.5}, anisotropic mean {mean:.5}, rays {truth:.5}"
+            );
+            assert!(
+                (a / truth - 1.0).abs() < 0.01,
+                "{ti}°: {a} vs the rays' {truth}"
+            );
+            assert!((a / mean - 1.0).abs() < 0.01, "{ti}°: {a} vs {mean}");
+            single_misses = single_misses.max((one / mean - 1.0).abs());
+        }
+        assert!(
+            single_misses > 0.05,
+            "the surface is not anisotropic enough to test the average ({single_misses})"
+        );
+    }
+
+    /// Fitting Beckmann's Cook-Torrance model to the ray-method table of a Gaussian surface gives a
+    /// roughness m within 5% of the map's total rms slope `sqrt(sx² + sy²)`: the ray method reproduces
+    /// the facet model on Gaussian slopes (`docs/ray-method.md`, "Validation"), and that model has the
+    /// Beckmann D of total rms slope m (per-axis `m/√2`).
+    #[test]
+    fn beckmann_fit_of_a_gaussian_surface_gives_its_rms_slope() {
+        let (engine, table) = gaussian_table();
+        let (sx, sy) = engine.rms_slopes();
+        let slope = sx.hypot(sy);
+        let samples = table.fit_samples(70f64.to_radians());
+        let got = fit(FitKind::Beckmann, &samples, FitOptions::default()).unwrap();
+        let m = got.parameter("m").unwrap().value;
+        assert!(
+            (m / slope - 1.0).abs() < 0.05,
+            "fitted m {m}, rms slope {slope}; {got:?}"
+        );
+        let n = got.parameter("index").unwrap().value;
+        assert!((n - 1.55).abs() < 0.05, "fitted index {n}");
+    }
 }

@@ -74,117 +74,122 @@ fn fixtures() -> Vec<PathBuf> {
     files
 }
 
-#[test]
-fn every_fixture_reads_as_surfacetopography_reads_it() {
-    let files = fixtures();
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/surfacetopography.py");
-    let python = std::env::var("GONIO_PYTHON").unwrap_or_else(|_| "python3".into());
-    let out = match Command::new(&python).arg(&script).args(&files).output() {
-        Ok(out) => out,
-        Err(e) => return oracle_missing(&format!("cannot run {python}: {e}")),
-    };
-    if out.status.code() == Some(77) {
-        return oracle_missing(
-            "SurfaceTopography is not installed (`pip install SurfaceTopography`)",
-        );
-    }
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let report: Value = serde_json::from_slice(&out.stdout).expect("JSON from the script");
-    let mut compared = 0;
-    let mut failures = Vec::new();
-    for file in &files {
-        let name = file.file_name().unwrap().to_str().unwrap();
-        let theirs = &report[file.to_str().unwrap()];
-        let refused = ORACLE_REFUSES.iter().find(|(n, _)| *n == name);
-        if let Some(error) = theirs.get("error") {
-            assert!(
-                refused.is_some(),
-                "SurfaceTopography cannot read {name}, which is not listed: {error}"
+/// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
+mod slow {
+    use super::*;
+
+    #[test]
+    fn every_fixture_reads_as_surfacetopography_reads_it() {
+        let files = fixtures();
+        let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/surfacetopography.py");
+        let python = std::env::var("GONIO_PYTHON").unwrap_or_else(|_| "python3".into());
+        let out = match Command::new(&python).arg(&script).args(&files).output() {
+            Ok(out) => out,
+            Err(e) => return oracle_missing(&format!("cannot run {python}: {e}")),
+        };
+        if out.status.code() == Some(77) {
+            return oracle_missing(
+                "SurfaceTopography is not installed (`pip install SurfaceTopography`)",
             );
-            continue;
         }
         assert!(
-            refused.is_none(),
-            "{name} is listed as refused but SurfaceTopography reads it now: compare it"
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
         );
-        let mut disagree = |quantity: &str, message: String| {
-            let known = KNOWN_DIFFERENCES
-                .iter()
-                .any(|(n, q, _)| *n == name && *q == quantity);
-            if known {
-                eprintln!("{name}: {message} (known: gonio is right)");
-            } else {
-                failures.push(format!("{name}: {message}"));
+        let report: Value = serde_json::from_slice(&out.stdout).expect("JSON from the script");
+        let mut compared = 0;
+        let mut failures = Vec::new();
+        for file in &files {
+            let name = file.file_name().unwrap().to_str().unwrap();
+            let theirs = &report[file.to_str().unwrap()];
+            let refused = ORACLE_REFUSES.iter().find(|(n, _)| *n == name);
+            if let Some(error) = theirs.get("error") {
+                assert!(
+                    refused.is_some(),
+                    "SurfaceTopography cannot read {name}, which is not listed: {error}"
+                );
+                continue;
             }
-        };
-        let map = io::read(file).unwrap_or_else(|e| panic!("{name}: {e}"));
-        let grid: Vec<u64> = theirs["grid"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|v| v.as_u64().unwrap())
-            .collect();
-        // A line profile is one-dimensional in SurfaceTopography, one row here.
-        let (ours_grid, ours_size) = if map.is_profile() {
-            (vec![map.nx() as u64], vec![map.nx() as f64 * map.dx()])
-        } else {
-            (
-                vec![map.nx() as u64, map.ny() as u64],
-                vec![map.nx() as f64 * map.dx(), map.ny() as f64 * map.dy()],
-            )
-        };
-        if grid != ours_grid {
-            disagree(
-                "grid",
-                format!("grid {ours_grid:?}, SurfaceTopography {grid:?}"),
+            assert!(
+                refused.is_none(),
+                "{name} is listed as refused but SurfaceTopography reads it now: compare it"
             );
-            continue;
-        }
-        let size: Vec<f64> = theirs["size_m"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|v| v.as_f64().unwrap())
-            .collect();
-        for (axis, (a, b)) in ours_size.iter().zip(&size).enumerate() {
-            if rel(*a, *b) > SIZE_TOLERANCE {
+            let mut disagree = |quantity: &str, message: String| {
+                let known = KNOWN_DIFFERENCES
+                    .iter()
+                    .any(|(n, q, _)| *n == name && *q == quantity);
+                if known {
+                    eprintln!("{name}: {message} (known: gonio is right)");
+                } else {
+                    failures.push(format!("{name}: {message}"));
+                }
+            };
+            let map = io::read(file).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let grid: Vec<u64> = theirs["grid"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_u64().unwrap())
+                .collect();
+            // A line profile is one-dimensional in SurfaceTopography, one row here.
+            let (ours_grid, ours_size) = if map.is_profile() {
+                (vec![map.nx() as u64], vec![map.nx() as f64 * map.dx()])
+            } else {
+                (
+                    vec![map.nx() as u64, map.ny() as u64],
+                    vec![map.nx() as f64 * map.dx(), map.ny() as f64 * map.dy()],
+                )
+            };
+            if grid != ours_grid {
                 disagree(
-                    "size",
-                    format!("size along axis {axis} {a} m, SurfaceTopography {b} m"),
+                    "grid",
+                    format!("grid {ours_grid:?}, SurfaceTopography {grid:?}"),
+                );
+                continue;
+            }
+            let size: Vec<f64> = theirs["size_m"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_f64().unwrap())
+                .collect();
+            for (axis, (a, b)) in ours_size.iter().zip(&size).enumerate() {
+                if rel(*a, *b) > SIZE_TOLERANCE {
+                    disagree(
+                        "size",
+                        format!("size along axis {axis} {a} m, SurfaceTopography {b} m"),
+                    );
+                }
+            }
+            let valid = theirs["valid_fraction"].as_f64().unwrap();
+            if (map.valid_fraction() - valid).abs() > VALID_TOLERANCE {
+                disagree(
+                    "valid fraction",
+                    format!(
+                        "valid fraction {}, SurfaceTopography {valid}",
+                        map.valid_fraction()
+                    ),
                 );
             }
-        }
-        let valid = theirs["valid_fraction"].as_f64().unwrap();
-        if (map.valid_fraction() - valid).abs() > VALID_TOLERANCE {
-            disagree(
-                "valid fraction",
-                format!(
-                    "valid fraction {}, SurfaceTopography {valid}",
-                    map.valid_fraction()
-                ),
+            let sq = theirs["sq_m"].as_f64().unwrap();
+            let ours = sq_plane(&map);
+            if rel(ours, sq) > SQ_TOLERANCE {
+                disagree("Sq", format!("Sq {ours} m, SurfaceTopography {sq} m"));
+            }
+            eprintln!(
+                "{name}: {} × {}, Sq {ours:.6e} m vs {sq:.6e} m ({:+.3}%)",
+                map.nx(),
+                map.ny(),
+                100.0 * (ours / sq - 1.0)
             );
+            compared += 1;
         }
-        let sq = theirs["sq_m"].as_f64().unwrap();
-        let ours = sq_plane(&map);
-        if rel(ours, sq) > SQ_TOLERANCE {
-            disagree("Sq", format!("Sq {ours} m, SurfaceTopography {sq} m"));
-        }
-        eprintln!(
-            "{name}: {} × {}, Sq {ours:.6e} m vs {sq:.6e} m ({:+.3}%)",
-            map.nx(),
-            map.ny(),
-            100.0 * (ours / sq - 1.0)
+        assert!(
+            failures.is_empty(),
+            "disagreements:\n{}",
+            failures.join("\n")
         );
-        compared += 1;
+        assert!(compared >= 10, "only {compared} fixtures compared");
     }
-    assert!(
-        failures.is_empty(),
-        "disagreements:\n{}",
-        failures.join("\n")
-    );
-    assert!(compared >= 10, "only {compared} fixtures compared");
 }

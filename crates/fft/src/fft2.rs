@@ -1,5 +1,5 @@
-//! Two-dimensional real-to-complex FFTs of height-map grids, used by the synthesis of random
-//! surfaces and by the spectral statistics (autocorrelation, power spectral density), and the
+//! Two-dimensional real-to-complex FFTs of grids such as height maps (the synthesis of random
+//! surfaces and the spectral statistics: autocorrelation, power spectral density), and the
 //! cache-friendly parallel transpose they (and the spline's column passes) rely on.
 //!
 //! Rows are transformed with realfft, then columns with rustfft, each row or column in parallel
@@ -9,12 +9,10 @@
 use ndarray::{Array2, ArrayView2};
 use num_complex::Complex64;
 use rayon::prelude::*;
-use realfft::RealFftPlanner;
-use rustfft::FftPlanner;
 
 /// Half spectrum of a real `(ny, nx)` grid, stored transposed: shape `(nx/2 + 1, ny)`, indexed
 /// `[kx, ky]`, so that the column transforms run over contiguous memory.
-pub(crate) struct HalfSpectrum {
+pub struct HalfSpectrum {
     /// Coefficients `[kx, ky]`, unnormalised: `Σ h exp(-2πi (kx ix / nx + ky iy / ny))`.
     pub data: Array2<Complex64>,
     /// Number of grid points along x of the real grid.
@@ -22,12 +20,12 @@ pub(crate) struct HalfSpectrum {
 }
 
 /// Forward transform of a real grid of shape `(ny, nx)`.
-pub(crate) fn forward(h: ArrayView2<f64>) -> HalfSpectrum {
+pub fn forward(h: ArrayView2<f64>) -> HalfSpectrum {
     let (ny, nx) = h.dim();
     let nxh = nx / 2 + 1;
     let h = h.as_standard_layout();
     let src = h.as_slice().expect("standard layout is contiguous");
-    let r2c = RealFftPlanner::<f64>::new().plan_fft_forward(nx);
+    let r2c = crate::plan_real_forward(nx);
     let mut rows = vec![Complex64::default(); ny * nxh];
     rows.par_chunks_mut(nxh)
         .zip(src.par_chunks(nx))
@@ -40,7 +38,7 @@ pub(crate) fn forward(h: ArrayView2<f64>) -> HalfSpectrum {
             },
         );
     let mut cols = transpose(&rows, ny, nxh);
-    let fft = FftPlanner::<f64>::new().plan_fft_forward(ny);
+    let fft = crate::plan_forward(ny);
     cols.par_chunks_mut(ny).for_each_init(
         || vec![Complex64::default(); fft.get_inplace_scratch_len()],
         |scratch, col| fft.process_with_scratch(col, scratch),
@@ -54,17 +52,17 @@ pub(crate) fn forward(h: ArrayView2<f64>) -> HalfSpectrum {
 /// Inverse transform, normalised by `1/(nx ny)` so that `inverse(forward(h)) = h`. Returns the
 /// real grid of shape `(ny, nx)`. The spectrum is taken to be that of a real grid (Hermitian);
 /// the imaginary parts that a real grid cannot have are ignored.
-pub(crate) fn inverse(spectrum: HalfSpectrum) -> Array2<f64> {
+pub fn inverse(spectrum: HalfSpectrum) -> Array2<f64> {
     let HalfSpectrum { data, nx } = spectrum;
     let (nxh, ny) = data.dim();
     let mut cols = data.into_raw_vec_and_offset().0;
-    let fft = FftPlanner::<f64>::new().plan_fft_inverse(ny);
+    let fft = crate::plan_inverse(ny);
     cols.par_chunks_mut(ny).for_each_init(
         || vec![Complex64::default(); fft.get_inplace_scratch_len()],
         |scratch, col| fft.process_with_scratch(col, scratch),
     );
     let rows = transpose(&cols, nxh, ny);
-    let c2r = RealFftPlanner::<f64>::new().plan_fft_inverse(nx);
+    let c2r = crate::plan_real_inverse(nx);
     let norm = 1.0 / (nx as f64 * ny as f64);
     let mut out = vec![0.0; ny * nx];
     out.par_chunks_mut(nx)
@@ -87,11 +85,7 @@ pub(crate) fn inverse(spectrum: HalfSpectrum) -> Array2<f64> {
 
 /// Transpose a row-major `rows × cols` matrix, in parallel over bands of output rows and in
 /// square tiles, so that both the reads and the writes stay in cache.
-pub(crate) fn transpose<T: Copy + Default + Send + Sync>(
-    src: &[T],
-    rows: usize,
-    cols: usize,
-) -> Vec<T> {
+pub fn transpose<T: Copy + Default + Send + Sync>(src: &[T], rows: usize, cols: usize) -> Vec<T> {
     const TILE: usize = 32;
     let mut dst = vec![T::default(); rows * cols];
     if rows == 0 || cols == 0 {
@@ -115,7 +109,7 @@ pub(crate) fn transpose<T: Copy + Default + Send + Sync>(
 }
 
 /// The transpose of a 2D array, in standard (row-major) layout.
-pub(crate) fn transposed<T: Copy + Default + Send + Sync>(a: ArrayView2<T>) -> Array2<T> {
+pub fn transposed<T: Copy + Default + Send + Sync>(a: ArrayView2<T>) -> Array2<T> {
     let (rows, cols) = a.dim();
     let a = a.as_standard_layout();
     let data = transpose(
@@ -124,32 +118,4 @@ pub(crate) fn transposed<T: Copy + Default + Send + Sync>(a: ArrayView2<T>) -> A
         cols,
     );
     Array2::from_shape_vec((cols, rows), data).expect("shape matches the length")
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn round_trip_and_single_mode() {
-        for (ny, nx) in [(6, 8), (5, 7), (1, 4), (4, 1)] {
-            let h = Array2::from_shape_fn((ny, nx), |(iy, ix)| {
-                ((ix * 7 + iy * 3) % 5) as f64 - 0.3 * iy as f64
-            });
-            let back = inverse(forward(h.view()));
-            for (a, b) in h.iter().zip(back.iter()) {
-                assert!((a - b).abs() < 1e-12, "{nx}×{ny}: {a} vs {b}");
-            }
-        }
-        // cos(2π (2 ix / 8 + 1 iy / 6)) has its energy at (kx, ky) = (2, 1) only: nx ny / 2.
-        let (ny, nx) = (6, 8);
-        let h = Array2::from_shape_fn((ny, nx), |(iy, ix)| {
-            (2.0 * std::f64::consts::PI * (2.0 * ix as f64 / 8.0 + iy as f64 / 6.0)).cos()
-        });
-        let s = forward(h.view());
-        for ((kx, ky), v) in s.data.indexed_iter() {
-            let expect = if (kx, ky) == (2, 1) { 24.0 } else { 0.0 };
-            assert!((v.norm() - expect).abs() < 1e-9, "({kx}, {ky}): {v}");
-        }
-    }
 }
