@@ -9,6 +9,7 @@ mod demo;
 mod gloss;
 mod inplane;
 mod isotropy;
+mod multiangle;
 mod output;
 mod plot;
 mod progress;
@@ -66,6 +67,10 @@ enum Command {
     /// Isotropy check: in-plane curves of a height map and of the map turned by 90° (or any
     /// angle), with their differences: `gonio isotropy SURFACE --angle-deg 90,45 -o PLOT.png`.
     Isotropy(isotropy::IsotropyArgs),
+    /// Multi-angle colour of a spectral BRDF table (ASTM E2194, E2539): CIELAB at each
+    /// geometry, the flop index and differences from a reference:
+    /// `gonio multiangle T.gbrdf [--standard e2539] [--reference R.gbrdf] [--json]`.
+    Multiangle(multiangle::MultiangleArgs),
 }
 
 fn main() -> ExitCode {
@@ -90,6 +95,7 @@ fn main() -> ExitCode {
         )),
         Command::Render(args) => render::run(args),
         Command::Isotropy(args) => isotropy::run(args),
+        Command::Multiangle(args) => multiangle::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -2,7 +2,8 @@
 //! meters (ISO 2813 / ASTM D523), reflection haze (ASTM E430, ASTM D4039) and distinctness of
 //! image (ASTM E430) on a height map or a table (`gloss`, `meter`), the comparison of measured and computed
 //! in-plane curves, the isotropy check (the curves of a map and of the map turned about its
-//! normal), and the validity warnings of a virtual reading (`validity`).
+//! normal), the multi-angle spectrophotometer of effect coatings (ASTM E2194, E2539:
+//! `multiangle`), and the validity warnings of a virtual reading (`validity`).
 
 pub mod compare;
 pub mod curves;
@@ -11,6 +12,7 @@ pub mod gloss;
 pub mod inplane;
 pub mod isotropy;
 pub mod meter;
+pub mod multiangle;
 mod quadrature;
 pub mod specimens;
 pub mod study;

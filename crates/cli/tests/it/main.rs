@@ -14,6 +14,7 @@ mod gloss_cli;
 mod inplane_cli;
 mod isotropy_cli;
 mod kirchhoff_cli;
+mod multiangle_cli;
 mod outputs;
 mod render_cli;
 mod surface_cli;
