@@ -9,6 +9,7 @@ pub mod fresnel;
 pub mod gbrdf;
 pub mod microfacet;
 pub mod models;
+pub mod quadrature;
 pub mod sampling;
 pub mod table;
 pub mod validate;

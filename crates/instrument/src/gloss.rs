@@ -15,9 +15,9 @@
 //! `b`; its solid-angle element is `cos b da db`.
 
 use crate::error::Result;
-use crate::quadrature::gauss_legendre_on;
 use glam::DVec3;
 use gonio_brdf::Ior;
+use gonio_brdf::quadrature::gauss_legendre_on;
 
 /// Refractive index of the black-glass primary standard of ISO 2813 / ASTM D523.
 pub const STANDARD_INDEX: f64 = 1.567;

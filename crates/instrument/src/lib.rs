@@ -13,7 +13,6 @@ pub mod inplane;
 pub mod isotropy;
 pub mod meter;
 pub mod multiangle;
-mod quadrature;
 pub mod specimens;
 pub mod study;
 pub mod validity;

@@ -19,9 +19,9 @@
 //!   CIELAB relative to the perfect diffuser's white under the same illuminant and observer.
 
 use crate::error::{InstrumentError, Result};
-use crate::quadrature::gauss_legendre_on;
 use glam::DVec3;
 use gonio_brdf::bxdf::SpectralBrdf;
+use gonio_brdf::quadrature::gauss_legendre_on;
 use gonio_brdf::table::{BrdfTable, Channels};
 use gonio_color::{Illuminant, Lab, Observer, SpectralToXyz, Xyz, ciede2000, white};
 use std::f64::consts::PI;

@@ -277,9 +277,8 @@ pub fn cone_reflectance(detector: &Detector, f: impl Fn(DVec3) -> f64) -> f64 {
     let axis = detector.direction.normalize();
     let (e1, e2) = axis.any_orthonormal_pair();
     let one_minus_cos = 1.0 - detector.half_angle.cos();
-    let (nodes, weights) = gauss_legendre(N_U);
     let mut sum = 0.0;
-    for (&x, &w) in nodes.iter().zip(&weights) {
+    for (x, w) in gonio_brdf::quadrature::gauss_legendre(N_U) {
         let u = 0.5 * (x + 1.0);
         let cos_t = 1.0 - u * one_minus_cos;
         let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
@@ -294,37 +293,6 @@ pub fn cone_reflectance(detector: &Detector, f: impl Fn(DVec3) -> f64) -> f64 {
         sum += 0.5 * w * ring / N_PHI as f64;
     }
     sum * detector.solid_angle()
-}
-
-/// Nodes and weights of `n`-point Gauss-Legendre quadrature on [-1, 1] (Newton iteration on the
-/// Legendre recurrence; Press et al., *Numerical Recipes*, 3rd ed., §4.6).
-fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
-    let mut nodes = vec![0.0; n];
-    let mut weights = vec![0.0; n];
-    for i in 0..n.div_ceil(2) {
-        let mut z = (PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
-        let mut dp = 0.0;
-        for _ in 0..100 {
-            let (mut p1, mut p2) = (1.0, 0.0);
-            for j in 0..n {
-                let p3 = p2;
-                p2 = p1;
-                p1 = ((2 * j + 1) as f64 * z * p2 - j as f64 * p3) / (j + 1) as f64;
-            }
-            dp = n as f64 * (z * p1 - p2) / (z * z - 1.0);
-            let step = p1 / dp;
-            z -= step;
-            if step.abs() < 1e-15 {
-                break;
-            }
-        }
-        nodes[i] = -z;
-        nodes[n - 1 - i] = z;
-        let w = 2.0 / ((1.0 - z * z) * dp * dp);
-        weights[i] = w;
-        weights[n - 1 - i] = w;
-    }
-    (nodes, weights)
 }
 
 #[cfg(test)]

@@ -24,20 +24,6 @@ fn albedo(m: &GaussianModel, model_kind: AnalyticModel, wavelength: f64, ti: f64
     sum
 }
 
-#[test]
-fn gauss_legendre_is_exact_for_polynomials() {
-    let (x, w) = gauss_legendre(24);
-    for p in 0..=47 {
-        let got: f64 = x.iter().zip(&w).map(|(x, w)| w * x.powi(p)).sum();
-        let exact = if p % 2 == 1 {
-            0.0
-        } else {
-            2.0 / (p as f64 + 1.0)
-        };
-        assert!((got - exact).abs() < 1e-13, "x^{p}: {got} vs {exact}");
-    }
-}
-
 /// A Lambertian BRDF `1/π` seen by a cone about the normal: `rho = sin² alpha`; and by a tilted
 /// cone: `(1/π) Omega cos t` up to the curvature of cos over the cone, `O(alpha²)`.
 #[test]

@@ -1,4 +1,5 @@
-//! Gauss-Legendre quadrature on an interval, used to integrate BRDFs over instrument apertures.
+//! Gauss-Legendre quadrature on an interval, used to integrate BRDFs over instrument apertures,
+//! detector cones and hemispheres.
 //!
 //! Nodes are the roots of the Legendre polynomial P_n found by Newton's iteration from the
 //! Tricomi initial guess; weights `2 / ((1 - x²) P_n'(x)²)` (Abramowitz & Stegun 25.4.29).
