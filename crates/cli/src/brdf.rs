@@ -207,12 +207,12 @@ fn load(path: &Path) -> Result<BrdfTable> {
 }
 
 /// The library's resolution of imported tables, as `--resolution` takes it.
-fn import_resolution() -> Vec<usize> {
+pub(crate) fn import_resolution() -> Vec<usize> {
     let r = astm::default_resolution();
     vec![r.theta_h, r.theta_d, r.phi_d]
 }
 
-fn resolution(v: &[usize]) -> Result<Resolution> {
+pub(crate) fn resolution(v: &[usize]) -> Result<Resolution> {
     if v.len() != 3 {
         bail!("--resolution takes three node counts theta_h,theta_d,phi_d, e.g. 90,90,180");
     }

@@ -3,6 +3,7 @@
 
 mod brdf;
 mod brdf_compute;
+mod coating;
 mod color;
 mod compare;
 mod demo;
@@ -71,6 +72,10 @@ enum Command {
     /// geometry, the flop index and differences from a reference:
     /// `gonio multiangle T.gbrdf [--standard e2539] [--reference R.gbrdf] [--json]`.
     Multiangle(multiangle::MultiangleArgs),
+    /// Coatings from their constituents (docs/coatings.md): `gonio coating compute COATING.toml
+    /// -o T.gbrdf` tabulates the body reflection, `gonio coating info COATING.toml` summarises.
+    #[command(subcommand)]
+    Coating(coating::CoatingCommand),
 }
 
 fn main() -> ExitCode {
@@ -96,6 +101,7 @@ fn main() -> ExitCode {
         Command::Render(args) => render::run(args),
         Command::Isotropy(args) => isotropy::run(args),
         Command::Multiangle(args) => multiangle::run(args),
+        Command::Coating(cmd) => coating::run(cmd),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

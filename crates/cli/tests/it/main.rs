@@ -5,6 +5,7 @@ mod brdf_cli;
 mod brdf_colour_cli;
 mod brdf_compute_cli;
 mod channels_cli;
+mod coating_cli;
 mod color_cli;
 mod common;
 mod compare_cli;

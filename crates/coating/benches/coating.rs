@@ -1,0 +1,46 @@
+//! Benchmarks of the coating optics: the spectral body table of the example red coating at
+//! the default resolution (90 × 90 × 48, 31 bands), the thin-film reflectance of an
+//! interference flake, and a finite Kubelka-Munk layer.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use gonio_brdf::formats::astm;
+use gonio_brdf::table::Provenance;
+use gonio_coating::description;
+use gonio_coating::kubelka_munk::Coefficients;
+use gonio_coating::thin_film::{Polarisation, interference_flake};
+use std::hint::black_box;
+use std::path::Path;
+
+fn benches(c: &mut Criterion) {
+    let bands: Vec<f64> = (0..31).map(|i| 400.0 + 10.0 * i as f64).collect();
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/coatings/red_solid.toml");
+    let stack = description::read(&path, &bands).unwrap();
+    let mut group = c.benchmark_group("coating");
+    group.sample_size(10);
+    group.bench_function("body table 90x90x48, 31 bands (red_solid.toml)", |b| {
+        b.iter(|| {
+            stack
+                .body_table(
+                    astm::default_resolution(),
+                    black_box(&bands),
+                    Provenance::default(),
+                )
+                .unwrap()
+        })
+    });
+    group.finish();
+    let flake = interference_flake(120.0, 400.0, 1.58, 1.5, 550.0).unwrap();
+    c.bench_function("interference flake reflectance, s and p (3 films)", |b| {
+        b.iter(|| {
+            flake.reflectance(Polarisation::S, black_box(0.7), 550.0)
+                + flake.reflectance(Polarisation::P, black_box(0.7), 550.0)
+        })
+    });
+    let km = Coefficients::new(0.2, 0.3).unwrap();
+    c.bench_function("Kubelka-Munk finite layer reflectance", |b| {
+        b.iter(|| km.reflectance(black_box(20.0), black_box(0.6)))
+    });
+}
+
+criterion_group!(group, benches);
+criterion_main!(group);
