@@ -5,8 +5,7 @@
 
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
-use gonio_brdf::table::Provenance;
-use gonio_coating::clear_coat::{AtWavelength, ClearCoatOverBase};
+use gonio_coating::clear_coat::{self, AtWavelength, ClearCoatOverBase};
 use gonio_coating::description;
 use gonio_instrument::multiangle::{self, E2194, MultiangleReading, Settings};
 use std::path::{Path, PathBuf};
@@ -81,15 +80,7 @@ fn compute(a: ComputeArgs) -> Result<()> {
     let wavelengths = bands(&a.bands)?;
     let res = crate::brdf::resolution(&a.resolution)?;
     let stack = read(&a.coating, &wavelengths)?;
-    let mut provenance = Provenance::new(
-        a.coating.display().to_string(),
-        "coating:clear-coat-over-base",
-    );
-    provenance.description = Some(
-        "body reflection of a smooth clear coat over a diffuse base; the coat's mirror \
-         reflection F(θi) is not in the table"
-            .into(),
-    );
+    let provenance = clear_coat::body_provenance(a.coating.display().to_string());
     let table = stack
         .body_table(res, &wavelengths, provenance)
         .with_context(|| a.coating.display().to_string())?;

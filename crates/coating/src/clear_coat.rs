@@ -181,6 +181,18 @@ impl ClearCoatOverBase {
     }
 }
 
+/// The provenance of a body table made from the description at `source`: its method and what
+/// the table leaves out.
+pub fn body_provenance(source: impl Into<String>) -> Provenance {
+    let mut provenance = Provenance::new(source, "coating:clear-coat-over-base");
+    provenance.description = Some(
+        "body reflection of a smooth clear coat over a diffuse base; the coat's mirror \
+         reflection F(θi) is not in the table"
+            .into(),
+    );
+    provenance
+}
+
 impl ClearCoatOverBase {
     /// The body reflection tabulated at `resolution` with one channel per wavelength of
     /// `wavelengths_nm` (a spectral table), stamped with `provenance`. The mirror reflection of

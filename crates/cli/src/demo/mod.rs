@@ -2,6 +2,7 @@
 //! (`out/report.html`): the synthetic epoxy roughness series, a real instrument file and its
 //! isotropy, the roughness study by both scattering methods, and the gloss readings.
 
+mod coatings;
 mod pictures;
 mod summary;
 
@@ -74,7 +75,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
         .with_context(|| format!("{}: cannot create directory", dir.display()))?;
     let started = Instant::now();
     let mut sections = Vec::new();
-    let steps = if args.quick { 4 } else { 5 };
+    let steps = if args.quick { 5 } else { 6 };
     let mut step = 0;
     let mut announce = |what: &str| {
         step += 1;
@@ -114,6 +115,12 @@ pub fn run(args: DemoArgs) -> Result<()> {
     let (out, seconds) = timed(|| study::execute(&samples, &config, &dir.join("study")));
     let out = out?;
     sections.push(study_section(&out, &config, &plan, seconds));
+
+    announce("coatings: multi-angle colour of a clear-coated red and of the measured paints");
+    let (section, seconds) = timed(|| coatings::coatings_section(dir));
+    let mut section = section?;
+    section.seconds = seconds;
+    sections.push(section);
 
     if !args.quick {
         announce("pictures: the NIST figure 6 panels and the metallic paints");

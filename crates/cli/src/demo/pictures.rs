@@ -135,7 +135,7 @@ fn denoised_note(stats: &RenderStats) -> &'static str {
 }
 
 /// The example scenes of the repository, rendered as the report's pictures.
-const EXAMPLES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples");
+pub(super) const EXAMPLES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples");
 
 /// Copy the scene file `scene` into `dir`, with every file it names (quoted strings that are
 /// paths of existing files, relative to the scene) copied beside it and named there by its bare

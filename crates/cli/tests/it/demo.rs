@@ -196,6 +196,7 @@ mod slow {
             "A real instrument file: x3p-2.x3p",
             "Isotropy of x3p-2.x3p",
             "The roughness study",
+            "Coatings and multi-angle colour",
         ] {
             assert!(html.contains(title), "section '{title}' missing");
         }
