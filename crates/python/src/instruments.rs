@@ -1,12 +1,15 @@
 //! The virtual instruments for Python: in-plane curves by several methods at once (the columns of
-//! `gonio inplane`'s CSV, computed by the same library call) and the gloss and appearance meters.
+//! `gonio inplane`'s CSV, computed by the same library call), the gloss and appearance meters,
+//! and the multi-angle spectrophotometer.
 
 use crate::error::{Result, invalid};
 use crate::surface::Surface;
 use crate::table::Table;
 use gonio_brdf::Ior;
+use gonio_color::{Illuminant, Observer};
 use gonio_instrument::inplane::{self, InplaneRequest, Method};
 use gonio_instrument::meter::{self, MapMethod};
+use gonio_instrument::multiangle::{self, Geometry, GeometryReading, Settings};
 use gonio_io::Progress;
 use gonio_scatter::analytic::AnalyticModel;
 use gonio_scatter::ray::RayOptions;
@@ -162,4 +165,69 @@ pub fn gloss_json(
         serde_json::to_value(reading.report).map_err(|e| invalid(format!("gloss report: {e}")))?;
     json["warnings"] = serde_json::json!(reading.warnings);
     Ok(json.to_string())
+}
+
+/// What a multi-angle spectrophotometer reads on a spectral table at `geometries` (names such as
+/// "45as15"): columns geometry, illumination_deg, aspecular_deg, viewing_deg, L, a, b, C,
+/// h_deg, X, Y, Z (one row per geometry), the reflectance factors as a 2D array (geometries ×
+/// wavelengths), the wavelengths in nm, and Alman's flop index (None without 45as15, 45as45
+/// and 45as110).
+#[pyfunction]
+#[pyo3(signature = (table, geometries, aperture_deg, illuminant, observer_deg))]
+#[allow(clippy::type_complexity)]
+pub fn multiangle_columns<'py>(
+    py: Python<'py>,
+    table: &Table,
+    geometries: Vec<String>,
+    aperture_deg: f64,
+    illuminant: &str,
+    observer_deg: u32,
+) -> Result<(
+    Bound<'py, PyDict>,
+    Bound<'py, numpy::PyArray2<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Option<f64>,
+)> {
+    let geometries = geometries
+        .iter()
+        .map(|g| Geometry::parse(g))
+        .collect::<gonio_instrument::Result<Vec<_>>>()?;
+    let settings = Settings {
+        illuminant: Illuminant::from_name(illuminant)
+            .ok_or_else(|| invalid(format!("illuminant `{illuminant}`: use \"D65\" or \"A\"")))?,
+        observer: Observer::from_field_deg(observer_deg)
+            .ok_or_else(|| invalid(format!("observer {observer_deg}°: use 2 or 10")))?,
+        aperture_deg,
+    };
+    let table = table.table.clone();
+    let reading = py.detach(move || multiangle::read_table(&table, &geometries, &settings))?;
+    let columns = PyDict::new(py);
+    let g = &reading.geometries;
+    let column = |f: &dyn Fn(&GeometryReading) -> f64| -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_vec(py, g.iter().map(f).collect())
+    };
+    columns.set_item(
+        "geometry",
+        g.iter().map(|r| r.geometry.to_string()).collect::<Vec<_>>(),
+    )?;
+    columns.set_item("illumination_deg", column(&|r| r.geometry.illumination_deg))?;
+    columns.set_item("aspecular_deg", column(&|r| r.geometry.aspecular_deg))?;
+    columns.set_item("viewing_deg", column(&|r| r.geometry.viewing_deg()))?;
+    columns.set_item("L", column(&|r| r.lab.l))?;
+    columns.set_item("a", column(&|r| r.lab.a))?;
+    columns.set_item("b", column(&|r| r.lab.b))?;
+    columns.set_item("C", column(&|r| r.lab.chroma()))?;
+    columns.set_item("h_deg", column(&|r| r.lab.hue_deg()))?;
+    columns.set_item("X", column(&|r| r.xyz.x))?;
+    columns.set_item("Y", column(&|r| r.xyz.y))?;
+    columns.set_item("Z", column(&|r| r.xyz.z))?;
+    let rows: Vec<Vec<f64>> = g.iter().map(|r| r.reflectance_factor.clone()).collect();
+    let factors = numpy::PyArray2::from_vec2(py, &rows)
+        .map_err(|e| invalid(format!("reflectance factors: {e}")))?;
+    Ok((
+        columns,
+        factors,
+        PyArray1::from_vec(py, reading.wavelengths_nm.clone()),
+        reading.flop_index(),
+    ))
 }

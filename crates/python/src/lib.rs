@@ -18,11 +18,17 @@ use pyo3::prelude::*;
 fn _gonio(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("COLUMNS", gonio_instrument::curves::COLUMNS.to_vec())?;
+    let names = |set: &[gonio_instrument::multiangle::Geometry]| -> Vec<String> {
+        set.iter().map(|g| g.to_string()).collect()
+    };
+    m.add("E2194", names(&gonio_instrument::multiangle::E2194))?;
+    m.add("E2539", names(&gonio_instrument::multiangle::E2539))?;
     m.add_class::<surface::Surface>()?;
     m.add_function(wrap_pyfunction!(surface::read_surface, m)?)?;
     m.add_function(wrap_pyfunction!(surface::synthesize, m)?)?;
     m.add_function(wrap_pyfunction!(instruments::inplane_columns, m)?)?;
     m.add_function(wrap_pyfunction!(instruments::gloss_json, m)?)?;
+    m.add_function(wrap_pyfunction!(instruments::multiangle_columns, m)?)?;
     m.add_class::<table::Table>()?;
     m.add_function(wrap_pyfunction!(table::import_table, m)?)?;
     m.add_function(wrap_pyfunction!(table::tabulate, m)?)?;

@@ -35,6 +35,7 @@ __all__ = [
     "synthesize",
     "inplane",
     "gloss",
+    "multiangle",
     "render",
     "study",
     "brdf",
@@ -42,12 +43,17 @@ __all__ = [
     "studies",
     "STARR_INCIDENCES_DEG",
     "COLUMNS",
+    "E2194",
+    "E2539",
 ]
 
 #: Incidence angles of the NIST STARR in-plane set-up, degrees.
 STARR_INCIDENCES_DEG = (20.0, 45.0, 60.0, 70.0)
 #: Columns of :func:`inplane`'s DataFrame (those of ``gonio inplane``'s CSV).
 COLUMNS = tuple(_gonio.COLUMNS)
+#: The geometries of ASTM E2194 and gonio's ASTM E2539 set, as :func:`multiangle` names them.
+E2194 = tuple(_gonio.E2194)
+E2539 = tuple(_gonio.E2539)
 
 
 def _surface(surface: Surface | str | os.PathLike, channel: Any = None) -> Surface:
@@ -160,6 +166,47 @@ def gloss(
             else read_surface(os.fspath(specimen))
         )
     return json.loads(_gonio.gloss_json(specimen, method, float(index), float(wavelength_nm)))
+
+
+def multiangle(
+    table: Table | str | os.PathLike,
+    standard: str = "e2194",
+    geometries: Sequence[str] | None = None,
+    aperture_deg: float = 0.0,
+    illuminant: str = "D65",
+    observer_deg: int = 10,
+) -> pd.DataFrame:
+    """What a multi-angle spectrophotometer reads on a spectral table (``gonio multiangle``).
+
+    ``table``: a spectral :class:`Table` or ``.gbrdf`` path. ``standard``: ``"e2194"`` (45°
+    illumination, aspecular 15, 25, 45, 75, 110°) or ``"e2539"`` (adds 45as-15 and 15°
+    illumination); ``geometries`` names others (``"45as15"``: illumination and aspecular angle in
+    degrees, the aspecular angle from the specular direction towards the light).
+    ``aperture_deg``: half-angle of the source's and receptor's cones (0: the directions
+    themselves). Colour under ``illuminant`` (``"D65"`` or ``"A"``) for the ``observer_deg``
+    (10 or 2) observer.
+
+    Returns one row per geometry: ``geometry``, ``illumination_deg``, ``aspecular_deg``,
+    ``viewing_deg`` (the detector's signed angle, + on the light's side), CIELAB ``L``, ``a``,
+    ``b``, ``C``, ``h_deg``, tristimulus ``X``, ``Y``, ``Z`` (Y = 100 for the perfect diffuser),
+    and the reflectance factors (π × BRDF) in columns ``R_400nm``, ... . Alman's flop index is in
+    ``df.attrs["flop_index"]`` (None unless 45as15, 45as45 and 45as110 are read).
+    """
+    if isinstance(table, (str, os.PathLike)):
+        table = Table.open(os.fspath(table))
+    if geometries is None:
+        sets = {"e2194": E2194, "e2539": E2539}
+        if standard.lower() not in sets:
+            raise ValueError(f"standard {standard!r}: use \"e2194\" or \"e2539\"")
+        geometries = sets[standard.lower()]
+    columns, factors, wavelengths, flop = _gonio.multiangle_columns(
+        table, [str(g) for g in geometries], float(aperture_deg), illuminant, int(observer_deg)
+    )
+    df = pd.DataFrame(columns)
+    for i, wl in enumerate(wavelengths):
+        df[f"R_{wl:g}nm"] = factors[:, i]
+    df.attrs["flop_index"] = flop
+    return df
 
 
 def render(

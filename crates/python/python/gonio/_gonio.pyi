@@ -10,6 +10,8 @@ import numpy.typing as npt
 __version__: str
 #: The columns of gonio inplane's CSV, in order.
 COLUMNS: list[str]
+E2194: list[str]
+E2539: list[str]
 
 class Surface:
     """A height map: heights in metres on a grid of spacings dx, dy (m), NaN where not measured."""
@@ -89,6 +91,9 @@ def inplane_columns(
     spots: int,
 ) -> tuple[dict[str, Any], list[str]]: ...
 def gloss_json(specimen: Surface | Table, method: str, index: float, wavelength_nm: float) -> str: ...
+def multiangle_columns(
+    table: Table, geometries: list[str], aperture_deg: float, illuminant: str, observer_deg: int
+) -> tuple[dict[str, Any], npt.NDArray[np.float64], npt.NDArray[np.float64], float | None]: ...
 def render_scene(
     path: str | None,
     json: str | None,
