@@ -122,7 +122,15 @@ fn info(a: InfoArgs) -> Result<()> {
         .iter()
         .map(|&w| stack.at(w))
         .collect::<gonio_coating::Result<Vec<_>>>()?;
-    let at550 = stack.at(550.0)?;
+    // The optics at one of the 31 bands, computed once above.
+    let at = |nm: f64| {
+        let band = wavelengths
+            .iter()
+            .position(|&w| w == nm)
+            .expect("400, 450, ..., 700 nm are among the 10 nm bands");
+        &optics[band]
+    };
+    let at550 = at(550.0);
     let gloss_angles = [20.0f64, 60.0, 85.0];
     let specular: Vec<f64> = gloss_angles
         .iter()
@@ -140,7 +148,7 @@ fn info(a: InfoArgs) -> Result<()> {
     if a.json {
         let json = serde_json::json!({
             "file": a.coating.display().to_string(),
-            "coat_index": { "400": stack.at(400.0)?.n, "550": at550.n, "700": stack.at(700.0)?.n },
+            "coat_index": { "400": at(400.0).n, "550": at550.n, "700": at(700.0).n },
             "base_reflectance": wavelengths.iter().zip(&optics).map(|(w, o)| serde_json::json!({"nm": w, "reflectance": o.rho})).collect::<Vec<_>>(),
             "specular": gloss_angles.iter().zip(&specular).map(|(d, r)| serde_json::json!({"theta_deg": d, "reflectance": r})).collect::<Vec<_>>(),
             "albedo": albedo_angles.iter().zip(&albedo).map(|(d, r)| serde_json::json!({"theta_i_deg": d, "albedo": r})).collect::<Vec<_>>(),
@@ -156,15 +164,15 @@ fn info(a: InfoArgs) -> Result<()> {
     println!("{}", a.coating.display());
     println!(
         "coat: n {:.4} / {:.4} / {:.4} at 400 / 550 / 700 nm, {} µm",
-        stack.at(400.0)?.n,
+        at(400.0).n,
         at550.n,
-        stack.at(700.0)?.n,
+        at(700.0).n,
         stack.coat.thickness_um
     );
     let rho: Vec<String> = [400.0, 450.0, 500.0, 550.0, 600.0, 650.0, 700.0]
         .iter()
-        .map(|&w| stack.at(w).map(|o| format!("{:.3}", o.rho)))
-        .collect::<gonio_coating::Result<_>>()?;
+        .map(|&w| format!("{:.3}", at(w).rho))
+        .collect();
     println!(
         "base reflectance at 400, 450, ..., 700 nm: {}",
         rho.join(" ")
