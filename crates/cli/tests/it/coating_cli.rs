@@ -5,6 +5,7 @@
 //! naming the file and the field.
 
 use crate::common::gonio_in as gonio;
+use gonio_brdf::fresnel::dielectric as fresnel;
 use std::path::PathBuf;
 
 fn example(name: &str) -> String {
@@ -13,19 +14,6 @@ fn example(name: &str) -> String {
         .join(name)
         .display()
         .to_string()
-}
-
-/// Unpolarised Fresnel reflectance, light from index 1 into n at cos θ = c (n < 1: from inside,
-/// total internal reflection included).
-fn fresnel(c: f64, n: f64) -> f64 {
-    let st2 = (1.0 - c * c) / (n * n);
-    if st2 >= 1.0 {
-        return 1.0;
-    }
-    let ct = (1.0 - st2).sqrt();
-    let rs = (c - n * ct) / (c + n * ct);
-    let rp = (n * c - ct) / (n * c + ct);
-    0.5 * (rs * rs + rp * rp)
 }
 
 #[test]
