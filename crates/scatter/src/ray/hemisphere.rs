@@ -1,6 +1,8 @@
 //! Full-hemisphere detector grids: the hemisphere above the surface cut into cells of equal
 //! polar and azimuthal width. Unlike cones, the cells tile the hemisphere, so every ray that
 //! leaves the surface lands in exactly one cell and the table conserves the reflected power.
+//! The same grid, mirrored in the mean plane, tiles the hemisphere below the surface for the
+//! light transmitted into the material ([`TransmissionTable`]).
 
 use super::index::Sums;
 use crate::error::{Result, ScatterError};
@@ -233,6 +235,59 @@ impl HemisphereTable {
     /// Total reflectance over the hemisphere (the directional-hemispherical reflectance).
     pub fn total_reflectance(&self) -> f64 {
         self.reflectance.iter().sum()
+    }
+}
+
+/// What each cell of a hemisphere grid collected below the surface: the light refracted into
+/// the material ([`super::RayEngine::transmit_hemisphere`]).
+///
+/// The cells are those of the grid mirrored in the mean plane: cell `(i, j)` holds the
+/// transmitted directions `wt` at polar angle `theta ∈ [i Δθ, (i+1) Δθ)` from the inward
+/// normal `-z` and azimuth `phi ∈ [j Δφ, (j+1) Δφ)` from +x (the forward side, where a smooth
+/// surface refracts) toward +y, that is the direction `(wt_x, wt_y, -wt_z)` in the grid's cell.
+///
+/// The table is power-based: each cell holds the fraction of the power incident on the mean
+/// plane that enters the material within the cell. Divided by the cell's projected solid angle
+/// (about `-z`) it is the mean over the cell of `dΦ_t / (Φ_i |cos θt| dω_t)`, which is the
+/// BTDF `f_t(i, o)` of Walter et al. (EGSR 2007, eq. 21, with `η_i = 1` in air and
+/// `η_o = n` in the material) as written, `L_o = ∫ f_t L_i |cos θi| dω_i` with the radiance
+/// `L_o` inside the material: its `η_o²` is the compression of solid angle by refraction, and
+/// `∫ f_t |cos θt| dω_t` is the transmittance. Divide by `n²` for the BTDF of basic radiance
+/// `L/n²`, the reciprocal form (`f_t(i, o)/η_o² = f_t(o, i)/η_i²`: Walter et al. 2007, §3;
+/// E. Veach, PhD thesis, Stanford 1997, ch. 5), which is also the BTDF `f_t(o, i)` for light
+/// leaving the material toward `i`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TransmissionTable {
+    pub grid: HemisphereGrid,
+    /// Transmittance per cell (fraction of the incident power), index `i * n_phi + j`.
+    pub transmittance: Vec<f64>,
+    /// s- and p-polarised transmittance per cell, when polarisation is tracked.
+    pub transmittance_sp: Option<(Vec<f64>, Vec<f64>)>,
+    /// Rays per cell.
+    pub hits: Vec<u64>,
+}
+
+impl TransmissionTable {
+    /// The table of a hemisphere table filled with mirrored transmitted directions.
+    pub(crate) fn from_mirrored(table: HemisphereTable) -> Self {
+        TransmissionTable {
+            grid: table.grid,
+            transmittance: table.reflectance,
+            transmittance_sp: table.reflectance_sp,
+            hits: table.hits,
+        }
+    }
+
+    /// Mean power-based BTDF over cell `(i, j)` weighted by `|cos θt|`, 1/sr: the cell's
+    /// transmittance over its projected solid angle (Walter's `f_t`, see the type's comment).
+    pub fn btdf_per_sr(&self, i: usize, j: usize) -> f64 {
+        self.transmittance[i * self.grid.n_phi + j] / self.grid.projected_solid_angle(i)
+    }
+
+    /// Total transmittance: the fraction of the incident power that enters the material and
+    /// goes down into it without meeting the surface again.
+    pub fn total_transmittance(&self) -> f64 {
+        self.transmittance.iter().sum()
     }
 }
 

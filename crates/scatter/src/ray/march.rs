@@ -11,6 +11,12 @@
 //! descending is lost (it would meet the continuation of the surface). Points the instrument did
 //! not measure (NaN heights) never block a ray. A rising ray from a grid point along a grid
 //! axis is not marched: its line's horizon map decides exactly (see `horizon`).
+//!
+//! Rays inside the material (refracted at a facet, descending under the surface `h`) are
+//! followed by the same march over the mirrored field ([`HeightField::mirrored`]): mirroring
+//! `z -> -z` turns the material under `h` into the air over `-h` and the descending ray into a
+//! rising one, so "escapes" there means the ray goes down into the bulk without leaving the
+//! material, and "hits" that it meets the surface from below.
 
 use super::horizon::{Axis, Horizons};
 use glam::DVec3;
@@ -106,6 +112,13 @@ impl HeightField {
             fy_max: (ny - 1) as f64,
             horizons: Horizons::default(),
         }
+    }
+
+    /// The field of the surface seen from inside the material: the same grid with every height
+    /// negated (points not measured stay so), its maxima made afresh.
+    pub(crate) fn mirrored(&self) -> HeightField {
+        let heights = self.heights.iter().map(|&h| -h).collect();
+        HeightField::new(heights, self.nx, self.ny, self.dx, self.dy)
     }
 
     /// The horizon map for rays in direction `d`, if `d` rises along a grid axis (made now if
@@ -454,5 +467,39 @@ mod tests {
         let high = DVec3::new(1.0, 0.0, 0.25).normalize();
         assert!(matches!(f.march(o, low), Fate::Hits(p) if (p.x - 36.5 / 1.85).abs() < 1e-2));
         assert_eq!(f.march(o, high), Fate::Escapes);
+    }
+
+    /// Under a trench of depth 2 at x = 20 (the wall above, upside down), a ray descending at
+    /// slope 0.15 inside the material from x = 10 meets the trench's floor from below where
+    /// `-0.15 (x - 10) = -2 (x - 19)`, and one descending at 0.25 passes under it: followed
+    /// over the mirrored field, as the ray mirrored in z.
+    #[test]
+    fn mirrored_field_follows_rays_below() {
+        let f = field(
+            |x, _| {
+                if (19.5..=20.5).contains(&x) {
+                    -2.0
+                } else {
+                    0.0
+                }
+            },
+            40,
+            1.0,
+        );
+        let below = f.mirrored();
+        let mirror = |v: DVec3| DVec3::new(v.x, v.y, -v.z);
+        let o = f.point(10, 20);
+        let low = DVec3::new(1.0, 0.0, -0.15).normalize();
+        let high = DVec3::new(1.0, 0.0, -0.25).normalize();
+        match below.march(mirror(o), mirror(low)) {
+            Fate::Hits(p) => {
+                let p = mirror(p);
+                assert!((p.x - 36.5 / 1.85).abs() < 1e-2 && p.z < 0.0, "{p}");
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(below.march(mirror(o), mirror(high)), Fate::Escapes);
+        assert!(!below.escapes(20 * 40 + 10, mirror(o), mirror(low)));
+        assert!(below.escapes(20 * 40 + 10, mirror(o), mirror(high)));
     }
 }

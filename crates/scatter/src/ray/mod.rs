@@ -6,12 +6,16 @@
 //! reflectance (`docs/ray-method.md`, "Method"), with the Fresnel reflectance `R` of a
 //! dielectric or a metal at its local angle. Facets the source cannot see (shadowing) or whose
 //! reflected ray meets the surface again (masking) are found by marching over the height field;
-//! an optional second bounce follows masked rays one more reflection.
+//! an optional second bounce follows masked rays one more reflection. Each lit facet of a
+//! dielectric also refracts the rest of its share, `1 - R(wi·n)`, into the material by Snell's
+//! law ([`transmission`]), masked when it meets the surface again from below.
 //!
 //! The engine is planned once per map ([`RayEngine::new`]: normals, facet table, height field)
 //! and then queried per incidence: [`RayEngine::detect`] for any set of cone detectors (exact
 //! cone test, O(N + D·k) through a [direction index](index)), [`RayEngine::detect_hemisphere`]
-//! for a grid of cells that tiles the hemisphere, [`RayEngine::inplane`] for an in-plane curve.
+//! for a grid of cells that tiles the hemisphere, [`RayEngine::inplane`] for an in-plane curve;
+//! [`RayEngine::transmit_hemisphere`] for the transmitted light on the mirrored grid below the
+//! surface and [`RayEngine::energy_budget`] for where the incident power goes.
 //! Results do not depend on the number of threads: every detector or cell sums its rays in a
 //! fixed order.
 //!
@@ -32,11 +36,13 @@ mod index;
 mod march;
 mod reflected;
 mod trace;
+mod transmission;
 
 #[cfg(test)]
 mod tests;
 
-pub use hemisphere::{HemisphereGrid, HemisphereTable};
+pub use hemisphere::{HemisphereGrid, HemisphereTable, TransmissionTable};
+pub use transmission::EnergyBudget;
 
 use hemisphere::CellLocator;
 
@@ -55,6 +61,7 @@ use march::HeightField;
 use ndarray::Array2;
 use rayon::prelude::*;
 use reflected::Ray;
+use std::sync::OnceLock;
 use trace::{Facet, Tracer};
 
 /// Options of the ray method.
@@ -132,6 +139,9 @@ pub struct RayEngine {
     facets: Vec<Facet>,
     normals: Array2<DVec3>,
     field: HeightField,
+    /// The height field seen from inside the material, for the masking of refracted rays
+    /// (made when transmission is first asked for).
+    below: OnceLock<HeightField>,
     options: RayOptions,
 }
 
@@ -198,6 +208,7 @@ impl RayEngine {
             facets,
             normals,
             field,
+            below: OnceLock::new(),
             options,
         })
     }
@@ -361,47 +372,52 @@ impl RayEngine {
             wi,
             FOLD_CHUNK,
             init,
-            |facet, ray| Reflected {
-                facet,
-                direction: ray.d,
-                share: ray.w * per_azimuth,
+            |tracer, facet, f| {
+                tracer.trace(f).map(|ray| Reflected {
+                    facet,
+                    direction: ray.d,
+                    share: ray.w * per_azimuth,
+                })
             },
             fold,
         ))
     }
 
-    /// The rays of each fixed chunk of `chunk` facets (per azimuth step), turned into `E` by
-    /// `map` (with the index of their facet) and handed to `fold` in batches of up to
-    /// [`RAY_BATCH`] facets' rays, folded into one partial result per chunk, in chunk order.
+    /// What `visit` makes of each facet (with its index) for each fixed chunk of `chunk`
+    /// facets (per azimuth step), handed to `fold` in batches of up to [`RAY_BATCH`] facets'
+    /// results, folded into one partial result per chunk, in chunk order.
     fn fold_chunks<T: Send, E>(
         &self,
         wi: DVec3,
         chunk: usize,
         init: impl Fn() -> T + Sync,
-        map: impl Fn(usize, Ray) -> E + Sync,
+        visit: impl Fn(&Tracer, usize, &Facet) -> Option<E> + Sync,
         fold: impl Fn(&mut T, &[E]) + Sync,
     ) -> Vec<T> {
         let mut out = Vec::new();
         for k in 0..self.options.azimuths {
             let tracer = self.tracer(wi, k, None);
-            let partials: Vec<T> =
-                self.facets
-                    .par_chunks(chunk)
-                    .enumerate()
-                    .map(|(c, facets)| {
-                        let mut part = init();
-                        let mut rays = Vec::with_capacity(RAY_BATCH);
-                        for (b, batch) in facets.chunks(RAY_BATCH).enumerate() {
-                            let first = c * chunk + b * RAY_BATCH;
-                            rays.clear();
-                            rays.extend(batch.iter().enumerate().filter_map(|(i, f)| {
-                                tracer.trace(f).map(|ray| map(first + i, ray))
-                            }));
-                            fold(&mut part, &rays);
-                        }
-                        part
-                    })
-                    .collect();
+            let partials: Vec<T> = self
+                .facets
+                .par_chunks(chunk)
+                .enumerate()
+                .map(|(c, facets)| {
+                    let mut part = init();
+                    let mut found = Vec::with_capacity(RAY_BATCH);
+                    for (b, batch) in facets.chunks(RAY_BATCH).enumerate() {
+                        let first = c * chunk + b * RAY_BATCH;
+                        found.clear();
+                        found.extend(
+                            batch
+                                .iter()
+                                .enumerate()
+                                .filter_map(|(i, f)| visit(&tracer, first + i, f)),
+                        );
+                        fold(&mut part, &found);
+                    }
+                    part
+                })
+                .collect();
             out.extend(partials);
         }
         out
@@ -454,12 +470,23 @@ impl RayEngine {
     /// partial tables are added in chunk order (the same order whatever the thread count).
     pub fn detect_hemisphere(&self, wi: DVec3, grid: &HemisphereGrid) -> Result<HemisphereTable> {
         let wi = check_incidence(wi)?;
+        Ok(self.hemisphere_table(wi, grid, |tracer, f| tracer.trace(f)))
+    }
+
+    /// The hemisphere table of the rays `ray_of` makes of each facet (directions with `z > 0`),
+    /// summed per fixed chunk of facets and added in chunk order.
+    fn hemisphere_table(
+        &self,
+        wi: DVec3,
+        grid: &HemisphereGrid,
+        ray_of: impl Fn(&Tracer, &Facet) -> Option<Ray> + Sync,
+    ) -> HemisphereTable {
         let locator = CellLocator::new(*grid);
         let partials = self.fold_chunks(
             wi,
             HEMISPHERE_CHUNK,
             || vec![Sums::default(); grid.len()],
-            |_, ray| ray,
+            |tracer, _, f| ray_of(tracer, f),
             |part, rays| {
                 for ray in rays {
                     part[locator.cell(ray.d)].add_ray(ray);
@@ -473,12 +500,7 @@ impl RayEngine {
             }
         }
         let per_azimuth = 1.0 / self.options.azimuths as f64;
-        Ok(HemisphereTable::from_sums(
-            *grid,
-            &sums,
-            per_azimuth,
-            self.options.polarised,
-        ))
+        HemisphereTable::from_sums(*grid, &sums, per_azimuth, self.options.polarised)
     }
 
     /// The in-plane curve at incidence `theta_i` for detectors at the signed scattering angles

@@ -1,18 +1,19 @@
-//! The reflected ray: what a facet's tracer ([`super::trace`]) produces and the direction
-//! index ([`super::index`]) sorts, a leaf that both use.
+//! The ray a facet sends out: what a facet's tracer ([`super::trace`]) produces and the
+//! direction index ([`super::index`]) and the hemisphere tables sort, a leaf that they all use.
 
 use glam::DVec3;
 
-/// A reflected ray leaving the surface, with its share of the reflectance (unpolarised, and
-/// for s and p polarisation when asked for).
+/// A ray leaving a facet, reflected or refracted, with its share of the incident power
+/// (unpolarised, and for s and p polarisation when asked for).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Ray {
-    /// Unit direction, `z > 0`, in the detectors' frame.
+    /// Unit direction in the detectors' frame: `z > 0` for a reflected ray, `z < 0` for a
+    /// refracted one (until a transmission table mirrors it).
     pub d: DVec3,
-    /// Unpolarised reflectance carried.
+    /// Unpolarised share carried (reflectance or transmittance).
     pub w: f64,
-    /// Reflectance carried for s polarisation (0 unless polarisation is tracked).
+    /// Share carried for s polarisation (0 unless polarisation is tracked).
     pub ws: f64,
-    /// Reflectance carried for p polarisation (0 unless polarisation is tracked).
+    /// Share carried for p polarisation (0 unless polarisation is tracked).
     pub wp: f64,
 }

@@ -1,6 +1,7 @@
-//! Tests of the ray engine against exact results: a flat and a tilted plane (closed forms), the
-//! plain O(N·D) loop (the index must find the same hits), energy conservation over a hemisphere
-//! grid, and independence from the thread count.
+//! Tests of the ray engine against exact results: a flat and a tilted plane (closed forms, for
+//! the reflected and the transmitted light), the plain O(N·D) loop (the index must find the
+//! same hits), energy conservation over a hemisphere grid and in the energy budget, and
+//! independence from the thread count.
 
 use super::*;
 use crate::geometry::spherical_direction;
@@ -183,7 +184,8 @@ fn hemisphere_conserves_energy() {
 }
 
 /// The same numbers, bit for bit, on 1 and 2 threads: cone detectors with shadowing, masking, a
-/// second bounce and azimuthal averaging, and a hemisphere grid.
+/// second bounce and azimuthal averaging, a hemisphere grid, the transmitted light on a
+/// hemisphere grid and the energy budget.
 #[test]
 fn identical_for_one_and_two_threads() {
     let map = gaussian(192, 0.5e-6, 2.0e-6, 11);
@@ -211,12 +213,145 @@ fn identical_for_one_and_two_threads() {
             (
                 engine.detect(wi, &detectors).unwrap(),
                 engine.detect_hemisphere(wi, &grid).unwrap(),
+                engine.transmit_hemisphere(wi, &grid).unwrap(),
+                engine.energy_budget(wi).unwrap(),
             )
         })
     };
     let (one, two) = (run(1), run(2));
     assert_eq!(one, two);
     assert!(one.0.iter().any(|r| r.hits > 0));
+}
+
+/// A smooth dielectric transmits `1 - R(ti)` (Fresnel, Born & Wolf §1.5.2) into the one cell
+/// holding Snell's direction, `sin θt = sin ti / n` forward (azimuth 0), and nothing elsewhere;
+/// its budget is `R + T = 1`: every facet intercepts `cos ti / cos ti = 1` of its share. (The
+/// refraction angles, 0, 13.18, 28.13, 35.26 and 41.65°, lie off the 1° cell boundaries but
+/// for 0°, which the first ring holds.)
+#[test]
+fn flat_map_transmits_fresnel_into_snell_direction() {
+    let map = plane_map(48, 0.0);
+    let n = 1.5;
+    let grid = HemisphereGrid::with_step_deg(1.0).unwrap();
+    for shadowing in [true, false] {
+        let options = RayOptions {
+            ior: Ior::Dielectric(n),
+            shadowing,
+            polarised: true,
+            ..RayOptions::default()
+        };
+        let engine = RayEngine::new(&map, options).unwrap();
+        for ti_deg in [0.0f64, 20.0, 45.0, 60.0, 85.0] {
+            let ti = ti_deg.to_radians();
+            let wi = incidence_direction(ti);
+            let r = dielectric(ti.cos(), n);
+            let table = engine.transmit_hemisphere(wi, &grid).unwrap();
+            let theta_t = (ti.sin() / n).asin();
+            let cell = grid.cell(DVec3::new(theta_t.sin(), 0.0, theta_t.cos()));
+            for (k, &t) in table.transmittance.iter().enumerate() {
+                if k == cell {
+                    assert!(
+                        (t - (1.0 - r)).abs() < 1e-12,
+                        "{ti_deg}°: {t} vs {}",
+                        1.0 - r
+                    );
+                    assert_eq!(table.hits[k], 46 * 46);
+                } else {
+                    assert_eq!(t, 0.0, "{ti_deg}°: cell {k}");
+                }
+            }
+            let (ts, tp) = table.transmittance_sp.as_ref().unwrap();
+            let sp = gonio_brdf::fresnel::polarised(ti.cos(), n.into());
+            assert!((ts[cell] - (1.0 - sp.s)).abs() < 1e-12);
+            assert!((tp[cell] - (1.0 - sp.p)).abs() < 1e-12);
+            let budget = engine.energy_budget(wi).unwrap();
+            assert!((budget.intercepted - 1.0).abs() < 1e-12, "{budget:?}");
+            assert!((budget.reflected - r).abs() < 1e-12, "{budget:?}");
+            assert!((budget.transmitted - (1.0 - r)).abs() < 1e-12, "{budget:?}");
+            // Each lost part is a sum of 46² differences `R p - R p` of zero, to rounding.
+            for lost in [
+                budget.shadowed,
+                budget.reflected_lost,
+                budget.transmitted_lost,
+            ] {
+                assert!(lost.abs() < 1e-14, "{budget:?}");
+            }
+        }
+    }
+}
+
+/// A tilted plane `h = p x` taken as it is transmits `(1 - R(wi·n)) (1 + p tan ti)` (the
+/// intercepted area of `tilted_plane_weights_by_intercepted_area`) along Snell's law about its
+/// normal, `wt = (η c - √(1 - η²(1 - c²))) n - η wi` with `η = 1/n`, `c = wi·n`: the refracted
+/// ray makes `sin θ = sin(ι)/n` with `-n`, in the plane of `wi` and `n`.
+#[test]
+fn tilted_plane_transmits_along_snell() {
+    let p = 0.1;
+    let map = plane_map(40, p);
+    let normal = DVec3::new(-p, 0.0, 1.0).normalize();
+    let n = 1.5;
+    let grid = HemisphereGrid::with_step_deg(0.5).unwrap();
+    let options = RayOptions {
+        ior: Ior::Dielectric(n),
+        ..RayOptions::default()
+    };
+    let normals = facet_normals(&map, options.normals);
+    let engine = RayEngine::from_normals(&map, normals, options).unwrap();
+    for ti_deg in [10.0f64, 30.0, 50.0] {
+        let wi = incidence_direction(ti_deg.to_radians());
+        let c = wi.dot(normal);
+        let table = engine.transmit_hemisphere(wi, &grid).unwrap();
+        let expect = (1.0 - dielectric(c, n)) * (1.0 + p * ti_deg.to_radians().tan());
+        assert!(
+            (table.total_transmittance() - expect).abs() < 1e-12,
+            "{ti_deg}°: {} vs {expect}",
+            table.total_transmittance()
+        );
+        // Snell's law checked on its own terms: angle to -n, and coplanarity.
+        let sin_t = (1.0 - c * c).sqrt() / n;
+        let wt = (-normal * (1.0 - sin_t * sin_t).sqrt() + (wi - c * normal).normalize() * -sin_t)
+            .normalize();
+        let cell = grid.cell(DVec3::new(wt.x, wt.y, -wt.z));
+        assert_eq!(table.hits[cell], 38 * 38, "{ti_deg}°");
+        assert!((table.transmittance[cell] - expect).abs() < 1e-12);
+    }
+}
+
+/// The energy budget splits the intercepted power without remainder and its reflected and
+/// transmitted parts are the totals of the hemisphere tables (summed in another order, so to
+/// rounding), with and without shadowing, on a rough surface that shadows and masks (rms slope
+/// 1, so that refracted rays, steeper than 48° below the horizon, meet the surface again).
+#[test]
+fn budget_matches_tables() {
+    let map = gaussian(192, 1.0e-6, 2.0e-6, 5);
+    let grid = HemisphereGrid::with_step_deg(3.0).unwrap();
+    for shadowing in [true, false] {
+        let options = RayOptions {
+            ior: Ior::Dielectric(1.5),
+            shadowing,
+            ..RayOptions::default()
+        };
+        let engine = RayEngine::new(&map, options).unwrap();
+        for ti_deg in [0.0f64, 40.0, 70.0] {
+            let wi = incidence_direction(ti_deg.to_radians());
+            let b = engine.energy_budget(wi).unwrap();
+            let parts =
+                b.shadowed + b.reflected + b.reflected_lost + b.transmitted + b.transmitted_lost;
+            assert!((parts - b.intercepted).abs() < 1e-12, "{b:?}");
+            let r = engine.detect_hemisphere(wi, &grid).unwrap();
+            let t = engine.transmit_hemisphere(wi, &grid).unwrap();
+            assert!((r.total_reflectance() - b.reflected).abs() < 1e-12, "{b:?}");
+            assert!(
+                (t.total_transmittance() - b.transmitted).abs() < 1e-12,
+                "{b:?}"
+            );
+            // The surface (rms slope 2 Sq/T = 1) shadows, and masks refracted rays, at 70°
+            // (measured: 35% of the incident power shadowed, 8% refracted and masked).
+            if shadowing && ti_deg == 70.0 {
+                assert!(b.shadowed > 0.0 && b.transmitted_lost > 0.0, "{b:?}");
+            }
+        }
+    }
 }
 
 /// Bad inputs are errors, not panics.
@@ -244,4 +379,21 @@ fn rejects_bad_input() {
     };
     assert!(engine.detect(DVec3::Z, &[det]).is_err());
     assert!(engine.inplane(95f64.to_radians(), &[0.0], 0.01).is_err());
+    let grid = HemisphereGrid::with_step_deg(5.0).unwrap();
+    let metal = RayOptions {
+        ior: Ior::Conductor(num_complex::Complex64::new(0.2, 3.0)),
+        ..RayOptions::default()
+    };
+    let metal = RayEngine::new(&map, metal).unwrap();
+    assert!(metal.transmit_hemisphere(DVec3::Z, &grid).is_err());
+    assert!(metal.energy_budget(DVec3::Z).is_err());
+    for n in [0.0, -1.5, f64::NAN] {
+        let bad = RayOptions {
+            ior: Ior::Dielectric(n),
+            ..RayOptions::default()
+        };
+        let bad = RayEngine::new(&map, bad).unwrap();
+        assert!(bad.transmit_hemisphere(DVec3::Z, &grid).is_err());
+    }
+    assert!(engine.transmit_hemisphere(down, &grid).is_err());
 }
