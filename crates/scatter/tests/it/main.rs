@@ -3,4 +3,5 @@
 
 mod kirchhoff_vs_models;
 mod ray_model;
+mod ray_transmission;
 mod table;
