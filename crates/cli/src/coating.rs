@@ -1,19 +1,21 @@
-//! `gonio coating compute | info`: a coating described in TOML (a smooth clear coat over a
-//! diffuse or Kubelka-Munk base; `docs/coatings.md`) turned into a spectral BRDF table of its
-//! body reflection, and a summary of its optics and multi-angle colour
-//! (`gonio_coating::clear_coat`, `gonio_instrument::multiangle`).
+//! `gonio coating compute | info`: a coating described in TOML (a smooth or rough clear coat
+//! over a diffuse or Kubelka-Munk base, with or without effect flakes; `docs/coatings.md`)
+//! turned into a spectral BRDF table, and a summary of its optics and multi-angle colour
+//! (`gonio_coating::system`, `gonio_instrument::multiangle`).
 
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
-use gonio_coating::clear_coat::{self, AtWavelength, ClearCoatOverBase};
 use gonio_coating::description;
+use gonio_coating::layered::Scratch;
+use gonio_coating::system::{Coating, Evaluator, Method};
 use gonio_instrument::multiangle::{self, E2194, MultiangleReading, Settings};
 use std::path::{Path, PathBuf};
 
 #[derive(Subcommand)]
 pub enum CoatingCommand {
-    /// Tabulate the coating's body reflection (everything but the coat's mirror reflection) as a
-    /// spectral .gbrdf: `gonio coating compute COATING.toml -o T.gbrdf`.
+    /// Tabulate the coating's reflection as a spectral .gbrdf: `gonio coating compute
+    /// COATING.toml -o T.gbrdf`. A smooth top's mirror reflection (a delta) is left out; a
+    /// rough top's reflection is in the table.
     Compute(ComputeArgs),
     /// The coating's optics: coat index, base reflectance, the coat's mirror reflectance at the
     /// gloss angles, the directional-hemispherical reflectance, and its multi-angle colour
@@ -34,16 +36,25 @@ pub struct ComputeArgs {
     /// Wavelengths of the table's channels, nm: first:last:step.
     #[arg(long, default_value = "400:700:10")]
     bands: String,
+    /// Random walks per table cell for a rough top or flakes (the smooth coat over a diffuse
+    /// base is computed exactly). The noise falls as 1/sqrt(samples).
+    #[arg(long, default_value_t = 32)]
+    samples: usize,
 }
 
 #[derive(Args)]
 pub struct InfoArgs {
     /// The coating's description (TOML).
     coating: PathBuf,
-    /// Print JSON: coat_index, base_reflectance, specular (20/60/85°), albedo (0/45/75°, at
-    /// 550 nm) and multiangle (as `gonio multiangle --json`'s geometries).
+    /// Print JSON: coat_index, base_reflectance, specular (20/60/85°; 0 for a rough top, whose
+    /// reflection is spread), albedo (0/45/75°, at 550 nm) and multiangle (as
+    /// `gonio multiangle --json`'s geometries).
     #[arg(long)]
     json: bool,
+    /// Random walks per evaluation for a rough top or flakes (the colour at each geometry uses
+    /// this many; the albedo 16 times as many outgoing directions).
+    #[arg(long, default_value_t = 4096)]
+    samples: usize,
 }
 
 pub fn run(cmd: CoatingCommand) -> Result<()> {
@@ -72,22 +83,33 @@ fn bands(spec: &str) -> Result<Vec<f64>> {
     Ok((0..n).map(|i| first + step * i as f64).collect())
 }
 
-fn read(path: &Path, wavelengths: &[f64]) -> Result<ClearCoatOverBase> {
+fn read(path: &Path, wavelengths: &[f64]) -> Result<Coating> {
     Ok(description::read(path, wavelengths)?)
 }
 
 fn compute(a: ComputeArgs) -> Result<()> {
     let wavelengths = bands(&a.bands)?;
     let res = crate::brdf::resolution(&a.resolution)?;
-    let stack = read(&a.coating, &wavelengths)?;
-    let provenance = clear_coat::body_provenance(a.coating.display().to_string());
-    let table = stack
-        .body_table(res, &wavelengths, provenance)
+    let coating = read(&a.coating, &wavelengths)?;
+    let method = coating.method(a.samples);
+    let provenance = coating.provenance(a.coating.display().to_string(), method);
+    let table = coating
+        .table(res, &wavelengths, a.samples, provenance)
         .with_context(|| a.coating.display().to_string())?;
     gonio_brdf::gbrdf::write(&table, &a.output)?;
+    let what = match (method, coating.roughness.is_some()) {
+        (Method::ClosedForm, _) => "body reflection, exact; the mirror reflection is not in the \
+                                    table"
+            .to_string(),
+        (Method::RandomWalk { samples }, false) => {
+            format!("{samples} random walks per cell; the mirror reflection is not in the table")
+        }
+        (Method::RandomWalk { samples }, true) => {
+            format!("{samples} random walks per cell; everything the coating reflects")
+        }
+    };
     eprintln!(
-        "{}: {} × {} × {} nodes, {} bands {}–{} nm (body reflection; the mirror reflection \
-         is not in the table)",
+        "{}: {} × {} × {} nodes, {} bands {}–{} nm ({what})",
         a.output.display(),
         res.theta_h,
         res.theta_d,
@@ -99,13 +121,15 @@ fn compute(a: ComputeArgs) -> Result<()> {
     Ok(())
 }
 
-/// The stack's multi-angle reading at the E2194 geometries (the mirror reflection is 15° or
-/// more away from every one of them).
-fn multiangle_reading(optics: &[AtWavelength], wavelengths: &[f64]) -> Result<MultiangleReading> {
+/// The coating's multi-angle reading at the E2194 geometries (a smooth top's mirror reflection
+/// is 15° or more away from every one of them), with `samples` walks per geometry.
+pub fn multiangle_reading(
+    evaluator: &Evaluator,
+    wavelengths: &[f64],
+    samples: usize,
+) -> Result<MultiangleReading> {
     let body = |wo: glam::DVec3, wi: glam::DVec3, out: &mut [f64]| {
-        for (o, at) in out.iter_mut().zip(optics) {
-            *o = at.brdf(wi.z, wo.z);
-        }
+        evaluator.eval(wo, wi, samples, 1, &mut Scratch::default(), out);
     };
     Ok(multiangle::read(
         &body,
@@ -117,39 +141,36 @@ fn multiangle_reading(optics: &[AtWavelength], wavelengths: &[f64]) -> Result<Mu
 
 fn info(a: InfoArgs) -> Result<()> {
     let wavelengths = bands("400:700:10")?;
-    let stack = read(&a.coating, &wavelengths)?;
-    let optics = wavelengths
-        .iter()
-        .map(|&w| stack.at(w))
-        .collect::<gonio_coating::Result<Vec<_>>>()?;
-    // The optics at one of the 31 bands, computed once above.
-    let at = |nm: f64| {
-        let band = wavelengths
+    let coating = read(&a.coating, &wavelengths)?;
+    let evaluator = coating.evaluator(&wavelengths)?;
+    let band = |nm: f64| {
+        wavelengths
             .iter()
             .position(|&w| w == nm)
-            .expect("400, 450, ..., 700 nm are among the 10 nm bands");
-        &optics[band]
+            .expect("400, 450, ..., 700 nm are among the 10 nm bands")
     };
-    let at550 = at(550.0);
+    let index = |nm: f64| coating.coat.index.at(nm);
+    let rho = wavelengths
+        .iter()
+        .map(|&w| coating.base.reflectance(w))
+        .collect::<gonio_coating::Result<Vec<_>>>()?;
+    let at550 = band(550.0);
     let gloss_angles = [20.0f64, 60.0, 85.0];
     let specular: Vec<f64> = gloss_angles
         .iter()
-        .map(|d| at550.specular(d.to_radians().cos()))
+        .map(|d| evaluator.mirror(d.to_radians().cos())[at550])
         .collect();
     let albedo_angles = [0.0f64, 45.0, 75.0];
     let albedo: Vec<f64> = albedo_angles
         .iter()
-        .map(|d| {
-            let c = d.to_radians().cos();
-            at550.specular(c) + at550.body_albedo(c)
-        })
+        .map(|d| evaluator.albedo(d.to_radians().cos(), 16 * a.samples)[at550])
         .collect();
-    let reading = multiangle_reading(&optics, &wavelengths)?;
+    let reading = multiangle_reading(&evaluator, &wavelengths, a.samples)?;
     if a.json {
         let json = serde_json::json!({
             "file": a.coating.display().to_string(),
-            "coat_index": { "400": at(400.0).n, "550": at550.n, "700": at(700.0).n },
-            "base_reflectance": wavelengths.iter().zip(&optics).map(|(w, o)| serde_json::json!({"nm": w, "reflectance": o.rho})).collect::<Vec<_>>(),
+            "coat_index": { "400": index(400.0), "550": index(550.0), "700": index(700.0) },
+            "base_reflectance": wavelengths.iter().zip(&rho).map(|(w, r)| serde_json::json!({"nm": w, "reflectance": r})).collect::<Vec<_>>(),
             "specular": gloss_angles.iter().zip(&specular).map(|(d, r)| serde_json::json!({"theta_deg": d, "reflectance": r})).collect::<Vec<_>>(),
             "albedo": albedo_angles.iter().zip(&albedo).map(|(d, r)| serde_json::json!({"theta_i_deg": d, "albedo": r})).collect::<Vec<_>>(),
             "multiangle": reading.geometries.iter().map(|g| serde_json::json!({
@@ -164,23 +185,42 @@ fn info(a: InfoArgs) -> Result<()> {
     println!("{}", a.coating.display());
     println!(
         "coat: n {:.4} / {:.4} / {:.4} at 400 / 550 / 700 nm, {} µm",
-        at(400.0).n,
-        at550.n,
-        at(700.0).n,
-        stack.coat.thickness_um
+        index(400.0),
+        index(550.0),
+        index(700.0),
+        coating.coat.thickness_um
     );
     let rho: Vec<String> = [400.0, 450.0, 500.0, 550.0, 600.0, 650.0, 700.0]
         .iter()
-        .map(|&w| format!("{:.3}", at(w).rho))
+        .map(|&w| format!("{:.3}", rho[band(w)]))
         .collect();
     println!(
         "base reflectance at 400, 450, ..., 700 nm: {}",
         rho.join(" ")
     );
-    println!(
-        "mirror reflectance of the coat (550 nm) at 20 / 60 / 85°: {:.4} / {:.4} / {:.4}",
-        specular[0], specular[1], specular[2]
-    );
+    match coating.roughness {
+        None => println!(
+            "mirror reflectance of the coat (550 nm) at 20 / 60 / 85°: {:.4} / {:.4} / {:.4}",
+            specular[0], specular[1], specular[2]
+        ),
+        Some(m) => println!(
+            "rough top: {:?} α {:.4} (rms slope {:.1}°); its reflection is spread, in the BRDF",
+            m.distribution,
+            m.alpha_x,
+            m.alpha_x.atan().to_degrees()
+        ),
+    }
+    if let Some(f) = &coating.flakes {
+        println!(
+            "flakes: {} cover {:.0}% of the base, rms tilt {}°",
+            match f.pigment {
+                gonio_coating::flakes::FlakePigment::Metal { .. } => "metal",
+                gonio_coating::flakes::FlakePigment::Interference { .. } => "interference",
+            },
+            100.0 * f.coverage,
+            f.tilt_deg
+        );
+    }
     println!(
         "directional-hemispherical reflectance (550 nm) at 0 / 45 / 75°: {:.4} / {:.4} / {:.4}",
         albedo[0], albedo[1], albedo[2]

@@ -14,7 +14,10 @@ use std::path::Path;
 fn benches(c: &mut Criterion) {
     let bands: Vec<f64> = (0..31).map(|i| 400.0 + 10.0 * i as f64).collect();
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/coatings/red_solid.toml");
-    let stack = description::read(&path, &bands).unwrap();
+    let stack = description::read(&path, &bands)
+        .unwrap()
+        .clear_coat()
+        .unwrap();
     let mut group = c.benchmark_group("coating");
     group.sample_size(10);
     group.bench_function("body table 90x90x48, 31 bands (red_solid.toml)", |b| {

@@ -1,8 +1,13 @@
 //! The TOML description of a coating (`examples/coatings/*.toml`, `docs/coatings.md`):
-//! a clear coat and a base, read into [`ClearCoatOverBase`] with errors that name the file and
-//! the field.
+//! a top interface, a clear coat, optional effect flakes and a base, read into [`Coating`] with
+//! errors that name the file and the field.
 //!
 //! ```toml
+//! [top]                           # optional: a smooth top when left out
+//! roughness = { distribution = "ggx", alpha = 0.05 }
+//! # or { distribution = "beckmann", sq_um = 0.1, correlation_um = 5 }  (rms slope 2 Sq/T)
+//! # or { map = "surface.x3p" }    (Beckmann, the map's rms slope Sdq; path beside this file)
+//!
 //! [coat]
 //! index = 1.5                     # or { cauchy_a = 1.48, cauchy_b_um2 = 0.0045 }
 //! thickness_um = 40
@@ -14,19 +19,94 @@
 //!
 //! # kind = "kubelka-munk": thickness_um, substrate (a spectrum) and one or more
 //! # [[base.pigment]] with name, concentration, k_per_um and s_per_um (spectra).
+//!
+//! [flakes]                        # optional: effect flakes at the bottom of the coat
+//! kind = "aluminium"              # or "metal" (with n and k spectra) or "interference"
+//! coverage = 0.5                  # fraction of the base covered
+//! tilt_deg = 15                   # rms tilt of the flakes
+//! # kind = "interference": tio2_nm, mica_nm (default 300), mica_index (default 1.58)
 //! ```
 
-use crate::clear_coat::{Base, ClearCoatOverBase, Coat, Dispersion, Pigment};
+use crate::clear_coat::{Base, Coat, Dispersion, Pigment};
 use crate::error::{CoatingError, Result};
+use crate::flakes::{FlakePigment, Flakes, aluminium};
+use crate::system::Coating;
+use gonio_brdf::microfacet::Microfacet;
 use gonio_color::Spectrum;
 use serde::Deserialize;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct File {
+    #[serde(default)]
+    top: Option<TopFields>,
     coat: CoatFields,
+    #[serde(default)]
+    flakes: Option<FlakeFields>,
     base: BaseFields,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TopFields {
+    roughness: RoughnessFields,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RoughnessFields {
+    #[serde(default)]
+    distribution: Option<DistributionField>,
+    #[serde(default)]
+    alpha: Option<f64>,
+    #[serde(default)]
+    sq_um: Option<f64>,
+    #[serde(default)]
+    correlation_um: Option<f64>,
+    #[serde(default)]
+    map: Option<PathBuf>,
+}
+
+#[derive(Deserialize, Clone, Copy, PartialEq)]
+#[serde(rename_all = "lowercase")]
+enum DistributionField {
+    Ggx,
+    Beckmann,
+}
+
+#[derive(Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
+enum FlakeFields {
+    Aluminium {
+        coverage: f64,
+        tilt_deg: f64,
+    },
+    Metal {
+        coverage: f64,
+        tilt_deg: f64,
+        n: SpectrumField,
+        k: SpectrumField,
+    },
+    Interference {
+        coverage: f64,
+        tilt_deg: f64,
+        tio2_nm: f64,
+        #[serde(default = "default_mica_nm")]
+        mica_nm: f64,
+        #[serde(default = "default_mica_index")]
+        mica_index: f64,
+    },
+}
+
+/// Mica platelets of pearlescent pigments are a few hundred nanometres thick.
+fn default_mica_nm() -> f64 {
+    300.0
+}
+
+/// Muscovite mica's index in the visible, about 1.58.
+fn default_mica_index() -> f64 {
+    1.58
 }
 
 #[derive(Deserialize)]
@@ -85,17 +165,120 @@ impl SpectrumField {
 }
 
 /// Read a coating description. Checks the values at `wavelengths_nm` (those the table will
-/// hold).
-pub fn read(path: &Path, wavelengths_nm: &[f64]) -> Result<ClearCoatOverBase> {
+/// hold); a height map named by the top's roughness is read relative to the file's folder.
+pub fn read(path: &Path, wavelengths_nm: &[f64]) -> Result<Coating> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| CoatingError::Invalid(format!("{}: {e}", path.display())))?;
-    parse(&text, wavelengths_nm)
+    let folder = path.parent().unwrap_or(Path::new("."));
+    parse_in(&text, folder, wavelengths_nm)
         .map_err(|e| CoatingError::Invalid(format!("{}: {e}", path.display())))
 }
 
-/// Parse the text of a coating description (see [`read`]).
-pub fn parse(text: &str, wavelengths_nm: &[f64]) -> Result<ClearCoatOverBase> {
+/// Parse the text of a coating description (see [`read`]); maps relative to the current folder.
+pub fn parse(text: &str, wavelengths_nm: &[f64]) -> Result<Coating> {
+    parse_in(text, Path::new("."), wavelengths_nm)
+}
+
+/// The top interface's microfacet distribution from its fields.
+fn roughness(r: RoughnessFields, folder: &Path) -> Result<Microfacet> {
+    let given = [
+        r.alpha.is_some(),
+        r.sq_um.is_some() || r.correlation_um.is_some(),
+        r.map.is_some(),
+    ];
+    if given.iter().filter(|g| **g).count() != 1 {
+        return Err(CoatingError::Invalid(
+            "top.roughness: give one of alpha, sq_um with correlation_um, or map".into(),
+        ));
+    }
+    let alpha = match (r.alpha, r.sq_um, r.correlation_um, &r.map) {
+        (Some(a), ..) => a,
+        (None, Some(sq), Some(t), _) => {
+            if !(sq > 0.0 && t > 0.0 && sq.is_finite() && t.is_finite()) {
+                return Err(CoatingError::Invalid(format!(
+                    "top.roughness: sq_um {sq} and correlation_um {t} must be positive"
+                )));
+            }
+            2.0 * sq / t
+        }
+        (None, _, _, Some(map)) => {
+            if r.distribution == Some(DistributionField::Ggx) {
+                return Err(CoatingError::Invalid(
+                    "top.roughness: a map gives a Beckmann distribution (its rms slope); leave                      out distribution"
+                        .into(),
+                ));
+            }
+            let path = folder.join(map);
+            let heights = gonio_surface::io::read(&path)
+                .map_err(|e| CoatingError::Invalid(format!("top.roughness.map: {e}")))?;
+            gonio_surface::stats::statistics(&heights)
+                .map_err(|e| CoatingError::Invalid(format!("top.roughness.map: {e}")))?
+                .sdq
+        }
+        _ => {
+            return Err(CoatingError::Invalid(
+                "top.roughness: sq_um needs correlation_um (and the other way round)".into(),
+            ));
+        }
+    };
+    Ok(
+        match r.distribution.unwrap_or(DistributionField::Beckmann) {
+            DistributionField::Ggx => Microfacet::ggx(alpha),
+            DistributionField::Beckmann => Microfacet::beckmann(alpha),
+        },
+    )
+}
+
+/// The flakes from their fields.
+fn flakes(f: FlakeFields) -> Result<Flakes> {
+    Ok(match f {
+        FlakeFields::Aluminium { coverage, tilt_deg } => {
+            let (n, k) = aluminium();
+            Flakes {
+                pigment: FlakePigment::Metal { n, k },
+                coverage,
+                tilt_deg,
+            }
+        }
+        FlakeFields::Metal {
+            coverage,
+            tilt_deg,
+            n,
+            k,
+        } => Flakes {
+            pigment: FlakePigment::Metal {
+                n: n.spectrum("flakes.n")?,
+                k: k.spectrum("flakes.k")?,
+            },
+            coverage,
+            tilt_deg,
+        },
+        FlakeFields::Interference {
+            coverage,
+            tilt_deg,
+            tio2_nm,
+            mica_nm,
+            mica_index,
+        } => Flakes {
+            pigment: FlakePigment::Interference {
+                tio2_nm,
+                mica_nm,
+                mica_index,
+            },
+            coverage,
+            tilt_deg,
+        },
+    })
+}
+
+/// Parse the text of a coating description, with maps relative to `folder`.
+fn parse_in(text: &str, folder: &Path, wavelengths_nm: &[f64]) -> Result<Coating> {
     let file: File = toml::from_str(text).map_err(|e| CoatingError::Invalid(e.to_string()))?;
+    let roughness = file
+        .top
+        .map(|t| roughness(t.roughness, folder))
+        .transpose()?;
+    let flakes = file.flakes.map(flakes).transpose()?;
     let index = match file.coat.index {
         IndexField::Constant(n) => Dispersion::Constant(n),
         IndexField::Cauchy {
@@ -152,9 +335,14 @@ pub fn parse(text: &str, wavelengths_nm: &[f64]) -> Result<ClearCoatOverBase> {
             }
         }
     };
-    let stack = ClearCoatOverBase { coat, base };
-    stack.check(wavelengths_nm)?;
-    Ok(stack)
+    let coating = Coating {
+        roughness,
+        coat,
+        flakes,
+        base,
+    };
+    coating.check(wavelengths_nm)?;
+    Ok(coating)
 }
 
 #[cfg(test)]
@@ -200,6 +388,65 @@ mod tests {
         )
         .unwrap();
         assert!(matches!(s.base, Base::KubelkaMunk { ref pigments, .. } if pigments.len() == 1));
+    }
+
+    #[test]
+    fn rough_top_and_flakes() {
+        let base = "[coat]\nindex = 1.5\nthickness_um = 40\n[base]\nkind = \"diffuse\"\nreflectance = 0.3\n";
+        let s = parse(
+            &format!("[top]\nroughness = {{ distribution = \"ggx\", alpha = 0.05 }}\n{base}[flakes]\nkind = \"aluminium\"\ncoverage = 0.5\ntilt_deg = 12\n"),
+            &WL,
+        )
+        .unwrap();
+        assert_eq!(s.roughness, Some(Microfacet::ggx(0.05)));
+        assert!(matches!(
+            s.flakes,
+            Some(Flakes {
+                pigment: FlakePigment::Metal { .. },
+                coverage: 0.5,
+                ..
+            })
+        ));
+        assert!(s.clear_coat().is_none());
+        // Sq and correlation length: Beckmann of rms slope 2 Sq / T.
+        let s = parse(
+            &format!("[top]\nroughness = {{ sq_um = 0.1, correlation_um = 4 }}\n{base}[flakes]\nkind = \"interference\"\ncoverage = 0.4\ntilt_deg = 10\ntio2_nm = 120\n"),
+            &WL,
+        )
+        .unwrap();
+        assert_eq!(s.roughness, Some(Microfacet::beckmann(0.05)));
+        assert!(matches!(
+            s.flakes.unwrap().pigment,
+            FlakePigment::Interference {
+                tio2_nm: 120.0,
+                mica_nm: 300.0,
+                mica_index: 1.58
+            }
+        ));
+        let bad = |text: String, needle: &str| {
+            let e = parse(&text, &WL).unwrap_err().to_string();
+            assert!(e.contains(needle), "{needle}: {e}");
+        };
+        bad(
+            format!("[top]\nroughness = {{ alpha = 0.1, sq_um = 0.1 }}\n{base}"),
+            "one of",
+        );
+        bad(
+            format!("[top]\nroughness = {{ sq_um = 0.1 }}\n{base}"),
+            "correlation_um",
+        );
+        bad(
+            format!("[top]\nroughness = {{ alpha = 3 }}\n{base}"),
+            "at most 1",
+        );
+        bad(
+            format!("{base}[flakes]\nkind = \"aluminium\"\ncoverage = 2\ntilt_deg = 10\n"),
+            "coverage",
+        );
+        bad(
+            format!("[top]\nroughness = {{ map = \"missing.x3p\" }}\n{base}"),
+            "top.roughness.map",
+        );
     }
 
     #[test]

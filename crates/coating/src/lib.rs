@@ -1,14 +1,20 @@
 //! gonio-coating: coatings from their constituents. Thin films (the TiO2 layers of
 //! interference pigments; [`thin_film`]), pigmented layers by Kubelka-Munk two-constant theory
-//! ([`kubelka_munk`]), and a smooth clear coat over a diffuse base with every internal
-//! reflection counted ([`clear_coat`]), described in TOML ([`description`]). A rough top
-//! interface and effect flakes are future work (`docs/coatings.md` says what exists and what
-//! does not).
+//! ([`kubelka_munk`]), a smooth clear coat over a diffuse base with every internal reflection
+//! counted exactly ([`clear_coat`]), and the general system ([`system`]): a smooth or rough top
+//! interface ([`interface`]), an absorbing clear coat, aluminium or interference flakes over
+//! the base ([`flakes`]), coupled by position-free Monte Carlo layered transport ([`layered`]);
+//! described in TOML ([`description`]). `docs/coatings.md` says what is modelled and how it is
+//! validated.
 
 pub mod clear_coat;
 pub mod description;
 pub mod error;
+pub mod flakes;
+pub mod interface;
 pub mod kubelka_munk;
+pub mod layered;
+pub mod system;
 pub mod thin_film;
 
 pub use error::{CoatingError, Result};

@@ -4,7 +4,7 @@
 
 use super::pictures::EXAMPLES;
 use crate::report::{Block, Section};
-use anyhow::Result;
+use anyhow::{Context, Result};
 use gonio_brdf::formats::astm;
 use gonio_coating::{clear_coat, description};
 use gonio_instrument::multiangle::{self, E2194, MultiangleReading, Settings};
@@ -24,7 +24,9 @@ pub(super) fn coatings_section(dir: &Path) -> Result<Section> {
     let wl = bands();
     let settings = Settings::default();
     let toml = Path::new(EXAMPLES).join("coatings/red_solid.toml");
-    let stack = description::read(&toml, &wl)?;
+    let stack = description::read(&toml, &wl)?
+        .clear_coat()
+        .context("red_solid.toml: a smooth coat over a diffuse base")?;
     std::fs::copy(&toml, dir.join("red_solid.toml"))?;
     let optics = wl
         .iter()

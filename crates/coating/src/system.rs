@@ -1,0 +1,455 @@
+//! A coating system: the top interface (smooth, or rough with a microfacet distribution), the
+//! clear coat, optional effect flakes and the base; its spectral BRDF table.
+//!
+//! A smooth top over a diffuse base has an exact closed form ([`crate::clear_coat`]), which the
+//! table then uses; every other system goes through the random walks of [`crate::layered`].
+//! With a smooth top the table holds the body reflection (the mirror reflection `F(θi)`, a delta,
+//! is left out and said so in the provenance); with a rough top it holds everything the coating
+//! reflects.
+
+use crate::clear_coat::{self, AtWavelength, Base, ClearCoatOverBase, Coat};
+use crate::error::{CoatingError, Result};
+use crate::flakes::{FlakeLayer, Flakes};
+use crate::interface::Interface;
+use crate::layered::{Scratch, Walk};
+use glam::DVec3;
+use gonio_brdf::fresnel::dielectric;
+use gonio_brdf::microfacet::Microfacet;
+use gonio_brdf::table::{BrdfTable, Channels, Provenance, Resolution, TableBuilder};
+use rand::{RngExt, SeedableRng};
+use rand_pcg::Pcg64Mcg;
+
+/// A coating system.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Coating {
+    /// The top interface's microfacet distribution; `None` for a smooth (mirror) interface.
+    pub roughness: Option<Microfacet>,
+    pub coat: Coat,
+    /// Effect flakes at the bottom of the coat, over the base.
+    pub flakes: Option<Flakes>,
+    pub base: Base,
+}
+
+/// How the table is computed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Method {
+    /// The exact series of a smooth coat over a diffuse base.
+    ClosedForm,
+    /// Random walks, this many per table cell.
+    RandomWalk { samples: usize },
+}
+
+impl Coating {
+    /// A smooth coat over a diffuse base, as [`Coating`].
+    pub fn from_clear_coat(stack: ClearCoatOverBase) -> Self {
+        Coating {
+            roughness: None,
+            coat: stack.coat,
+            flakes: None,
+            base: stack.base,
+        }
+    }
+
+    /// The closed-form model when the system has one (a smooth top, no flakes).
+    pub fn clear_coat(&self) -> Option<ClearCoatOverBase> {
+        (self.roughness.is_none() && self.flakes.is_none()).then(|| ClearCoatOverBase {
+            coat: self.coat.clone(),
+            base: self.base.clone(),
+        })
+    }
+
+    /// Check the description at `wavelengths_nm`.
+    pub fn check(&self, wavelengths_nm: &[f64]) -> Result<()> {
+        ClearCoatOverBase {
+            coat: self.coat.clone(),
+            base: self.base.clone(),
+        }
+        .check(wavelengths_nm)?;
+        if let Some(m) = self.roughness
+            && !(m.alpha_x > 0.0 && m.alpha_x <= 1.0 && m.alpha_y > 0.0 && m.alpha_y <= 1.0)
+        {
+            return Err(CoatingError::Invalid(format!(
+                "top roughness α {}: must be above 0 and at most 1 (a glossy coat has 0.01–0.1; \
+                 leave the roughness out for a smooth coat)",
+                m.alpha_x
+            )));
+        }
+        if let Some(f) = &self.flakes {
+            f.check()?;
+        }
+        Ok(())
+    }
+
+    /// How [`Coating::table`] computes with `samples` walks per cell.
+    pub fn method(&self, samples: usize) -> Method {
+        match self.clear_coat() {
+            Some(_) => Method::ClosedForm,
+            None => Method::RandomWalk { samples },
+        }
+    }
+
+    /// The random-walk estimators for `wavelengths_nm`: the bands grouped by the coat's index
+    /// (one group when it does not depend on wavelength), each group with its walk.
+    pub fn walks(&self, wavelengths_nm: &[f64]) -> Result<Vec<(Vec<usize>, Walk)>> {
+        let mut groups: Vec<(f64, Vec<usize>)> = Vec::new();
+        for (i, &w) in wavelengths_nm.iter().enumerate() {
+            let n = self.coat.index.at(w);
+            match groups.iter_mut().find(|(m, _)| *m == n) {
+                Some((_, bands)) => bands.push(i),
+                None => groups.push((n, vec![i])),
+            }
+        }
+        groups
+            .into_iter()
+            .map(|(n, bands)| {
+                let wl: Vec<f64> = bands.iter().map(|&b| wavelengths_nm[b]).collect();
+                let tau = wl
+                    .iter()
+                    .map(|&w| self.coat.absorption_per_um.value_at(w) * self.coat.thickness_um)
+                    .collect();
+                let rho = wl
+                    .iter()
+                    .map(|&w| self.base.reflectance(w))
+                    .collect::<Result<Vec<_>>>()?;
+                let bottom = match &self.flakes {
+                    None => FlakeLayer::bare(rho),
+                    Some(f) => {
+                        let optics = wl
+                            .iter()
+                            .map(|&w| f.optics(n, w))
+                            .collect::<Result<Vec<_>>>()?;
+                        FlakeLayer::new(f, optics, rho)
+                    }
+                };
+                let walk = Walk {
+                    top: Interface::new(n, self.roughness),
+                    tau,
+                    bottom,
+                };
+                Ok((bands, walk))
+            })
+            .collect()
+    }
+
+    /// The provenance of a table made from the description at `source`.
+    pub fn provenance(&self, source: impl Into<String>, method: Method) -> Provenance {
+        if method == Method::ClosedForm {
+            return clear_coat::body_provenance(source);
+        }
+        let mut provenance = Provenance::new(source, "coating:layered-random-walk");
+        let mirror = if self.roughness.is_none() {
+            "; the smooth top's mirror reflection F(θi) is not in the table"
+        } else {
+            ""
+        };
+        let samples = match method {
+            Method::RandomWalk { samples } => samples,
+            Method::ClosedForm => 0,
+        };
+        provenance.description = Some(format!(
+            "coating system by position-free Monte Carlo layered transport (Guo et al. 2018), \
+             {samples} walks per cell{mirror}"
+        ));
+        provenance
+    }
+
+    /// What evaluates the coating's BRDF at `wavelengths_nm`: the exact series where it applies,
+    /// otherwise the random walks.
+    pub fn evaluator(&self, wavelengths_nm: &[f64]) -> Result<Evaluator> {
+        self.check(wavelengths_nm)?;
+        Ok(match self.clear_coat() {
+            Some(exact) => Evaluator::Exact(
+                wavelengths_nm
+                    .iter()
+                    .map(|&w| exact.at(w))
+                    .collect::<Result<Vec<_>>>()?,
+            ),
+            None => Evaluator::Walks(self.walks(wavelengths_nm)?),
+        })
+    }
+
+    /// The coating's BRDF tabulated at `resolution`, one channel per wavelength of
+    /// `wavelengths_nm`, by the exact series where it applies and otherwise by `samples` random
+    /// walks per cell ([`Evaluator::eval_reciprocal`]: the table is reciprocal to its
+    /// interpolation and does not depend on the number of threads).
+    pub fn table(
+        &self,
+        resolution: Resolution,
+        wavelengths_nm: &[f64],
+        samples: usize,
+        provenance: Provenance,
+    ) -> Result<BrdfTable> {
+        if let Some(exact) = self.clear_coat() {
+            self.check(wavelengths_nm)?;
+            return exact.body_table(resolution, wavelengths_nm, provenance);
+        }
+        if samples == 0 {
+            return Err(CoatingError::Invalid(
+                "samples: at least one random walk per cell is needed".into(),
+            ));
+        }
+        let evaluator = self.evaluator(wavelengths_nm)?;
+        let channels = Channels::Spectral {
+            wavelengths_nm: wavelengths_nm.to_vec(),
+        };
+        let table_error = |e: gonio_brdf::BrdfError| CoatingError::Invalid(e.to_string());
+        let mut builder = TableBuilder::new(resolution, channels)
+            .map_err(table_error)?
+            .with_provenance(provenance);
+        builder.fill(|cell, out| {
+            let mut scratch = Scratch::default();
+            evaluator.eval_reciprocal(cell.wo, cell.wi, samples, &mut scratch, out);
+        });
+        builder.build().map_err(table_error)
+    }
+}
+
+/// The coating's BRDF, ready to evaluate (see [`Coating::evaluator`]).
+#[derive(Clone, Debug)]
+pub enum Evaluator {
+    /// The exact series of a smooth coat over a diffuse base, per band.
+    Exact(Vec<AtWavelength>),
+    /// Random walks, per group of bands sharing the coat's index.
+    Walks(Vec<(Vec<usize>, Walk)>),
+}
+
+impl Evaluator {
+    /// The BRDF for light from `wi` to `wo` (both above), one value per band into `out`: exact,
+    /// or estimated with `samples` walks drawn from the stream `seed` (for a smooth top without
+    /// its mirror reflection, a delta).
+    pub fn eval(
+        &self,
+        wo: DVec3,
+        wi: DVec3,
+        samples: usize,
+        seed: u64,
+        scratch: &mut Scratch,
+        out: &mut [f64],
+    ) {
+        match self {
+            Evaluator::Exact(optics) => {
+                for (o, at) in out.iter_mut().zip(optics) {
+                    *o = at.brdf(wi.z, wo.z);
+                }
+            }
+            Evaluator::Walks(walks) => {
+                let groups = walks.len() as u64;
+                let mut values = Vec::new();
+                for (g, (bands, walk)) in walks.iter().enumerate() {
+                    values.resize(bands.len(), 0.0);
+                    walk.eval(
+                        wo,
+                        wi,
+                        samples,
+                        seed * groups + g as u64,
+                        scratch,
+                        &mut values,
+                    );
+                    for (&b, v) in bands.iter().zip(&values) {
+                        out[b] = *v;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The BRDF estimated so that swapping `wi` and `wo` gives the same value: half of
+    /// `samples` (rounded up) walks each way, `f̂(a, b) = ½ (W(a → b) + W(b → a))`, both drawn
+    /// from a stream seeded by what the pair has in common with its swap and with its turns
+    /// about the normal (the two cosines, sorted, and the angle between the directions). Each
+    /// half is an unbiased estimate of the same reciprocal BRDF, so their mean is too; its
+    /// noise no longer differs between `(wi, wo)` and `(wo, wi)`.
+    pub fn eval_reciprocal(
+        &self,
+        wo: DVec3,
+        wi: DVec3,
+        samples: usize,
+        scratch: &mut Scratch,
+        out: &mut [f64],
+    ) {
+        if let Evaluator::Exact(_) = self {
+            return self.eval(wo, wi, samples, 0, scratch, out);
+        }
+        let half = samples.div_ceil(2);
+        let seed = pair_seed(wo, wi);
+        self.eval(wo, wi, half, seed, scratch, out);
+        let mut back = vec![0.0; out.len()];
+        self.eval(wi, wo, half, seed, scratch, &mut back);
+        for (o, b) in out.iter_mut().zip(&back) {
+            *o = 0.5 * (*o + b);
+        }
+    }
+
+    /// The mirror reflectance of a smooth top at incidence `cos_i`, per band (0 for a rough
+    /// top, whose reflection is in [`Evaluator::eval`]).
+    pub fn mirror(&self, cos_i: f64) -> Vec<f64> {
+        match self {
+            Evaluator::Exact(optics) => optics.iter().map(|o| o.specular(cos_i)).collect(),
+            Evaluator::Walks(walks) => {
+                let bands = walks.iter().map(|(b, _)| b.len()).sum();
+                let mut out = vec![0.0; bands];
+                for (bands, walk) in walks {
+                    let r = if walk.top.is_smooth() {
+                        dielectric(cos_i, walk.top.eta)
+                    } else {
+                        0.0
+                    };
+                    for &b in bands {
+                        out[b] = r;
+                    }
+                }
+                out
+            }
+        }
+    }
+
+    /// The directional-hemispherical reflectance for light arriving at `cos_i`, per band, the
+    /// mirror reflection included: exact, or by `samples` outgoing directions drawn with
+    /// density cos θo/π, one walk each (standard error about 0.5/√samples of the value).
+    pub fn albedo(&self, cos_i: f64, samples: usize) -> Vec<f64> {
+        let mut total = self.mirror(cos_i);
+        if let Evaluator::Exact(optics) = self {
+            for (t, o) in total.iter_mut().zip(optics) {
+                *t += o.body_albedo(cos_i);
+            }
+            return total;
+        }
+        let wi = DVec3::new((1.0 - cos_i * cos_i).max(0.0).sqrt(), 0.0, cos_i);
+        let mut scratch = Scratch::default();
+        let mut out = vec![0.0; total.len()];
+        let mut sum = vec![0.0; total.len()];
+        let mut rng = Pcg64Mcg::seed_from_u64(samples as u64);
+        for k in 0..samples {
+            let (u1, u2): (f64, f64) = (rng.random(), rng.random());
+            let r = u1.sqrt();
+            let phi = 2.0 * std::f64::consts::PI * u2;
+            let wo = DVec3::new(r * phi.cos(), r * phi.sin(), (1.0 - u1).max(1e-9).sqrt());
+            self.eval(wo, wi, 1, k as u64, &mut scratch, &mut out);
+            for (s, o) in sum.iter_mut().zip(&out) {
+                *s += o;
+            }
+        }
+        for (t, s) in total.iter_mut().zip(&sum) {
+            *t += s * std::f64::consts::PI / samples as f64;
+        }
+        total
+    }
+}
+
+/// A seed shared by a pair of directions, its swap and its turns about the normal: the two
+/// cosines (sorted) and the cosine between them, each rounded to 1e-9 (so that the table's
+/// cells, which compute their directions separately, agree), mixed by SplitMix64.
+fn pair_seed(a: DVec3, b: DVec3) -> u64 {
+    let q = |x: f64| (x * 1e9).round() as i64 as u64;
+    let (lo, hi) = if a.z <= b.z { (a.z, b.z) } else { (b.z, a.z) };
+    let mix = |mut z: u64| {
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    };
+    mix(mix(mix(q(lo)) ^ q(hi)) ^ q(a.dot(b)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::description;
+    use rand::{RngExt, SeedableRng};
+    use std::path::Path;
+
+    fn example(name: &str, wl: &[f64]) -> Coating {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../examples/coatings")
+            .join(name);
+        description::read(&path, wl).unwrap()
+    }
+
+    /// A smooth coat over a diffuse base goes through the exact series, anything else through
+    /// the walks; the exact albedo is the mirror plus the body's.
+    #[test]
+    fn method_follows_the_system() {
+        let wl = [450.0, 550.0, 650.0];
+        let red = example("red_solid.toml", &wl);
+        assert_eq!(red.method(8), Method::ClosedForm);
+        let exact = red.clear_coat().unwrap().at(550.0).unwrap();
+        let albedo = red.evaluator(&wl).unwrap().albedo(0.8, 1);
+        assert!((albedo[1] - exact.specular(0.8) - exact.body_albedo(0.8)).abs() < 1e-15);
+        let silver = example("silver_metallic.toml", &wl);
+        assert_eq!(silver.method(8), Method::RandomWalk { samples: 8 });
+        assert!(
+            silver
+                .evaluator(&wl)
+                .unwrap()
+                .mirror(0.8)
+                .iter()
+                .all(|&r| r == 0.0)
+        );
+    }
+
+    /// The table is the same, bit for bit, on one thread and on two.
+    #[test]
+    fn table_does_not_depend_on_the_thread_count() {
+        let wl = [450.0, 550.0, 650.0];
+        let pearl = example("pearl_interference.toml", &wl);
+        let res = Resolution::isotropic(10, 10, 6);
+        let on = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| pearl.table(res, &wl, 4, Provenance::default()).unwrap())
+        };
+        let bits = |t: &BrdfTable| t.values().iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        let (one, two) = (on(1), on(2));
+        assert!(bits(&one) == bits(&two), "the tables differ");
+    }
+
+    mod slow {
+        use super::*;
+
+        /// Reciprocity of a layered table (the silver metallic, 32 walks per cell at 45 × 45 ×
+        /// 24): f(a, b) and f(b, a) read from the table at 400 random pairs within 60° of the
+        /// normal where the BRDF exceeds 1% of its largest value there: the rms relative
+        /// difference is within 2% (the cells' estimates are reciprocal; what differs is the
+        /// interpolation between cells). The walk's own reciprocity, with independent
+        /// estimates each way, is tested in `layered`.
+        #[test]
+        fn layered_table_is_reciprocal() {
+            let wl = [550.0, 560.0];
+            let silver = example("silver_metallic.toml", &wl);
+            let table = silver
+                .table(
+                    Resolution::isotropic(45, 45, 24),
+                    &wl,
+                    32,
+                    Provenance::default(),
+                )
+                .unwrap();
+            let mut rng = rand_pcg::Pcg64::seed_from_u64(21);
+            let dir = |rng: &mut rand_pcg::Pcg64| {
+                let t = rng.random::<f64>() * 60f64.to_radians();
+                let p = rng.random::<f64>() * 2.0 * std::f64::consts::PI;
+                DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos())
+            };
+            let pairs: Vec<(DVec3, DVec3)> =
+                (0..4000).map(|_| (dir(&mut rng), dir(&mut rng))).collect();
+            let value = |a: DVec3, b: DVec3| {
+                let mut v = [0.0; 2];
+                table.eval_channels(a, b, &mut v);
+                v[0]
+            };
+            let peak = pairs.iter().map(|&(a, b)| value(a, b)).fold(0.0, f64::max);
+            let (mut sum2, mut count) = (0.0, 0);
+            for &(a, b) in &pairs {
+                let (x, y) = (value(a, b), value(b, a));
+                if x.min(y) > 0.01 * peak && count < 400 {
+                    sum2 += ((x - y) / (0.5 * (x + y))).powi(2);
+                    count += 1;
+                }
+            }
+            let rms = (sum2 / count as f64).sqrt();
+            eprintln!("reciprocity: rms relative difference {rms:.4} over {count} pairs");
+            assert!(count == 400 && rms < 0.02, "{rms} over {count}");
+        }
+    }
+}
