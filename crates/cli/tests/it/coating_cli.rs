@@ -120,3 +120,68 @@ fn bad_descriptions_are_refused() {
     let out = gonio(&["coating", "info", "missing.toml"], d);
     assert_eq!(out.status.code(), Some(2));
 }
+
+mod slow {
+    use super::*;
+
+    /// A layered system through the commands: `gonio multiangle` on the silver metallic's TOML
+    /// (its BRDF evaluated by random walks at the geometries) agrees with `gonio coating info`'s
+    /// colour (the same estimator, fewer walks: within 1 L* unit at 4096 walks, where the walks'
+    /// spread is about 0.3), shows the lightness flop of a metallic (L* falls from 45as15 to
+    /// 45as110; flop index above 5), and the table `compute` writes reads as the same coating near
+    /// the specular direction within its noise and interpolation (a small 30 × 30 × 16 table, 16
+    /// walks per cell: within 5 L* units at 45as15 and 45as25).
+    #[test]
+    fn layered_coating_through_the_commands() {
+        let tmp = tempfile::tempdir().unwrap();
+        let d = tmp.path();
+        let toml = example("silver_metallic.toml");
+        let json = |args: &[&str]| -> serde_json::Value {
+            let out = gonio(args, d);
+            assert!(
+                out.status.success(),
+                "{}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            serde_json::from_slice(&out.stdout).unwrap()
+        };
+        let direct = json(&["multiangle", &toml, "--json"]);
+        let info = json(&["coating", "info", &toml, "--json", "--samples", "4096"]);
+        let l = |v: &serde_json::Value, key: &str, i: usize| v[key][i]["L"].as_f64().unwrap();
+        for i in 0..5 {
+            let (a, b) = (l(&direct, "geometries", i), l(&info, "multiangle", i));
+            assert!((a - b).abs() < 1.0, "geometry {i}: {a} vs {b}");
+        }
+        assert!(l(&direct, "geometries", 0) > l(&direct, "geometries", 4) + 50.0);
+        assert!(direct["flop_index"].as_f64().unwrap() > 5.0);
+        // A rough top's reflection is in the BRDF: no mirror reflectance.
+        assert_eq!(info["specular"][0]["reflectance"].as_f64().unwrap(), 0.0);
+
+        let table = d.join("silver.gbrdf");
+        let out = gonio(
+            &[
+                "coating",
+                "compute",
+                &toml,
+                "-o",
+                table.to_str().unwrap(),
+                "--resolution",
+                "30,30,16",
+                "--samples",
+                "16",
+            ],
+            d,
+        );
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(String::from_utf8_lossy(&out.stderr).contains("16 random walks per cell"));
+        let from_table = json(&["multiangle", table.to_str().unwrap(), "--json"]);
+        for i in 0..2 {
+            let (a, b) = (l(&from_table, "geometries", i), l(&direct, "geometries", i));
+            assert!((a - b).abs() < 5.0, "geometry {i}: table {a} vs direct {b}");
+        }
+    }
+}
