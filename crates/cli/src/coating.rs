@@ -8,7 +8,7 @@ use clap::{Args, Subcommand};
 use gonio_coating::description;
 use gonio_coating::layered::Scratch;
 use gonio_coating::system::{Coating, Evaluator, Method};
-use gonio_instrument::multiangle::{self, E2194, MultiangleReading, Settings};
+use gonio_instrument::multiangle::{self, E2194, Geometry, MultiangleReading, Settings};
 use std::path::{Path, PathBuf};
 
 #[derive(Subcommand)]
@@ -121,11 +121,12 @@ fn compute(a: ComputeArgs) -> Result<()> {
     Ok(())
 }
 
-/// The coating's multi-angle reading at the E2194 geometries (a smooth top's mirror reflection
-/// is 15° or more away from every one of them), with `samples` walks per geometry.
+/// The coating's multi-angle reading at `geometries` (a smooth top's mirror reflection is 15°
+/// or more away from every standard geometry), D65/10°, with `samples` walks per geometry.
 pub fn multiangle_reading(
     evaluator: &Evaluator,
     wavelengths: &[f64],
+    geometries: &[Geometry],
     samples: usize,
 ) -> Result<MultiangleReading> {
     let body = |wo: glam::DVec3, wi: glam::DVec3, out: &mut [f64]| {
@@ -134,7 +135,7 @@ pub fn multiangle_reading(
     Ok(multiangle::read(
         &body,
         wavelengths,
-        &E2194,
+        geometries,
         &Settings::default(),
     )?)
 }
@@ -165,7 +166,7 @@ fn info(a: InfoArgs) -> Result<()> {
         .iter()
         .map(|d| evaluator.albedo(d.to_radians().cos(), 16 * a.samples)[at550])
         .collect();
-    let reading = multiangle_reading(&evaluator, &wavelengths, a.samples)?;
+    let reading = multiangle_reading(&evaluator, &wavelengths, &E2194, a.samples)?;
     if a.json {
         let json = serde_json::json!({
             "file": a.coating.display().to_string(),
