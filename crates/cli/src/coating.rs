@@ -9,6 +9,7 @@ use gonio_coating::description;
 use gonio_coating::layered::Scratch;
 use gonio_coating::system::{Coating, Evaluator, Method};
 use gonio_instrument::multiangle::{self, E2194, Geometry, MultiangleReading, Settings};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 #[derive(Subcommand)]
@@ -21,6 +22,37 @@ pub enum CoatingCommand {
     /// gloss angles, the directional-hemispherical reflectance, and its multi-angle colour
     /// (ASTM E2194, D65/10°).
     Info(InfoArgs),
+    /// A formulation study: the coating's gloss, haze, DOI and multi-angle colour against one
+    /// constituent at a time (`--vary roughness --values 0.01,0.05,0.1`), with plots.
+    Study(StudyArgs),
+}
+
+#[derive(Args)]
+pub struct StudyArgs {
+    /// The coating's description (TOML; examples/coatings/).
+    coating: PathBuf,
+    /// The constituent to vary: roughness (the top's α; 0 is smooth), tilt (the flakes' rms
+    /// tilt, °), coverage (the flakes' share of the base), tio2 (interference flakes' TiO2, nm),
+    /// thickness (the coat's, µm) or concentration:NAME (a pigment of a Kubelka-Munk base).
+    #[arg(long)]
+    vary: String,
+    /// The values, comma-separated. Default for roughness: the epoxy roughness series of
+    /// `gonio study` as Beckmann rms slopes 2 Sq/T (Sq 3, 50, 150, 201, 400, 805 nm; T 6 µm).
+    #[arg(long, value_delimiter = ',')]
+    values: Vec<f64>,
+    /// The multi-angle geometries: e2194 (45° illumination) or e2539 (with 15° illumination).
+    #[arg(long, default_value = "e2194")]
+    standard: String,
+    /// Random walks per multi-angle geometry (a rough top or flakes); the gloss meter uses a
+    /// sixty-fourth of this per quadrature point.
+    #[arg(long, default_value_t = 8192)]
+    samples: usize,
+    /// Folder for study.csv, study.json and the plots (created if missing).
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Print the rows as JSON.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Args)]
@@ -61,6 +93,7 @@ pub fn run(cmd: CoatingCommand) -> Result<()> {
     match cmd {
         CoatingCommand::Compute(a) => compute(a),
         CoatingCommand::Info(a) => info(a),
+        CoatingCommand::Study(a) => study(a),
     }
 }
 
@@ -245,4 +278,186 @@ fn info(a: InfoArgs) -> Result<()> {
         println!("flop index: {fi:.2}");
     }
     Ok(())
+}
+
+fn study(a: StudyArgs) -> Result<()> {
+    use gonio_instrument::coating_study::{self, Constituent};
+    let wavelengths = bands("400:700:10")?;
+    let coating = read(&a.coating, &wavelengths)?;
+    let constituent = Constituent::parse(&a.vary)?;
+    let values = match (&constituent, a.values.is_empty()) {
+        (Constituent::Roughness, true) => Constituent::epoxy_series(),
+        (_, true) => anyhow::bail!("--values: give the values of {} to study", a.vary),
+        _ => a.values.clone(),
+    };
+    let geometries: &[Geometry] = match a.standard.as_str() {
+        "e2194" => &E2194,
+        "e2539" => &multiangle::E2539,
+        other => anyhow::bail!("--standard {other}: e2194 or e2539"),
+    };
+    let rows = coating_study::run(
+        &coating,
+        &constituent,
+        &values,
+        geometries,
+        &wavelengths,
+        a.samples,
+        (a.samples / 64).max(1),
+    )
+    .with_context(|| a.coating.display().to_string())?;
+    let label = constituent.label();
+    let json = serde_json::json!({
+        "file": a.coating.display().to_string(),
+        "vary": a.vary,
+        "label": label,
+        "rows": rows.iter().map(|r| serde_json::json!({
+            "value": r.value,
+            "gu20": r.gloss.gu20, "gu60": r.gloss.gu60, "gu85": r.gloss.gu85,
+            "haze": r.gloss.haze, "haze_20_log": r.gloss.haze_20_log, "doi": r.gloss.doi,
+            "flop_index": r.multiangle.flop_index(),
+            "multiangle": r.multiangle.geometries.iter().map(|g| serde_json::json!({
+                "name": g.geometry.to_string(), "L": g.lab.l, "a": g.lab.a, "b": g.lab.b,
+                "C": g.lab.chroma(), "h_deg": g.lab.hue_deg(),
+            })).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+    });
+    if let Some(dir) = &a.output {
+        std::fs::create_dir_all(dir).with_context(|| dir.display().to_string())?;
+        let mut csv = String::from("value,gu20,gu60,gu85,haze,haze_20_log,doi,flop_index");
+        for g in geometries {
+            csv.push_str(&format!(",L_{g},a_{g},b_{g}"));
+        }
+        csv.push('\n');
+        for r in &rows {
+            csv.push_str(&format!(
+                "{},{},{},{},{},{},{},{}",
+                r.value,
+                r.gloss.gu20,
+                r.gloss.gu60,
+                r.gloss.gu85,
+                r.gloss.haze,
+                r.gloss.haze_20_log,
+                r.gloss.doi,
+                r.multiangle
+                    .flop_index()
+                    .map_or(String::new(), |f| f.to_string())
+            ));
+            for g in &r.multiangle.geometries {
+                csv.push_str(&format!(",{},{},{}", g.lab.l, g.lab.a, g.lab.b));
+            }
+            csv.push('\n');
+        }
+        crate::output::write_atomic(&dir.join("study.csv"), |w| Ok(w.write_all(csv.as_bytes())?))?;
+        let text = serde_json::to_string_pretty(&json)?;
+        crate::output::write_atomic(&dir.join("study.json"), |w| {
+            Ok(w.write_all(text.as_bytes())?)
+        })?;
+        plot_study(dir, &label, &rows)?;
+    }
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&json)?);
+        return Ok(());
+    }
+    println!("{} against {label}", a.coating.display());
+    print!(
+        "{:>10} {:>7} {:>7} {:>7} {:>7} {:>7} {:>6}",
+        "value", "GU20", "GU60", "GU85", "haze", "DOI", "flop"
+    );
+    for g in geometries {
+        print!(" {:>9}", format!("L*{g}"));
+    }
+    println!();
+    for r in &rows {
+        print!(
+            "{:>10.4} {:>7.1} {:>7.1} {:>7.1} {:>7.1} {:>7.1} {:>6}",
+            r.value,
+            r.gloss.gu20,
+            r.gloss.gu60,
+            r.gloss.gu85,
+            r.gloss.haze,
+            r.gloss.doi,
+            r.multiangle
+                .flop_index()
+                .map_or("—".into(), |f| format!("{f:.1}"))
+        );
+        for g in &r.multiangle.geometries {
+            print!(" {:>9.2}", g.lab.l);
+        }
+        println!();
+    }
+    if let Some(dir) = &a.output {
+        eprintln!(
+            "wrote study.csv, study.json, gloss.png and lightness.png in {}",
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+/// The study's plots: gloss (20/60/85°) and DOI against the varied constituent, and L* at each
+/// multi-angle geometry against it.
+fn plot_study(
+    dir: &Path,
+    label: &str,
+    rows: &[gonio_instrument::coating_study::StudyRow],
+) -> Result<()> {
+    use crate::plot::{self, LinePlot, Series};
+    let gloss: Vec<Series> = [("20°", 0), ("60°", 1), ("85°", 2), ("DOI", 3)]
+        .into_iter()
+        .map(|(name, i)| Series {
+            label: if i == 3 {
+                "DOI".into()
+            } else {
+                format!("gloss {name}")
+            },
+            points: rows
+                .iter()
+                .map(|r| {
+                    (
+                        r.value,
+                        [r.gloss.gu20, r.gloss.gu60, r.gloss.gu85, r.gloss.doi][i],
+                    )
+                })
+                .collect(),
+            colour: plot::palette(i),
+            markers: false,
+        })
+        .collect();
+    plot::line_plot_png(
+        &dir.join("gloss.png"),
+        (900, 600),
+        &LinePlot {
+            title: &format!("Gloss (ISO 2813, GU) and DOI (ASTM E430) against {label}"),
+            x_label: label,
+            y_label: "GU / DOI",
+            log_y: false,
+        },
+        &gloss,
+    )?;
+    let lightness: Vec<Series> = rows[0]
+        .multiangle
+        .geometries
+        .iter()
+        .enumerate()
+        .map(|(k, g)| Series {
+            label: g.geometry.to_string(),
+            points: rows
+                .iter()
+                .map(|r| (r.value, r.multiangle.geometries[k].lab.l))
+                .collect(),
+            colour: plot::palette(k),
+            markers: false,
+        })
+        .collect();
+    plot::line_plot_png(
+        &dir.join("lightness.png"),
+        (900, 600),
+        &LinePlot {
+            title: &format!("Multi-angle lightness L* (D65/10°) against {label}"),
+            x_label: label,
+            y_label: "L*",
+            log_y: false,
+        },
+        &lightness,
+    )
 }

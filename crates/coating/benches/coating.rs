@@ -1,10 +1,11 @@
 //! Benchmarks of the coating optics: the spectral body table of the example red coating at
-//! the default resolution (90 × 90 × 48, 31 bands), the thin-film reflectance of an
-//! interference flake, and a finite Kubelka-Munk layer.
+//! the default resolution (90 × 90 × 48, 31 bands), a layered table by random walks (the
+//! silver metallic), the thin-film reflectance of an interference flake, and a finite
+//! Kubelka-Munk layer.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use gonio_brdf::formats::astm;
-use gonio_brdf::table::Provenance;
+use gonio_brdf::table::{Provenance, Resolution};
 use gonio_coating::description;
 use gonio_coating::kubelka_munk::Coefficients;
 use gonio_coating::thin_film::{Polarisation, interference_flake};
@@ -31,6 +32,27 @@ fn benches(c: &mut Criterion) {
                 .unwrap()
         })
     });
+    // A layered system through the random walks: an eighth of the default table's cells
+    // (criterion's ten samples of the default table would take five minutes; the whole table
+    // is timed through `gonio coating compute` in docs/performance.md).
+    let silver_path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/coatings/silver_metallic.toml");
+    let silver = description::read(&silver_path, &bands).unwrap();
+    group.bench_function(
+        "layered table 45x45x24, 31 bands, 32 walks (silver_metallic.toml)",
+        |b| {
+            b.iter(|| {
+                silver
+                    .table(
+                        Resolution::isotropic(45, 45, 24),
+                        black_box(&bands),
+                        32,
+                        Provenance::default(),
+                    )
+                    .unwrap()
+            })
+        },
+    );
     group.finish();
     let flake = interference_flake(120.0, 400.0, 1.58, 1.5, 550.0).unwrap();
     c.bench_function("interference flake reflectance, s and p (3 films)", |b| {

@@ -280,6 +280,43 @@ impl Evaluator {
         }
     }
 
+    /// [`Evaluator::eval`] without the top interface's own reflection (for a smooth top, the
+    /// same: its mirror reflection is never in `eval`).
+    pub fn eval_body(
+        &self,
+        wo: DVec3,
+        wi: DVec3,
+        samples: usize,
+        seed: u64,
+        scratch: &mut Scratch,
+        out: &mut [f64],
+    ) {
+        match self {
+            Evaluator::Exact(_) => self.eval(wo, wi, samples, seed, scratch, out),
+            Evaluator::Walks(walks) => {
+                let groups = walks.len() as u64;
+                let mut values = Vec::new();
+                for (g, (bands, walk)) in walks.iter().enumerate() {
+                    values.resize(bands.len(), 0.0);
+                    let seed = seed * groups + g as u64;
+                    walk.eval_body(wo, wi, samples, seed, scratch, &mut values);
+                    for (&b, v) in bands.iter().zip(&values) {
+                        out[b] = *v;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The top interface of the first group of bands (all groups share its roughness; their
+    /// indices differ only with a dispersive coat).
+    pub fn top(&self) -> Option<&Interface> {
+        match self {
+            Evaluator::Exact(_) => None,
+            Evaluator::Walks(walks) => walks.first().map(|(_, w)| &w.top),
+        }
+    }
+
     /// The mirror reflectance of a smooth top at incidence `cos_i`, per band (0 for a rough
     /// top, whose reflection is in [`Evaluator::eval`]).
     pub fn mirror(&self, cos_i: f64) -> Vec<f64> {

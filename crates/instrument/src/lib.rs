@@ -5,6 +5,7 @@
 //! normal), the multi-angle spectrophotometer of effect coatings (ASTM E2194, E2539:
 //! `multiangle`), and the validity warnings of a virtual reading (`validity`).
 
+pub mod coating_study;
 pub mod compare;
 pub mod curves;
 pub mod error;

@@ -86,6 +86,24 @@ impl Walk {
         scratch: &mut Scratch,
         out: &mut [f64],
     ) {
+        self.eval_body(wo, wi, samples, seed, scratch, out);
+        let reflection = self.top.f(wo, wi, Transport::Radiance);
+        for o in out.iter_mut() {
+            *o += reflection;
+        }
+    }
+
+    /// [`Walk::eval`] without the top interface's own reflection: the light that has been
+    /// inside the coat.
+    pub fn eval_body(
+        &self,
+        wo: DVec3,
+        wi: DVec3,
+        samples: usize,
+        seed: u64,
+        scratch: &mut Scratch,
+        out: &mut [f64],
+    ) {
         let nb = self.bands();
         out.fill(0.0);
         if wo.z <= 0.0 || wi.z <= 0.0 || samples == 0 {
@@ -197,9 +215,8 @@ impl Walk {
                 }
             }
         }
-        let reflection = top.f(wo, wi, Transport::Radiance);
         for o in out.iter_mut() {
-            *o = *o / samples as f64 + reflection;
+            *o /= samples as f64;
         }
     }
 }

@@ -1,0 +1,367 @@
+//! The formulation study: a coating's appearance against one constituent at a time (the clear
+//! coat's roughness, the flakes' tilt spread or coverage, the interference flakes' TiO2
+//! thickness, a pigment's concentration, the coat's thickness), read by the instruments a
+//! coatings laboratory uses: the gloss meter with haze and DOI (ISO 2813, ASTM E430) and the
+//! multi-angle spectrophotometer (ASTM E2194, CIELAB D65/10°, flop index).
+//!
+//! Each variant's BRDF is evaluated where each instrument looks (`coating::system::Evaluator`,
+//! the exact series or random walks), not through a table. The gloss meter reads the luminous
+//! reflectance at 555 nm (the photopic peak; a coating's reflection near the specular direction
+//! is nearly grey): the coat's mirror reflection for a smooth top (Fresnel at the binder's index)
+//! and the BRDF integrated over the receptor (Gauss-Legendre, [`CoatingSpecimen`]).
+
+use crate::error::{InstrumentError, Result};
+use crate::gloss::{self, GlossReport, Specimen, Window};
+use crate::multiangle::{self, Geometry, MultiangleReading, Settings};
+use glam::{DVec2, DVec3};
+use gonio_brdf::fresnel::dielectric;
+use gonio_brdf::microfacet::Microfacet;
+use gonio_coating::clear_coat::Base;
+use gonio_coating::flakes::FlakePigment;
+use gonio_coating::interface::{Lobes, Transport};
+use gonio_coating::layered::Scratch;
+use gonio_coating::system::{Coating, Evaluator};
+use rayon::prelude::*;
+
+/// The constituent a study varies.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Constituent {
+    /// The top interface's roughness α (Beckmann rms slope unless the description names GGX);
+    /// 0 is a smooth top.
+    Roughness,
+    /// The flakes' rms tilt, degrees.
+    FlakeTilt,
+    /// The fraction of the base the flakes cover.
+    FlakeCoverage,
+    /// The TiO2 thickness of interference flakes, nm.
+    Tio2,
+    /// The concentration of the named pigment of a Kubelka-Munk base.
+    Concentration(String),
+    /// The clear coat's thickness, µm.
+    CoatThickness,
+}
+
+impl Constituent {
+    /// Parse `roughness`, `tilt`, `coverage`, `tio2`, `thickness` or `concentration:NAME`.
+    pub fn parse(s: &str) -> Result<Self> {
+        Ok(match s {
+            "roughness" => Constituent::Roughness,
+            "tilt" => Constituent::FlakeTilt,
+            "coverage" => Constituent::FlakeCoverage,
+            "tio2" => Constituent::Tio2,
+            "thickness" => Constituent::CoatThickness,
+            _ => match s.strip_prefix("concentration:") {
+                Some(name) if !name.is_empty() => Constituent::Concentration(name.to_string()),
+                _ => {
+                    return Err(InstrumentError::Invalid(format!(
+                        "'{s}': vary one of roughness, tilt, coverage, tio2, thickness or \
+                         concentration:NAME (a pigment of the base)"
+                    )));
+                }
+            },
+        })
+    }
+
+    /// The name and unit of the varied quantity, for tables and plots.
+    pub fn label(&self) -> String {
+        match self {
+            Constituent::Roughness => "top roughness α".into(),
+            Constituent::FlakeTilt => "flake tilt spread, °".into(),
+            Constituent::FlakeCoverage => "flake coverage".into(),
+            Constituent::Tio2 => "TiO2 thickness, nm".into(),
+            Constituent::Concentration(name) => format!("concentration of {name}"),
+            Constituent::CoatThickness => "coat thickness, µm".into(),
+        }
+    }
+
+    /// The epoxy roughness series of the roughness study (`study`: Sq 3, 50, 150, 201, 400 and
+    /// 805 nm, correlation length 6 µm) as Beckmann rms slopes `2 Sq / T`, for `Roughness`.
+    pub fn epoxy_series() -> Vec<f64> {
+        [3.0, 50.0, 150.0, 201.0, 400.0, 805.0]
+            .iter()
+            .map(|sq_nm| 2.0 * sq_nm * 1e-3 / 6.0)
+            .collect()
+    }
+
+    /// `coating` with this constituent set to `value`.
+    pub fn apply(&self, coating: &Coating, value: f64) -> Result<Coating> {
+        let mut c = coating.clone();
+        let no_flakes = || {
+            InstrumentError::Invalid(
+                "the coating has no [flakes] to vary (add a [flakes] table to its description)"
+                    .into(),
+            )
+        };
+        match self {
+            Constituent::Roughness => {
+                c.roughness = if value == 0.0 {
+                    None
+                } else {
+                    Some(match c.roughness {
+                        Some(Microfacet { distribution, .. }) => Microfacet {
+                            distribution,
+                            alpha_x: value,
+                            alpha_y: value,
+                        },
+                        None => Microfacet::beckmann(value),
+                    })
+                }
+            }
+            Constituent::FlakeTilt => c.flakes.as_mut().ok_or_else(no_flakes)?.tilt_deg = value,
+            Constituent::FlakeCoverage => c.flakes.as_mut().ok_or_else(no_flakes)?.coverage = value,
+            Constituent::Tio2 => match c.flakes.as_mut().map(|f| &mut f.pigment) {
+                Some(FlakePigment::Interference { tio2_nm, .. }) => *tio2_nm = value,
+                _ => {
+                    return Err(InstrumentError::Invalid(
+                        "tio2: the coating has no interference flakes".into(),
+                    ));
+                }
+            },
+            Constituent::Concentration(name) => match &mut c.base {
+                Base::KubelkaMunk { pigments, .. } => {
+                    let p = pigments
+                        .iter_mut()
+                        .find(|p| &p.name == name)
+                        .ok_or_else(|| {
+                            InstrumentError::Invalid(format!(
+                                "concentration:{name}: the base has no pigment of that name"
+                            ))
+                        })?;
+                    p.concentration = value;
+                }
+                Base::Diffuse { .. } => {
+                    return Err(InstrumentError::Invalid(format!(
+                        "concentration:{name}: the base is not a Kubelka-Munk layer of pigments"
+                    )));
+                }
+            },
+            Constituent::CoatThickness => c.coat.thickness_um = value,
+        }
+        Ok(c)
+    }
+}
+
+/// A coating as a gloss meter's specimen at one wavelength. The top interface's own reflection
+/// is integrated over each window by sampling it where the lobe is narrower than an eighth of
+/// the window (64 × 64 stratified visible normals: each sample's weight counts in the windows
+/// that hold its direction) and by 32 × 32 Gauss-Legendre points of its BRDF where it is wider
+/// (DOI's 0.1° slits); a smooth top's mirror reflection is Fresnel's at the binder's index; the
+/// light that has been inside the coat, broad beside the receptor, by `order × order`
+/// Gauss-Legendre points of `walks` walks each.
+pub struct CoatingSpecimen {
+    evaluator: Evaluator,
+    /// The binder's index when the top is smooth (its mirror reflection is a delta).
+    mirror_index: Option<f64>,
+    walks: usize,
+    order: usize,
+}
+
+impl CoatingSpecimen {
+    /// Strata per axis of the top reflection's samples.
+    const STRATA: usize = 64;
+
+    /// The specimen of `coating` at `wavelength_nm`.
+    pub fn new(coating: &Coating, wavelength_nm: f64, walks: usize) -> Result<Self> {
+        Ok(CoatingSpecimen {
+            evaluator: coating.evaluator(&[wavelength_nm])?,
+            mirror_index: coating
+                .roughness
+                .is_none()
+                .then(|| coating.coat.index.at(wavelength_nm)),
+            walks,
+            order: 6,
+        })
+    }
+}
+
+impl Specimen for CoatingSpecimen {
+    fn reflectance_into(&self, wi: DVec3, windows: &[Window]) -> Result<Vec<f64>> {
+        let mirror = DVec3::new(-wi.x, -wi.y, wi.z);
+        let mut into: Vec<f64> = windows
+            .iter()
+            .map(|w| match self.mirror_index {
+                Some(n) if w.contains(mirror) => dielectric(wi.z, n),
+                _ => 0.0,
+            })
+            .collect();
+        if let Some(top) = self.evaluator.top() {
+            // Windows much wider than the lobe: sample the lobe; the others (a lobe at least an
+            // eighth of the window's width, e.g. DOI's 0.1° slits): quadrature of the BRDF.
+            let lobe = 2.0
+                * top
+                    .roughness
+                    .map_or(0.0, |m| m.alpha_x.max(m.alpha_y))
+                    .atan();
+            let (sampled, integrated): (Vec<usize>, Vec<usize>) =
+                (0..windows.len()).partition(|&k| {
+                    let a = windows[k].aperture;
+                    lobe < a.in_plane.min(a.perpendicular) / 8.0
+                });
+            let n = Self::STRATA;
+            for k in 0..n * n {
+                let u = DVec2::new(
+                    ((k / n) as f64 + 0.5) / n as f64,
+                    ((k % n) as f64 + 0.5) / n as f64,
+                );
+                let uc = ((k * 7919) % (n * n)) as f64 / (n * n) as f64;
+                let Some(s) = top.sample(wi, uc, u, Transport::Importance, Lobes::Reflection)
+                else {
+                    continue;
+                };
+                for &w in &sampled {
+                    if windows[w].contains(s.wi) {
+                        into[w] += s.weight() / (n * n) as f64;
+                    }
+                }
+            }
+            for &w in &integrated {
+                into[w] += windows[w]
+                    .quadrature(32)
+                    .into_iter()
+                    .filter(|(wo, _)| wo.z > 0.0)
+                    .map(|(wo, dw)| top.f(wo, wi, Transport::Radiance) * wo.z * dw)
+                    .sum::<f64>();
+            }
+        }
+        let mut scratch = Scratch::default();
+        let mut value = [0.0];
+        for (k, (v, window)) in into.iter_mut().zip(windows).enumerate() {
+            for (j, (wo, dw)) in window.quadrature(self.order).into_iter().enumerate() {
+                if wo.z > 0.0 {
+                    let seed = (k * 4096 + j) as u64 ^ wi.x.to_bits().rotate_left(7);
+                    self.evaluator
+                        .eval_body(wo, wi, self.walks, seed, &mut scratch, &mut value);
+                    *v += value[0] * wo.z * dw;
+                }
+            }
+        }
+        Ok(into)
+    }
+
+    fn source_order(&self) -> usize {
+        4
+    }
+}
+
+/// What the instruments read on one variant.
+#[derive(Clone, Debug)]
+pub struct StudyRow {
+    /// The varied constituent's value.
+    pub value: f64,
+    pub gloss: GlossReport,
+    pub multiangle: MultiangleReading,
+}
+
+/// Read every variant of `coating` with `constituent` at `values`: gloss, haze and DOI
+/// ([`gloss::measure`] on a [`CoatingSpecimen`], `gloss_walks` walks per point) and the
+/// multi-angle colour at `geometries` (`walks` per geometry), over `wavelengths_nm`.
+pub fn run(
+    coating: &Coating,
+    constituent: &Constituent,
+    values: &[f64],
+    geometries: &[Geometry],
+    wavelengths_nm: &[f64],
+    walks: usize,
+    gloss_walks: usize,
+) -> Result<Vec<StudyRow>> {
+    if values.is_empty() {
+        return Err(InstrumentError::Invalid(
+            "a study needs at least one value".into(),
+        ));
+    }
+    values
+        .par_iter()
+        .map(|&value| {
+            let variant = constituent.apply(coating, value)?;
+            variant.check(wavelengths_nm)?;
+            let gloss = gloss::measure(&CoatingSpecimen::new(&variant, 555.0, gloss_walks)?)?;
+            let evaluator = variant.evaluator(wavelengths_nm)?;
+            let brdf = |wo: DVec3, wi: DVec3, out: &mut [f64]| {
+                evaluator.eval(wo, wi, walks, 1, &mut Scratch::default(), out);
+            };
+            let multiangle =
+                multiangle::read(&brdf, wavelengths_nm, geometries, &Settings::default())?;
+            Ok(StudyRow {
+                value,
+                gloss,
+                multiangle,
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use gonio_coating::description;
+
+    fn red(index: &str, top: &str) -> Coating {
+        let text = format!(
+            "{top}\n[coat]\nindex = {index}\nthickness_um = 40\n[base]\nkind = \"diffuse\"\n\
+             reflectance = {{ nm = [400, 550, 600, 700], values = [0.05, 0.05, 0.3, 0.7] }}\n"
+        );
+        description::parse(&text, &[400.0, 555.0, 700.0]).unwrap()
+    }
+
+    /// A smooth coat's gloss is the ratio of its Fresnel reflectance to the black-glass
+    /// standard's (ISO 2813) plus the body light inside the receptor (a body BRDF of a few
+    /// hundredths per steradian over a receptor of 2e-3 sr at 20°: under 0.5 GU).
+    #[test]
+    fn smooth_coat_gloss_is_fresnels_ratio() {
+        let g = gloss::measure(&CoatingSpecimen::new(&red("1.5", ""), 555.0, 16).unwrap()).unwrap();
+        for (gu, deg) in [(g.gu20, 20f64), (g.gu60, 60.0), (g.gu85, 85.0)] {
+            let c = deg.to_radians().cos();
+            let want = 100.0 * dielectric(c, 1.5) / dielectric(c, gloss::STANDARD_INDEX);
+            assert!((gu - want).abs() < 0.5, "{deg}°: {gu} vs {want}");
+        }
+        assert!(g.doi > 99.0, "{}", g.doi);
+    }
+
+    #[test]
+    fn constituents_are_checked() {
+        let coating = red("1.5", "");
+        assert!(Constituent::parse("gloss").is_err());
+        assert!(Constituent::FlakeTilt.apply(&coating, 10.0).is_err());
+        assert!(Constituent::Tio2.apply(&coating, 100.0).is_err());
+        let c = Constituent::parse("concentration:red").unwrap();
+        assert!(c.apply(&coating, 0.5).is_err());
+        let rough = Constituent::Roughness.apply(&coating, 0.1).unwrap();
+        assert_eq!(rough.roughness, Some(Microfacet::beckmann(0.1)));
+        assert_eq!(
+            Constituent::Roughness.apply(&rough, 0.0).unwrap().roughness,
+            None
+        );
+        assert_eq!(Constituent::epoxy_series().len(), 6);
+    }
+
+    mod slow {
+        use super::*;
+
+        /// Roughening the coat lowers its gloss at every angle and raises the lightness near the
+        /// specular direction (45as15), leaving the far geometries (45as110) alone.
+        #[test]
+        fn roughness_lowers_gloss() {
+            let coating = red("1.5", "[top]\nroughness = { alpha = 0.02 }");
+            let rows = run(
+                &coating,
+                &Constituent::Roughness,
+                &[0.02, 0.06, 0.15],
+                &multiangle::E2194,
+                &[400.0, 500.0, 600.0, 700.0],
+                2048,
+                32,
+            )
+            .unwrap();
+            for pair in rows.windows(2) {
+                let (a, b) = (&pair[0], &pair[1]);
+                assert!(b.gloss.gu60 < a.gloss.gu60 && b.gloss.gu20 < a.gloss.gu20);
+                assert!(b.multiangle.geometries[0].lab.l > a.multiangle.geometries[0].lab.l);
+            }
+            let far: Vec<f64> = rows
+                .iter()
+                .map(|r| r.multiangle.geometries[4].lab.l)
+                .collect();
+            assert!((far[0] - far[2]).abs() < 1.0, "{far:?}");
+        }
+    }
+}
