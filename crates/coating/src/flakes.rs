@@ -301,6 +301,8 @@ pub struct FlakeLayer {
     orientation: Option<Microfacet>,
     /// `N(μ)` on [`Tilts::STEPS`] equal steps of μ.
     projected: Vec<f64>,
+    /// [`FlakeLayer::share_at`] on the same steps.
+    share: Vec<f64>,
     optics: Vec<FlakeOptics>,
     rho: Vec<f64>,
     /// `ρ / (π (1 − ρ c R̄))` per band.
@@ -315,6 +317,7 @@ impl FlakeLayer {
             coverage: 0.0,
             orientation: None,
             projected: Vec::new(),
+            share: Vec::new(),
             optics: Vec::new(),
             rho,
             diffuse,
@@ -330,16 +333,21 @@ impl FlakeLayer {
             .map(|(r, o)| r / (PI * (1.0 - r * c * o.diffuse_reflectance())))
             .collect();
         let tilts = Tilts::new(flakes.orientation());
-        FlakeLayer {
+        let mut layer = FlakeLayer {
             coverage: c,
             orientation: Some(flakes.orientation()),
+            share: Vec::new(),
             projected: (0..Tilts::STEPS)
                 .map(|i| tilts.projected_area(Tilts::mu(i)))
                 .collect(),
             optics,
             rho,
             diffuse,
-        }
+        };
+        layer.share = (0..Tilts::STEPS)
+            .map(|i| layer.share_at(Tilts::mu(i)))
+            .collect();
+        layer
     }
 
     /// The number of bands.
@@ -355,18 +363,25 @@ impl FlakeLayer {
         1.0 - self.coverage + self.coverage * self.optics[b].tilted_transmittance(w.z)
     }
 
-    /// The probability of sampling the flakes' lobe rather than the diffuse one from `wo`: their
-    /// shares of the reflected energy, averaged over the bands (kept within 5–95% while both
-    /// lobes reflect, so that neither goes unsampled).
+    /// The probability of sampling the flakes' lobe rather than the diffuse one from `wo`
+    /// ([`FlakeLayer::share_at`] tabulated against cos θo at construction).
     fn flake_share(&self, wo: DVec3) -> f64 {
         if self.orientation.is_none() {
             return 0.0;
         }
+        FlakeOptics::lookup(&self.share, wo.z)
+    }
+
+    /// The flakes' and the diffuse lobe's shares of the reflected energy from a direction of
+    /// cosine `mu`, averaged over the bands, as the probability of sampling the flakes (kept
+    /// within 5–95% while both lobes reflect, so that neither goes unsampled).
+    fn share_at(&self, mu: f64) -> f64 {
+        let w = Tilts::direction(mu);
         let bands = self.bands() as f64;
         let flakes =
-            self.coverage * self.optics.iter().map(|o| o.reflectance(wo.z)).sum::<f64>() / bands;
+            self.coverage * self.optics.iter().map(|o| o.reflectance(mu)).sum::<f64>() / bands;
         let diffuse = (0..self.bands())
-            .map(|b| self.through(b, wo) * self.diffuse[b] * PI)
+            .map(|b| self.through(b, w) * self.diffuse[b] * PI)
             .sum::<f64>()
             / bands;
         if flakes <= 0.0 {
