@@ -176,7 +176,7 @@ pub(super) fn coatings_section(dir: &Path) -> Result<Section> {
             rows: paint_rows(reading),
         });
     }
-    blocks.extend(effect_coatings(&wl, &flop(&paints[0].1))?);
+    blocks.extend(effect_coatings(dir, &wl, &flop(&paints[0].1))?);
     Ok(Section {
         title: "Coatings and multi-angle colour".into(),
         blocks,
@@ -188,12 +188,12 @@ pub(super) fn coatings_section(dir: &Path) -> Result<Section> {
 /// readings is about 0.3 at this count (`gonio multiangle --samples`).
 const WALKS: usize = 16384;
 
-/// The coating of `examples/coatings/NAME`, as the commands read it.
-fn example_coating(name: &str, wl: &[f64]) -> Result<Coating> {
-    Ok(description::read(
-        &Path::new(EXAMPLES).join("coatings").join(name),
-        wl,
-    )?)
+/// The coating of `examples/coatings/NAME`, as the commands read it, copied into `dir` beside
+/// the report so that the commands shown run there.
+fn example_coating(dir: &Path, name: &str, wl: &[f64]) -> Result<Coating> {
+    let path = Path::new(EXAMPLES).join("coatings").join(name);
+    std::fs::copy(&path, dir.join(name))?;
+    Ok(description::read(&path, wl)?)
 }
 
 /// Its multi-angle reading at `geometries`, its BRDF evaluated there (no table).
@@ -207,9 +207,9 @@ fn read_coating(
 
 /// The red under a smooth and a rough coat, a silver metallic with a narrow and a wide flake
 /// spread, and a pearlescent's colour travel: readings computed from the descriptions.
-fn effect_coatings(wl: &[f64], cayman_flop: &str) -> Result<Vec<Block>> {
-    let smooth = example_coating("red_solid.toml", wl)?;
-    let rough = example_coating("red_rough.toml", wl)?;
+fn effect_coatings(dir: &Path, wl: &[f64], cayman_flop: &str) -> Result<Vec<Block>> {
+    let smooth = example_coating(dir, "red_solid.toml", wl)?;
+    let rough = example_coating(dir, "red_rough.toml", wl)?;
     let (smooth_r, rough_r) = (
         read_coating(&smooth, wl, &E2194)?,
         read_coating(&rough, wl, &E2194)?,
@@ -231,7 +231,7 @@ fn effect_coatings(wl: &[f64], cayman_flop: &str) -> Result<Vec<Block>> {
             ]
         })
         .collect();
-    let silver = example_coating("silver_metallic.toml", wl)?;
+    let silver = example_coating(dir, "silver_metallic.toml", wl)?;
     let spread = |tilt: f64| -> Result<MultiangleReading> {
         let mut c = silver.clone();
         if let Some(f) = c.flakes.as_mut() {
@@ -255,7 +255,11 @@ fn effect_coatings(wl: &[f64], cayman_flop: &str) -> Result<Vec<Block>> {
             ]
         })
         .collect();
-    let pearl = read_coating(&example_coating("pearl_interference.toml", wl)?, wl, &E2539)?;
+    let pearl = read_coating(
+        &example_coating(dir, "pearl_interference.toml", wl)?,
+        wl,
+        &E2539,
+    )?;
     let hues: Vec<f64> = pearl
         .geometries
         .iter()
@@ -344,10 +348,10 @@ fn effect_coatings(wl: &[f64], cayman_flop: &str) -> Result<Vec<Block>> {
             rows: pearl_rows,
         },
         Block::Code(
-            "gonio multiangle examples/coatings/red_rough.toml --reference examples/coatings/red_solid.toml\n\
-             gonio multiangle examples/coatings/silver_metallic.toml\n\
-             gonio multiangle examples/coatings/pearl_interference.toml --standard e2539\n\
-             gonio coating compute examples/coatings/silver_metallic.toml -o silver.gbrdf"
+            "gonio multiangle red_rough.toml --reference red_solid.toml\n\
+             gonio multiangle silver_metallic.toml\n\
+             gonio multiangle pearl_interference.toml --standard e2539\n\
+             gonio coating study silver_metallic.toml --vary tilt --values 6,12,24"
                 .into(),
         ),
         Block::Text(
