@@ -10,7 +10,7 @@
 use crate::clear_coat::{self, AtWavelength, Base, ClearCoatOverBase, Coat};
 use crate::error::{CoatingError, Result};
 use crate::flakes::{FlakeLayer, Flakes};
-use crate::interface::Interface;
+use crate::interface::{Interface, Transport};
 use crate::layered::{Scratch, Walk};
 use glam::DVec3;
 use gonio_brdf::fresnel::dielectric;
@@ -226,28 +226,12 @@ impl Evaluator {
         scratch: &mut Scratch,
         out: &mut [f64],
     ) {
-        match self {
-            Evaluator::Exact(optics) => {
-                for (o, at) in out.iter_mut().zip(optics) {
-                    *o = at.brdf(wi.z, wo.z);
-                }
-            }
-            Evaluator::Walks(walks) => {
-                let groups = walks.len() as u64;
-                let mut values = Vec::new();
-                for (g, (bands, walk)) in walks.iter().enumerate() {
-                    values.resize(bands.len(), 0.0);
-                    walk.eval(
-                        wo,
-                        wi,
-                        samples,
-                        seed * groups + g as u64,
-                        scratch,
-                        &mut values,
-                    );
-                    for (&b, v) in bands.iter().zip(&values) {
-                        out[b] = *v;
-                    }
+        self.eval_body(wo, wi, samples, seed, scratch, out);
+        if let Evaluator::Walks(walks) = self {
+            for (bands, walk) in walks {
+                let reflection = walk.top.f(wo, wi, Transport::Radiance);
+                for &b in bands {
+                    out[b] += reflection;
                 }
             }
         }
@@ -292,7 +276,11 @@ impl Evaluator {
         out: &mut [f64],
     ) {
         match self {
-            Evaluator::Exact(_) => self.eval(wo, wi, samples, seed, scratch, out),
+            Evaluator::Exact(optics) => {
+                for (o, at) in out.iter_mut().zip(optics) {
+                    *o = at.brdf(wi.z, wo.z);
+                }
+            }
             Evaluator::Walks(walks) => {
                 let groups = walks.len() as u64;
                 let mut values = Vec::new();

@@ -65,13 +65,18 @@ impl Walk {
         self.tau.len()
     }
 
+    /// The coat's transmittance in band `b` along a direction of cosine `mu` (1 for a clear
+    /// coat, without the exponential).
+    fn across(&self, b: usize, mu: f64) -> f64 {
+        let t = self.tau[b];
+        if t > 0.0 { (-t / mu).exp() } else { 1.0 }
+    }
+
     /// Multiply `beta` by the coat's transmittance along `w`.
     fn attenuate(&self, beta: &mut [f64], w: DVec3) {
         let mu = w.z.abs();
-        for (b, t) in beta.iter_mut().zip(&self.tau) {
-            if *t > 0.0 {
-                *b *= (-t / mu).exp();
-            }
+        for (b, x) in beta.iter_mut().enumerate() {
+            *x *= self.across(b, mu);
         }
     }
 
@@ -179,12 +184,7 @@ impl Walk {
                 let connect = wis.weight() * mis;
                 let mu = wis.wi.z.abs();
                 for b in 0..nb {
-                    let tr = if self.tau[b] > 0.0 {
-                        (-self.tau[b] / mu).exp()
-                    } else {
-                        1.0
-                    };
-                    out[b] += beta[b] * f[b] * tr * connect;
+                    out[b] += beta[b] * f[b] * self.across(b, mu) * connect;
                 }
                 // Sample the flake layer for the walk's next direction.
                 let uc = rng.random();
@@ -204,12 +204,7 @@ impl Walk {
                         let mis = power_heuristic(pdf, top.pdf(wi, -w, Lobes::Transmission));
                         let mu = w.z.abs();
                         for b in 0..nb {
-                            let tr = if self.tau[b] > 0.0 {
-                                (-self.tau[b] / mu).exp()
-                            } else {
-                                1.0
-                            };
-                            out[b] += beta[b] * tr * f_exit * mis;
+                            out[b] += beta[b] * self.across(b, mu) * f_exit * mis;
                         }
                     }
                 }
