@@ -1,7 +1,7 @@
 //! End-to-end tests of `gonio compare` on the files other commands write: the curves CSV of
 //! `gonio inplane` (here the quick demo's own) read back into `compare`.
 
-use crate::common::ok;
+use crate::common::{ok, quick_demo};
 
 /// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
 mod slow {
@@ -13,8 +13,7 @@ mod slow {
     #[test]
     fn demo_curves_round_trip_into_compare() {
         let dir = tempfile::tempdir().unwrap();
-        let out = dir.path().join("out");
-        ok(&["demo", "--quick", "-o", out.to_str().unwrap()]);
+        let out = quick_demo().to_path_buf();
         let mut csvs = Vec::new();
         let mut stack = vec![out.clone()];
         while let Some(d) = stack.pop() {

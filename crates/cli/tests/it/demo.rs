@@ -4,9 +4,7 @@
 use std::path::Path;
 use std::process::Command;
 
-fn gonio() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_gonio"))
-}
+use crate::common::quick_demo;
 
 /// Every table of the page has as many cells in each row as in its header row.
 fn tables_are_rectangular(html: &str) {
@@ -178,18 +176,7 @@ mod slow {
 
     #[test]
     fn quick_demo_writes_a_complete_report() {
-        let dir = tempfile::tempdir().unwrap();
-        let out = dir.path().join("out");
-        let status = gonio()
-            .args(["demo", "--quick", "-o"])
-            .arg(&out)
-            .output()
-            .unwrap();
-        assert!(
-            status.status.success(),
-            "{}",
-            String::from_utf8_lossy(&status.stderr)
-        );
+        let out = quick_demo();
         let html = std::fs::read_to_string(out.join("report.html")).unwrap();
         for title in [
             "Surfaces: the epoxy roughness series",
@@ -204,8 +191,8 @@ mod slow {
         assert!(images >= 8, "only {images} images");
         assert!(!text_of(&html).contains("NaN"), "a NaN reached the report");
         tables_are_rectangular(&html);
-        commands_name_files_beside_the_report(&html, &out);
-        summary_quotes_the_results(&html, &out);
+        commands_name_files_beside_the_report(&html, out);
+        summary_quotes_the_results(&html, out);
         if let Some(chromium) = find_chromium() {
             check_in_browser(&chromium, &out.join("report.html"), images);
         } else {

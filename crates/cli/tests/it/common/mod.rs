@@ -2,7 +2,9 @@
 // Each test binary uses its own subset of these helpers.
 #![allow(dead_code)]
 
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use std::sync::OnceLock;
 
 /// Run `gonio` with `args`.
 pub fn gonio(args: &[&str]) -> Output {
@@ -30,4 +32,20 @@ pub fn gonio_in(args: &[&str], dir: &std::path::Path) -> Output {
         .current_dir(dir)
         .output()
         .expect("run gonio")
+}
+
+/// The output folder of one `gonio demo --quick` run, shared by every test in this binary that
+/// reads it (the report's test and the curves' round trip): the demo is the suite's longest
+/// command, and running it once saves its whole time. The folder lies under Cargo's temporary
+/// directory for integration tests and is replaced at the first call of each test run.
+pub fn quick_demo() -> &'static Path {
+    static OUT: OnceLock<PathBuf> = OnceLock::new();
+    OUT.get_or_init(|| {
+        let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("quick-demo");
+        if out.exists() {
+            std::fs::remove_dir_all(&out).expect("remove the previous run's demo output");
+        }
+        ok(&["demo", "--quick", "-o", out.to_str().expect("a UTF-8 path")]);
+        out
+    })
 }
