@@ -109,6 +109,37 @@ impl Walk {
         scratch: &mut Scratch,
         out: &mut [f64],
     ) {
+        self.estimate(wo, wi, samples, seed, Self::MAX_DEPTH, scratch, out);
+    }
+
+    /// The single-scattering part of [`Walk::eval_body`]: the light that met the flake layer
+    /// once, entering and leaving through the top interface without an internal reflection
+    /// (what single-scattering models of facets under an overcoat compute, such as SCATMECH's
+    /// `Subsurface_Facet_BRDF_Model`). Under a smooth top each sample is exact, so one suffices.
+    pub fn eval_single(
+        &self,
+        wo: DVec3,
+        wi: DVec3,
+        samples: usize,
+        seed: u64,
+        scratch: &mut Scratch,
+        out: &mut [f64],
+    ) {
+        self.estimate(wo, wi, samples, seed, 1, scratch, out);
+    }
+
+    /// The walks behind [`Walk::eval_body`], stopped after `max_depth` events.
+    #[allow(clippy::too_many_arguments)]
+    fn estimate(
+        &self,
+        wo: DVec3,
+        wi: DVec3,
+        samples: usize,
+        seed: u64,
+        max_depth: usize,
+        scratch: &mut Scratch,
+        out: &mut [f64],
+    ) {
         let nb = self.bands();
         out.fill(0.0);
         if wo.z <= 0.0 || wi.z <= 0.0 || samples == 0 {
@@ -144,7 +175,7 @@ impl Walk {
             let mut w = wos.wi;
             // Where the walk is: false at the top interface (from inside), true at the flakes.
             let mut at_bottom = false;
-            for depth in 0..Self::MAX_DEPTH {
+            for depth in 0..max_depth {
                 if depth > 3 {
                     let max = beta.iter().copied().fold(0.0, f64::max);
                     if max < 0.25 {

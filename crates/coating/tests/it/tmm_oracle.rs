@@ -7,18 +7,6 @@
 
 use gonio_coating::thin_film::{Film, Polarisation, Stack, interference_flake};
 use num_complex::Complex64;
-use std::io::Write;
-use std::process::{Command, Stdio};
-
-/// `tmm` is missing: skip, saying why, or fail when `GONIO_REQUIRE_ORACLES=1` (set by
-/// `.ci/run`) demands it.
-fn oracle_missing(why: &str) {
-    assert!(
-        std::env::var("GONIO_REQUIRE_ORACLES").as_deref() != Ok("1"),
-        "GONIO_REQUIRE_ORACLES=1 but {why}"
-    );
-    eprintln!("skipping the tmm check: {why}");
-}
 
 const SCRIPT: &str = r#"
 import json, sys, math
@@ -125,30 +113,11 @@ fn stacks_agree_with_tmm() {
             })
         })
         .collect();
-    let child = Command::new("python3")
-        .args(["-c", SCRIPT])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn();
-    let Ok(mut child) = child else {
-        return oracle_missing("python3 cannot be started");
+    let Some(reference) =
+        crate::oracle::run::<Vec<[f64; 2]>>(SCRIPT, "tmm", "tmm", &serde_json::Value::Array(json))
+    else {
+        return;
     };
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(serde_json::to_string(&json).unwrap().as_bytes())
-        .unwrap();
-    let out = child.wait_with_output().unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    if !out.status.success() {
-        if stderr.contains("No module named 'tmm'") {
-            return oracle_missing("the Python package tmm is not installed (pip install tmm)");
-        }
-        panic!("tmm failed: {stderr}");
-    }
-    let reference: Vec<[f64; 2]> = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(reference.len(), cases.len());
     let mut worst = 0.0f64;
     for (c, [rs, rp]) in cases.iter().zip(reference) {
