@@ -113,7 +113,9 @@ fn pixel_features(scene: &Scene, x: usize, y: usize) -> PixelFeatures {
                 sum += s.f * (s.wi.z / s.pdf);
             }
         }
-        a += (sum / (ALBEDO_SAMPLES * ALBEDO_SAMPLES) as f64).clamp(DVec3::ZERO, DVec3::splat(4.0));
+        let mirror = DVec3::splat(scene.materials[m].mirror(wo.z));
+        a += (sum / (ALBEDO_SAMPLES * ALBEDO_SAMPLES) as f64 + mirror)
+            .clamp(DVec3::ZERO, DVec3::splat(4.0));
     }
     let k = FEATURE_RAYS.len() as f64;
     (

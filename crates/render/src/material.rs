@@ -3,7 +3,9 @@
 //! `.binary`), importance-sampled with the alias-method sampler of
 //! [`gonio_brdf::table::SampledTable`], or a height map turned into a table by a scattering
 //! method (see [`crate::scene`]). A spectral table is seen at the path's wavelengths in the
-//! spectral colour mode through its [`gonio_brdf::SpectralBrdf`] view.
+//! spectral colour mode through its [`gonio_brdf::SpectralBrdf`] view. Any of them may lie under
+//! a smooth clear coat ([`Material::coat`]), whose mirror reflection is a delta lobe no table
+//! can hold.
 
 use crate::error::{RenderError, Result};
 use gonio_brdf::formats::{astm, merl};
@@ -22,6 +24,12 @@ pub struct Material {
     /// a spectral one ([`Brdf::spectral`]) is read at the path's wavelengths in the spectral
     /// mode.
     pub brdf: Arc<dyn Brdf>,
+    /// The refractive index of a smooth clear coat over the BRDF, or `None`. Its mirror
+    /// reflection `F(θ)` (Fresnel's unpolarised reflectance, the same at every wavelength) is
+    /// added to the BRDF as a delta lobe, and `brdf` is then what the coat sends back from
+    /// beneath it: the body table of a coating with a smooth top (`gonio coating compute`),
+    /// which holds the coat's transmission both ways but not its mirror.
+    pub coat: Option<f64>,
 }
 
 impl Material {
@@ -30,7 +38,23 @@ impl Material {
         Material {
             name: name.into(),
             brdf,
+            coat: None,
         }
+    }
+
+    /// The same material under a smooth clear coat of refractive index `index`.
+    pub fn with_coat(self, index: f64) -> Material {
+        Material {
+            coat: Some(index),
+            ..self
+        }
+    }
+
+    /// The coat's mirror reflectance for a viewer at cosine `cos_o` to the shading normal (0
+    /// without a coat).
+    pub fn mirror(&self, cos_o: f64) -> f64 {
+        self.coat
+            .map_or(0.0, |n| gonio_brdf::fresnel::dielectric(cos_o, n))
     }
 
     /// A material of a tabulated BRDF, importance-sampled by the alias method.
@@ -43,6 +67,7 @@ impl std::fmt::Debug for Material {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Material")
             .field("name", &self.name)
+            .field("coat", &self.coat)
             .finish_non_exhaustive()
     }
 }

@@ -209,6 +209,9 @@ struct Interaction<'a> {
     wo: DVec3,
     /// The material.
     material: &'a Material,
+    /// The probability that the path continues by sampling the BRDF (1 − F under a smooth
+    /// coat, whose mirror takes the rest; 1 without one).
+    body_share: f64,
 }
 
 /// The weight of a light's emission that a BRDF sample of density `brdf_pdf` found (`None`: a
@@ -272,7 +275,7 @@ fn sample_ld<S: Shading>(
     } else {
         power(
             pdf_l,
-            brdf_pdf(at.material.brdf.as_ref(), at.wo, wi, sampling),
+            at.body_share * brdf_pdf(at.material.brdf.as_ref(), at.wo, wi, sampling),
         )
     };
     f * shading.carry_rgb(ls.li) * (wi.z * w / pdf_l)
@@ -325,6 +328,7 @@ pub(crate) fn radiance<S: Shading>(
         if wo.z <= 0.0 {
             break;
         }
+        let mirror = material.mirror(wo.z);
         let at = Interaction {
             p: hit.p,
             origin: offset(hit.p, ng),
@@ -332,6 +336,7 @@ pub(crate) fn radiance<S: Shading>(
             frame,
             wo,
             material,
+            body_share: 1.0 - mirror,
         };
         let last = bounce == opts.max_bounces;
         l += beta * sample_ld(scene, shading, &at, opts.sampling, last, sampler, rays);
@@ -339,17 +344,29 @@ pub(crate) fn radiance<S: Shading>(
             break;
         }
 
-        // Continue the path by sampling the BRDF.
-        let u = sampler.next2();
-        let Some((wi, f, pdf)) = shading.sample(material, wo, u, opts.sampling) else {
-            break;
+        // Continue the path: a smooth coat's mirror with probability F (its weight F / F = 1;
+        // no light sample can find a delta, so the emission it meets takes the full weight),
+        // else by sampling the BRDF beneath (its density scaled by 1 − F). Only a coated
+        // material draws the lobe's number, so other paths keep their random stream.
+        let (wi, pdf) = if material.coat.is_some() && sampler.next() < mirror {
+            (DVec3::new(-wo.x, -wo.y, wo.z), None)
+        } else {
+            let u = sampler.next2();
+            let Some((wi, f, pdf)) = shading.sample(material, wo, u, opts.sampling) else {
+                break;
+            };
+            let pdf = pdf * at.body_share;
+            if pdf <= 0.0 {
+                break;
+            }
+            beta *= f * (wi.z / pdf);
+            (wi, Some(pdf))
         };
         let wi_world = frame.to_world(wi);
-        if pdf <= 0.0 || wi.z <= 0.0 || wi_world.dot(ng) <= 0.0 {
+        if wi.z <= 0.0 || wi_world.dot(ng) <= 0.0 {
             break;
         }
-        beta *= f * (wi.z / pdf);
-        prev_pdf = Some(pdf);
+        prev_pdf = pdf;
         prev_p = hit.p;
         ray = Ray {
             origin: at.origin,

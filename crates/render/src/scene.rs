@@ -13,6 +13,7 @@ use crate::light::{EnvMap, Light};
 use crate::material::{self, Material};
 use glam::{DAffine3, DQuat, DVec3};
 use gonio_brdf::models::{ModelSpec, Reflectance};
+use rayon::prelude::*;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -80,7 +81,7 @@ pub struct RenderDesc {
     pub denoise: Option<bool>,
 }
 
-/// `[materials.NAME]`: exactly one of `brdf`, `table`, `surface`.
+/// `[materials.NAME]`: exactly one of `brdf`, `table`, `surface`, and optionally `coat_index`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialDesc {
@@ -90,6 +91,10 @@ pub struct MaterialDesc {
     pub table: Option<PathBuf>,
     /// A height map and a scattering method.
     pub surface: Option<crate::surface::SurfaceDesc>,
+    /// The refractive index of a smooth clear coat over the BRDF, whose mirror reflection
+    /// (Fresnel) is added as a delta lobe: for the body table of a coating with a smooth top
+    /// (`gonio coating compute`), which leaves the mirror out. Default: no coat.
+    pub coat_index: Option<f64>,
 }
 
 /// Where a shape or a planar light is placed: scale, then rotations about x, y and z, then the
@@ -424,35 +429,54 @@ fn build_camera(c: &CameraDesc, file: &SceneFile) -> Result<Camera> {
     })
 }
 
-/// `[materials]`: the materials and each one's index by name.
+/// `[materials]`: the materials and each one's index by name. They are built in parallel (an
+/// imported `.astm` table's fit or a height map's table takes seconds each); the first failing
+/// material in the file's order is the one reported.
 fn build_materials(
     descs: &BTreeMap<String, MaterialDesc>,
     file: &SceneFile,
 ) -> Result<(Vec<Material>, BTreeMap<String, usize>)> {
-    let mut materials = Vec::new();
-    let mut index = BTreeMap::new();
-    for (name, m) in descs {
-        let material = match (&m.brdf, &m.table, &m.surface) {
-            (Some(spec), None, None) => {
-                Material::new(name.clone(), material::from_model(spec, file.path, name)?)
-            }
-            (None, Some(table), None) => {
-                Material::from_table(name.clone(), material::read_table(&file.resolve(table))?)
-            }
-            (None, None, Some(surface)) => Material::from_table(
-                name.clone(),
-                crate::surface::table(surface, file.dir, file.path, name)?,
-            ),
-            _ => {
-                return Err(file.bad(format!(
-                    "material `{name}`: give exactly one of `brdf`, `table`, `surface`"
-                )));
-            }
-        };
-        index.insert(name.clone(), materials.len());
-        materials.push(material);
-    }
+    let descs: Vec<(&String, &MaterialDesc)> = descs.iter().collect();
+    let built: Vec<Result<Material>> = descs
+        .par_iter()
+        .map(|&(name, m)| build_material(name, m, file))
+        .collect();
+    let materials = built.into_iter().collect::<Result<Vec<Material>>>()?;
+    let index = descs
+        .iter()
+        .enumerate()
+        .map(|(i, (name, _))| ((*name).clone(), i))
+        .collect();
     Ok((materials, index))
+}
+
+/// One `[materials.NAME]` entry.
+fn build_material(name: &str, m: &MaterialDesc, file: &SceneFile) -> Result<Material> {
+    let material = match (&m.brdf, &m.table, &m.surface) {
+        (Some(spec), None, None) => {
+            Material::new(name, material::from_model(spec, file.path, name)?)
+        }
+        (None, Some(table), None) => {
+            Material::from_table(name, material::read_table(&file.resolve(table))?)
+        }
+        (None, None, Some(surface)) => Material::from_table(
+            name,
+            crate::surface::table(surface, file.dir, file.path, name)?,
+        ),
+        _ => {
+            return Err(file.bad(format!(
+                "material `{name}`: give exactly one of `brdf`, `table`, `surface`"
+            )));
+        }
+    };
+    match m.coat_index {
+        None => Ok(material),
+        Some(n) if n.is_finite() && n >= 1.0 => Ok(material.with_coat(n)),
+        Some(n) => Err(file.bad(format!(
+            "material `{name}`: coat_index {n} must be a refractive index of at least 1 \
+             (1.5 for a typical clear coat)"
+        ))),
+    }
 }
 
 /// `[[shapes]]`: each shape's primitives, transformed, with its material.

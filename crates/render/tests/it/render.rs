@@ -373,3 +373,50 @@ mod slow {
         assert!(e_denoised < 0.5 * e_raw, "{e_denoised} vs raw {e_raw}");
     }
 }
+
+/// A smooth clear coat over a BRDF (`coat_index`): in the white furnace (a convex sphere under a
+/// uniform sky of radiance 1, so every path sees the sky after one reflection) each pixel is the
+/// coat's mirror reflectance F(θo) (Fresnel, n 1.5) plus the albedo of the BRDF beneath. The
+/// mirror is chosen with probability F and weighs 1, so its part of a sample is 1 or 0: over N
+/// samples its standard error is sqrt(⟨F(1 − F)⟩ / N), and the bound is four of them plus the
+/// BRDF's own 1% (as above). Over black the mirror is alone; over a GGX lobe the light samples
+/// and the BRDF samples (whose density the mirror's share scales by 1 − F) must still weigh to
+/// one, or the lobe's part is off.
+#[test]
+fn white_furnace_coated_materials_render_mirror_plus_albedo() {
+    let n = 1.5;
+    let spp = 128;
+    for json in [
+        r#"{"model": "lambert", "albedo": 0.0}"#,
+        r#"{"model": "lambert", "albedo": 0.7}"#,
+        r#"{"model": "ggx", "alpha": 0.3, "index": 1.5, "diffuse": 0.5}"#,
+    ] {
+        let spec: ModelSpec = serde_json::from_str(json).unwrap();
+        let brdf: Arc<dyn Brdf> = Arc::new(spec.build().unwrap());
+        let mut s = scene(FURNACE);
+        let albedo = albedo_curve(brdf.as_ref());
+        s.materials[0].brdf = brdf;
+        s.materials[0] = s.materials[0].clone().with_coat(n);
+        let (img, _) = render(&s, &opts(spp, 3, ColourMode::Tristimulus)).unwrap();
+        let pixels = sphere_pixels(&s);
+        let fresnel = |mu: f64| gonio_brdf::fresnel::dielectric(mu, n);
+        let count = pixels.len() as f64;
+        let expect = pixels
+            .iter()
+            .map(|&(_, mu)| fresnel(mu) + albedo(mu))
+            .sum::<f64>()
+            / count;
+        let bernoulli = pixels
+            .iter()
+            .map(|&(_, mu)| fresnel(mu) * (1.0 - fresnel(mu)))
+            .sum::<f64>()
+            / count;
+        let se = (bernoulli / (count * f64::from(spp))).sqrt();
+        let got = mean_grey(&img, &pixels);
+        let lobe = expect - pixels.iter().map(|&(_, mu)| fresnel(mu)).sum::<f64>() / count;
+        assert!(
+            (got - expect).abs() < 4.0 * se + 0.01 * lobe,
+            "{json} under a coat: mean {got:.5}, expected {expect:.5} (standard error {se:.1e})"
+        );
+    }
+}
