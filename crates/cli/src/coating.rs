@@ -47,9 +47,15 @@ pub struct StudyArgs {
     /// sixty-fourth of this per quadrature point.
     #[arg(long, default_value_t = 8192)]
     samples: usize,
-    /// Folder for study.csv, study.json and the plots (created if missing).
+    /// Folder for study.csv, study.json, the plots and the pictures (created if missing).
     #[arg(short, long)]
     output: Option<PathBuf>,
+    /// Leave out the pictures: with --output, each value's coating is otherwise drawn on a
+    /// curved panel in a studio (panel-VALUE.png, from a 45 × 45 × 24 spectral table of 32
+    /// walks per cell, panel-VALUE.gbrdf, and the scene panel-VALUE.toml that `gonio render`
+    /// runs as written; a few seconds each).
+    #[arg(long)]
+    no_pictures: bool,
     /// Print the rows as JSON.
     #[arg(long)]
     json: bool,
@@ -353,6 +359,23 @@ fn study(a: StudyArgs) -> Result<()> {
             Ok(w.write_all(text.as_bytes())?)
         })?;
         plot_study(dir, &label, &rows)?;
+        if !a.no_pictures {
+            let source = a.coating.display().to_string();
+            for r in &rows {
+                let variant = constituent.apply(&coating, r.value)?;
+                let name = format!("panel-{}", r.value);
+                let panel = crate::panel::table(&variant, &source, dir, &name)
+                    .with_context(|| format!("{source}: the picture at {label} {}", r.value))?;
+                let scene = crate::panel::scene(dir, &name, &[panel])?;
+                let (png, stats) = crate::panel::render(&scene)?;
+                eprintln!(
+                    "{}: {label} {} ({:.0} s to render)",
+                    png.display(),
+                    r.value,
+                    stats.seconds
+                );
+            }
+        }
     }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&json)?);

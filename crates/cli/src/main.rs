@@ -12,6 +12,7 @@ mod inplane;
 mod isotropy;
 mod multiangle;
 mod output;
+mod panel;
 mod plot;
 mod progress;
 mod render;

@@ -21,7 +21,7 @@ fn f2(v: f64) -> String {
     format!("{v:.2}")
 }
 
-pub(super) fn coatings_section(dir: &Path) -> Result<Section> {
+pub(super) fn coatings_section(dir: &Path, pictures: bool) -> Result<Section> {
     let wl = bands();
     let settings = Settings::default();
     let toml = Path::new(EXAMPLES).join("coatings/red_solid.toml");
@@ -176,7 +176,7 @@ pub(super) fn coatings_section(dir: &Path) -> Result<Section> {
             rows: paint_rows(reading),
         });
     }
-    blocks.extend(effect_coatings(dir, &wl, &flop(&paints[0].1))?);
+    blocks.extend(effect_coatings(dir, &wl, &flop(&paints[0].1), pictures)?);
     Ok(Section {
         title: "Coatings and multi-angle colour".into(),
         blocks,
@@ -205,9 +205,59 @@ fn read_coating(
     crate::coating::multiangle_reading(&coating.evaluator(wl)?, wl, geometries, WALKS)
 }
 
+/// `coatings` (each a coating and the name of its description) side by side on curved panels
+/// in the dark studio ([`crate::panel`]): the picture `dir/NAME.png`, its caption `what`, and
+/// the commands that make it again.
+fn panel_picture(
+    dir: &Path,
+    name: &str,
+    what: &str,
+    coatings: &[(&Coating, &str)],
+) -> Result<Vec<Block>> {
+    let mut panels = Vec::new();
+    let mut commands = Vec::new();
+    for (i, (coating, source)) in coatings.iter().enumerate() {
+        let table = format!("{name}-{}", i + 1);
+        panels.push(crate::panel::table(coating, source, dir, &table)?);
+        // A variant of a description (the silver's spreads) has no file of its own to compute
+        // from; its table is beside the scene all the same.
+        if coatings.iter().filter(|(_, s)| s == source).count() == 1 {
+            let res = crate::panel::resolution(coating);
+            commands.push(format!(
+                "gonio coating compute {source} -o {table}.gbrdf --resolution {},{},{}",
+                res.theta_h, res.theta_d, res.phi_d
+            ));
+        }
+    }
+    let scene = crate::panel::scene(dir, name, &panels)?;
+    let (png, stats) = crate::panel::render(&scene)?;
+    commands.push(format!("gonio render {name}.toml --spectral -o {name}.png"));
+    Ok(vec![
+        Block::Image {
+            path: png,
+            caption: format!(
+                "{what}. Each panel's spectral table: {} walks per cell, computed for the \
+                 picture (smaller than `gonio coating compute`'s default); rendered spectrally \
+                 (four hero wavelengths per path, D65), 16 samples per pixel, {:.2e} rays in \
+                 {:.0} s, denoised (docs/render.md)",
+                crate::panel::WALKS,
+                stats.rays as f64,
+                stats.seconds
+            ),
+        },
+        Block::Code(commands.join("\n")),
+    ])
+}
+
 /// The red under a smooth and a rough coat, a silver metallic with a narrow and a wide flake
-/// spread, and a pearlescent's colour travel: readings computed from the descriptions.
-fn effect_coatings(dir: &Path, wl: &[f64], cayman_flop: &str) -> Result<Vec<Block>> {
+/// spread, and a pearlescent's colour travel: readings computed from the descriptions, and,
+/// with `pictures`, the coatings drawn on curved panels.
+fn effect_coatings(
+    dir: &Path,
+    wl: &[f64],
+    cayman_flop: &str,
+    pictures: bool,
+) -> Result<Vec<Block>> {
     let smooth = example_coating(dir, "red_solid.toml", wl)?;
     let rough = example_coating(dir, "red_rough.toml", wl)?;
     let (smooth_r, rough_r) = (
@@ -239,6 +289,16 @@ fn effect_coatings(dir: &Path, wl: &[f64], cayman_flop: &str) -> Result<Vec<Bloc
         }
         read_coating(&c, wl, &E2194)
     };
+    let spreads: Vec<Coating> = [6.0, 12.0, 24.0]
+        .iter()
+        .map(|&tilt| {
+            let mut c = silver.clone();
+            if let Some(f) = c.flakes.as_mut() {
+                f.tilt_deg = tilt;
+            }
+            c
+        })
+        .collect();
     let (narrow, medium, wide) = (spread(6.0)?, spread(12.0)?, spread(24.0)?);
     let flop = |r: &MultiangleReading| r.flop_index().map_or("—".into(), |f| format!("{f:.1}"));
     let silver_rows = narrow
@@ -255,11 +315,8 @@ fn effect_coatings(dir: &Path, wl: &[f64], cayman_flop: &str) -> Result<Vec<Bloc
             ]
         })
         .collect();
-    let pearl = read_coating(
-        &example_coating(dir, "pearl_interference.toml", wl)?,
-        wl,
-        &E2539,
-    )?;
+    let pearl_coating = example_coating(dir, "pearl_interference.toml", wl)?;
+    let pearl = read_coating(&pearl_coating, wl, &E2539)?;
     let hues: Vec<f64> = pearl
         .geometries
         .iter()
@@ -283,7 +340,7 @@ fn effect_coatings(dir: &Path, wl: &[f64], cayman_flop: &str) -> Result<Vec<Bloc
         })
         .collect();
     let (s15, r15) = (smooth_r.geometries[0].lab, rough_r.geometries[0].lab);
-    Ok(vec![
+    let mut blocks = vec![
         Block::Text(format!(
             "The same red under a rough clear coat (examples/coatings/red_rough.toml: the \
              coat's surface a Beckmann microfacet surface of rms slope 0.15, about 8.5°). Light \
@@ -354,10 +411,46 @@ fn effect_coatings(dir: &Path, wl: &[f64], cayman_flop: &str) -> Result<Vec<Bloc
              gonio coating study silver_metallic.toml --vary tilt --values 6,12,24"
                 .into(),
         ),
-        Block::Text(
-            "Not computed yet: pictures of these coatings on a curved panel, and the \
-             formulation study that varies one constituent at a time (docs/coatings.md)."
-                .into(),
-        ),
-    ])
+    ];
+    if !pictures {
+        blocks.push(Block::Text(
+            "The pictures of these coatings on curved panels are left out of the quick run.".into(),
+        ));
+        return Ok(blocks);
+    }
+    blocks.push(Block::Text(
+        "The same coatings drawn on a curved, bonnet-like panel in a dark studio with two \
+         softboxes: one behind the panels, which they mirror toward the camera (the face, near \
+         the specular direction), one behind the camera (the flank, far from it). The red: \
+         the smooth coat mirrors the softbox sharply over a deep red; the rough coat spreads \
+         its reflection into a white sheen. The silver: the narrow spread is brilliant where \
+         the panel mirrors the softbox and dark where it turns away (the flop); the wide \
+         spread is evenly light. The pearlescent: its colour changes across the panel with \
+         the angles."
+            .into(),
+    ));
+    let red = [(&smooth, "red_solid.toml"), (&rough, "red_rough.toml")];
+    blocks.extend(panel_picture(
+        dir,
+        "coatings-red",
+        "The red under a smooth (left) and a rough (right) clear coat",
+        &red,
+    )?);
+    let silver: Vec<(&Coating, &str)> = spreads
+        .iter()
+        .map(|c| (c, "silver_metallic.toml"))
+        .collect();
+    blocks.extend(panel_picture(
+        dir,
+        "coatings-silver",
+        "The silver metallic with flake tilt spreads of 6° (left), 12° and 24° (right)",
+        &silver,
+    )?);
+    blocks.extend(panel_picture(
+        dir,
+        "coatings-pearl",
+        "The pearlescent (TiO2 120 nm on mica over black)",
+        &[(&pearl_coating, "pearl_interference.toml")],
+    )?);
+    Ok(blocks)
 }

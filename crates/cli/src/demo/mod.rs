@@ -117,7 +117,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
     sections.push(study_section(&out, &config, &plan, seconds));
 
     announce("coatings: multi-angle colour of a clear-coated red and of the measured paints");
-    let (section, seconds) = timed(|| coatings::coatings_section(dir));
+    let (section, seconds) = timed(|| coatings::coatings_section(dir, !args.quick));
     let mut section = section?;
     section.seconds = seconds;
     sections.push(section);

@@ -1,0 +1,233 @@
+//! Pictures of coatings on a curved, bonnet-like panel in a studio: the coating's spectral table
+//! (computed for the picture), a scene beside it that `gonio render` runs as written, and the
+//! rendered PNG. Several coatings sit side by side on identical panels, seen from one camera,
+//! so that a picture compares them at the same angles: the bright reflection of the softbox
+//! near the specular direction, the flop colour where the panel turns away.
+//!
+//! The panel is the repository's `examples/panel.obj` (made by `examples/metallic_assets.py`),
+//! embedded in the program and written beside the scene. The studio is dark (so that a
+//! metallic's flop shows: what it sends away from the specular direction), with two softboxes:
+//! one behind the panels that they mirror toward the camera, one behind the camera lighting
+//! them from the viewer's side, far from the specular direction.
+
+use anyhow::{Context, Result};
+use gonio_brdf::table::Resolution;
+use gonio_coating::system::Coating;
+use gonio_render::{ColourMode, RenderOptions, RenderStats, Scene, render_picture};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+const PANEL_OBJ: &[u8] = include_bytes!("../../../examples/panel.obj");
+
+/// The studio's radiance (W m⁻² sr⁻¹, grey) toward polar angle `theta_deg` from the zenith (+y)
+/// and azimuth `phi_deg` from +x toward +z (the renderer's equirectangular mapping; the camera
+/// looks along −z).
+fn studio(theta_deg: f64, phi_deg: f64) -> f64 {
+    let within = |t: (f64, f64), p: (f64, f64)| {
+        (t.0..=t.1).contains(&theta_deg) && (p.0..=p.1).contains(&phi_deg)
+    };
+    if within((35.0, 65.0), (235.0, 305.0)) {
+        4.0 // behind the panels, mirrored by them toward the camera
+    } else if within((25.0, 55.0), (65.0, 115.0)) {
+        3.0 // behind the camera
+    } else if theta_deg < 90.0 {
+        0.03 + 0.03 * (theta_deg.to_radians()).cos()
+    } else {
+        0.01
+    }
+}
+
+/// Write the studio as an equirectangular map (256 × 128, Radiance RGBE) at `path`.
+fn write_studio(path: &Path) -> Result<()> {
+    let (w, h) = (256, 128);
+    let mut image = gonio_render::Image::new(w, h);
+    for j in 0..h {
+        let theta = 180.0 * (j as f64 + 0.5) / h as f64;
+        for i in 0..w {
+            let phi = 360.0 * (i as f64 + 0.5) / w as f64;
+            image.pixels[j * w + i] = [studio(theta, phi) as f32; 3];
+        }
+    }
+    image.write(path, gonio_render::Display::default())?;
+    Ok(())
+}
+
+/// The wavelengths of a picture's tables, nm (as `gonio coating compute`'s default).
+const BANDS: (f64, f64, f64) = (400.0, 700.0, 10.0);
+
+/// Random walks per table cell of a picture's table (`gonio coating compute`'s default).
+pub const WALKS: usize = 32;
+
+/// One coating on a panel: the name of its table file (beside the scene), and the index of its
+/// smooth top, whose mirror reflection the renderer adds (`None` for a rough top, whose
+/// reflection is in the table).
+pub struct Panel {
+    pub table: String,
+    pub coat_index: Option<f64>,
+}
+
+/// The resolution of a picture's table: 45 × 45 × 24 nodes, with more θh nodes where a rough
+/// top's reflection is so narrow that the first node off the specular direction would miss it.
+/// The nodes lie at θh = 90° (j/N)², so the first is at 90°/N²; it is kept within a third of
+/// the lobe's width atan α, up to 90 nodes (α ≥ 0.0006).
+pub fn resolution(coating: &Coating) -> Resolution {
+    let theta_h = coating.roughness.map_or(45, |m| {
+        let lobe_deg = m.alpha_x.min(m.alpha_y).atan().to_degrees();
+        ((270.0 / lobe_deg).sqrt().ceil() as usize).clamp(45, 90)
+    });
+    Resolution::isotropic(theta_h, 45, 24)
+}
+
+/// Compute `coating`'s table for a picture into `dir/NAME.gbrdf` (from the description
+/// `source`), returning the panel that shows it.
+pub fn table(coating: &Coating, source: &str, dir: &Path, name: &str) -> Result<Panel> {
+    let (first, last, step) = BANDS;
+    let bands: Vec<f64> = (0..)
+        .map(|i| first + step * i as f64)
+        .take_while(|&w| w <= last + 1e-9)
+        .collect();
+    let method = coating.method(WALKS);
+    let table = coating.table(
+        resolution(coating),
+        &bands,
+        WALKS,
+        coating.provenance(source, method),
+    )?;
+    let file = format!("{name}.gbrdf");
+    gonio_brdf::gbrdf::write(&table, &dir.join(&file))?;
+    Ok(Panel::new(coating, file))
+}
+
+impl Panel {
+    /// The panel of `coating` whose table is the file `table`: a smooth top's mirror is added by
+    /// the renderer at the coat's index at 550 nm (its dispersion left out of the mirror).
+    fn new(coating: &Coating, table: String) -> Panel {
+        Panel {
+            table,
+            coat_index: coating
+                .roughness
+                .is_none()
+                .then(|| coating.coat.index.at(550.0)),
+        }
+    }
+}
+
+/// Write the scene `dir/NAME.toml` with `panels` side by side (left to right), the panel mesh
+/// and the studio beside it. Returns the scene's path.
+pub fn scene(dir: &Path, name: &str, panels: &[Panel]) -> Result<PathBuf> {
+    crate::output::write_atomic(&dir.join("panel.obj"), |w| Ok(w.write_all(PANEL_OBJ)?))?;
+    write_studio(&dir.join("dark_studio.hdr"))?;
+    let k = panels.len() as f64;
+    // Panels 2.4 m wide with 0.3 m between them, in a picture 280 px high and as wide as the
+    // row needs. The camera looks down at 40° from a range that fits the row into the
+    // horizontal field (30° vertical) with a fifth to spare, and no closer than 4.5 m.
+    let pitch = 2.7;
+    let (width, height) = ((280.0 * (0.6 + 0.9 * k)).round(), 280.0);
+    let half_row = (pitch * (k - 1.0) + 2.4) / 2.0;
+    let half_field = width / height * 15f64.to_radians().tan();
+    let range = (1.2 * half_row / half_field).max(4.5);
+    let (sin_e, cos_e) = 40f64.to_radians().sin_cos();
+    let mut text = format!(
+        "# {k} coating panel(s) in a studio, written by gonio (the tables beside it come from \
+         `gonio coating compute`).\n#\n#   gonio render {name}.toml --spectral -o {name}.png\n\n\
+         [camera]\nposition = [0.0, {:.2}, {:.2}]\nlook_at = [0.0, 0.3, 0.0]\n\
+         fov_deg = 30\nwidth = {width}\nheight = {height}\nexposure = 1.0\ntone = \"filmic\"\n\n\
+         [render]\nspp = 16\nmax_bounces = 4\ndenoise = true\n\n\
+         [materials.floor]\nbrdf = {{ model = \"lambert\", albedo = 0.12 }}\n",
+        0.3 + range * sin_e,
+        range * cos_e,
+    );
+    for (i, p) in panels.iter().enumerate() {
+        text.push_str(&format!(
+            "\n[materials.coating{i}]\ntable = \"{}\"\n",
+            p.table
+        ));
+        if let Some(n) = p.coat_index {
+            text.push_str(&format!("coat_index = {n}\n"));
+        }
+    }
+    for i in 0..panels.len() {
+        let x = pitch * (i as f64 - (k - 1.0) / 2.0);
+        text.push_str(&format!(
+            "\n[[shapes]]\ntype = \"mesh\"\nfile = \"panel.obj\"\ntranslate = [{x:.2}, 0.55, 0.0]\n\
+             material = \"coating{i}\"\n"
+        ));
+    }
+    text.push_str(
+        "\n[[shapes]]\ntype = \"rectangle\"\nsize = [200.0, 200.0]\nrotate_deg = [-90.0, 0.0, 0.0]\n\
+         material = \"floor\"\n\n[[lights]]\ntype = \"environment\"\nfile = \"dark_studio.hdr\"\n\
+         scale = 1.0\n",
+    );
+    let path = dir.join(format!("{name}.toml"));
+    crate::output::write_atomic(&path, |w| Ok(w.write_all(text.as_bytes())?))?;
+    Ok(path)
+}
+
+/// Render the scene at `scene` into the PNG beside it (same name), spectrally (the tables are
+/// spectral; colour formed under D65 by the CIE 1931 observer). Returns the PNG and the
+/// render's figures.
+pub fn render(scene: &Path) -> Result<(PathBuf, RenderStats)> {
+    let loaded = Scene::from_file(scene).with_context(|| scene.display().to_string())?;
+    let options = RenderOptions {
+        colour: ColourMode::Spectral,
+        ..Default::default()
+    };
+    let (image, estimate) = render_picture(&loaded, &options)?;
+    let png = scene.with_extension("png");
+    image.write(&png, loaded.display)?;
+    Ok((png, estimate.stats))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The scene written for a smooth-topped and a rough-topped coating loads as written: two
+    /// panels side by side, the smooth one's mirror added by its coat index, the rough one's
+    /// reflection in its table; the picture's resolution follows the rough top's lobe.
+    #[test]
+    fn panels_scene_loads_with_each_coatings_table() {
+        let dir = tempfile::tempdir().unwrap();
+        let red = |top: &str| {
+            gonio_coating::description::parse(
+                &format!(
+                    "{top}[coat]\nindex = 1.5\nthickness_um = 40\n[base]\nkind = \"diffuse\"\nreflectance = 0.3\n"
+                ),
+                &[500.0, 600.0],
+            )
+            .unwrap()
+        };
+        let smooth = red("");
+        let rough = red("[top]\nroughness = { alpha = 0.2 }\n");
+        assert_eq!(resolution(&smooth).theta_h, 45);
+        // α 0.001: a lobe 0.0573° wide; 90°/69² = 0.0189° is within a third of it, 90°/68² not.
+        assert_eq!(
+            resolution(&red("[top]\nroughness = { alpha = 0.001 }\n")).theta_h,
+            69
+        );
+        let mut panels = Vec::new();
+        for (coating, name) in [(&smooth, "smooth"), (&rough, "rough")] {
+            let table = coating
+                .table(
+                    Resolution::isotropic(8, 8, 4),
+                    &[500.0, 600.0],
+                    1,
+                    gonio_brdf::table::Provenance::default(),
+                )
+                .unwrap();
+            let file = format!("{name}.gbrdf");
+            gonio_brdf::gbrdf::write(&table, &dir.path().join(&file)).unwrap();
+            panels.push(Panel::new(coating, file));
+        }
+        assert_eq!(panels[0].coat_index, Some(1.5));
+        assert_eq!(panels[1].coat_index, None);
+        let path = scene(dir.path(), "pair", &panels).unwrap();
+        let loaded = Scene::from_file(&path).unwrap();
+        let coats: Vec<Option<f64>> = loaded.materials.iter().map(|m| m.coat).collect();
+        assert!(
+            coats.contains(&Some(1.5)) && coats.contains(&None),
+            "{coats:?}"
+        );
+        assert_eq!(loaded.camera.width, 672);
+    }
+}
