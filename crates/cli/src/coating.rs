@@ -72,7 +72,7 @@ pub struct ComputeArgs {
     #[arg(long, value_delimiter = ',', default_values_t = crate::brdf::import_resolution())]
     resolution: Vec<usize>,
     /// Wavelengths of the table's channels, nm: first:last:step.
-    #[arg(long, default_value = "400:700:10")]
+    #[arg(long, default_value = DEFAULT_BANDS)]
     bands: String,
     /// Random walks per table cell for a rough top or flakes (the smooth coat over a diffuse
     /// base is computed exactly). The noise falls as 1/sqrt(samples).
@@ -103,7 +103,15 @@ pub fn run(cmd: CoatingCommand) -> Result<()> {
     }
 }
 
-/// The 31 bands 400, 410, ..., 700 nm, or those of `--bands first:last:step`.
+/// The bands of a coating's tables and readings unless told otherwise, as `--bands` takes them.
+const DEFAULT_BANDS: &str = "400:700:10";
+
+/// The 31 bands 400, 410, ..., 700 nm.
+pub(crate) fn default_bands() -> Vec<f64> {
+    bands(DEFAULT_BANDS).expect("the default bands are valid")
+}
+
+/// The bands of `--bands first:last:step`.
 fn bands(spec: &str) -> Result<Vec<f64>> {
     let parts: Vec<f64> = spec
         .split(':')
@@ -180,7 +188,7 @@ pub fn multiangle_reading(
 }
 
 fn info(a: InfoArgs) -> Result<()> {
-    let wavelengths = bands("400:700:10")?;
+    let wavelengths = default_bands();
     let coating = read(&a.coating, &wavelengths)?;
     let evaluator = coating.evaluator(&wavelengths)?;
     let band = |nm: f64| {
@@ -288,7 +296,7 @@ fn info(a: InfoArgs) -> Result<()> {
 
 fn study(a: StudyArgs) -> Result<()> {
     use gonio_instrument::coating_study::{self, Constituent};
-    let wavelengths = bands("400:700:10")?;
+    let wavelengths = default_bands();
     let coating = read(&a.coating, &wavelengths)?;
     let constituent = Constituent::parse(&a.vary)?;
     let values = match (&constituent, a.values.is_empty()) {

@@ -52,9 +52,6 @@ fn write_studio(path: &Path) -> Result<()> {
     Ok(())
 }
 
-/// The wavelengths of a picture's tables, nm (as `gonio coating compute`'s default).
-const BANDS: (f64, f64, f64) = (400.0, 700.0, 10.0);
-
 /// Random walks per table cell of a picture's table (`gonio coating compute`'s default).
 pub const WALKS: usize = 32;
 
@@ -81,11 +78,7 @@ pub fn resolution(coating: &Coating) -> Resolution {
 /// Compute `coating`'s table for a picture into `dir/NAME.gbrdf` (from the description
 /// `source`), returning the panel that shows it.
 pub fn table(coating: &Coating, source: &str, dir: &Path, name: &str) -> Result<Panel> {
-    let (first, last, step) = BANDS;
-    let bands: Vec<f64> = (0..)
-        .map(|i| first + step * i as f64)
-        .take_while(|&w| w <= last + 1e-9)
-        .collect();
+    let bands = crate::coating::default_bands();
     let method = coating.method(WALKS);
     let table = coating.table(
         resolution(coating),
