@@ -77,6 +77,16 @@ pub struct ImportArgs {
     /// Make the table reciprocal (each pair f(wi, wo), f(wo, wi) replaced by its mean).
     #[arg(long)]
     enforce_reciprocity: bool,
+    #[command(flatten)]
+    colour: ColourArgs,
+    /// Print the import summary as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Reducing a spectral table to colour as it is written (`brdf import`, `coating compute`).
+#[derive(Args)]
+pub struct ColourArgs {
     /// Reduce a spectral table to colour: `xyz` (CIE XYZ / 100, each in 1/sr) or `srgb` (linear
     /// sRGB in 1/sr, white-balanced to D65 by Bradford), under --illuminant, seen by
     /// --observer (docs/color.md). Default: keep the spectra.
@@ -90,9 +100,23 @@ pub struct ImportArgs {
     #[arg(long, value_name = "DEG", default_value = "2",
           value_parser = crate::color::parse_observer)]
     observer: Observer,
-    /// Print the import summary as JSON.
-    #[arg(long)]
-    json: bool,
+}
+
+impl ColourArgs {
+    /// Whether a reduction to colour was asked for.
+    pub fn reduces(&self) -> bool {
+        self.colour.is_some()
+    }
+
+    /// `table` reduced to the colour space asked for, or as it is; `file` names the source in
+    /// errors.
+    pub fn apply(&self, table: BrdfTable, file: &Path) -> Result<BrdfTable> {
+        match self.colour {
+            Some(space) => colour::reduce(&table, space, self.illuminant, self.observer)
+                .with_context(|| format!("{}: --colour", file.display())),
+            None => Ok(table),
+        }
+    }
 }
 
 /// Formats `gonio brdf export` writes.
@@ -332,10 +356,7 @@ fn import(a: ImportArgs) -> Result<()> {
     if a.enforce_reciprocity {
         table.enforce_reciprocity();
     }
-    if let Some(space) = a.colour {
-        table = colour::reduce(&table, space, a.illuminant, a.observer)
-            .with_context(|| format!("{}: --colour", a.file.display()))?;
-    }
+    let table = a.colour.apply(table, &a.file)?;
     gbrdf::write(&table, &a.output)?;
     if a.json {
         let out = serde_json::json!({

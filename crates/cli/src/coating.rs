@@ -78,6 +78,8 @@ pub struct ComputeArgs {
     /// base is computed exactly). The noise falls as 1/sqrt(samples).
     #[arg(long, default_value_t = 32)]
     samples: usize,
+    #[command(flatten)]
+    colour: crate::brdf::ColourArgs,
 }
 
 #[derive(Args)]
@@ -143,6 +145,7 @@ fn compute(a: ComputeArgs) -> Result<()> {
     let table = coating
         .table(res, &wavelengths, a.samples, provenance)
         .with_context(|| a.coating.display().to_string())?;
+    let table = a.colour.apply(table, &a.coating)?;
     gonio_brdf::gbrdf::write(&table, &a.output)?;
     let what = match (method, coating.roughness.is_some()) {
         (Method::ClosedForm, _) => "body reflection, exact; the mirror reflection is not in the \
@@ -155,8 +158,13 @@ fn compute(a: ComputeArgs) -> Result<()> {
             format!("{samples} random walks per cell; everything the coating reflects")
         }
     };
+    let reduced = if a.colour.reduces() {
+        format!(", reduced to {}", table.channels().describe())
+    } else {
+        String::new()
+    };
     eprintln!(
-        "{}: {} × {} × {} nodes, {} bands {}–{} nm ({what})",
+        "{}: {} × {} × {} nodes, {} bands {}–{} nm{reduced} ({what})",
         a.output.display(),
         res.theta_h,
         res.theta_d,

@@ -41,14 +41,34 @@ pub enum Dispersion {
     /// Cauchy's formula `n = a + b / λ²`, λ in µm (e.g. a = 1.48, b = 0.0045 µm² for an acrylic
     /// clear coat: 1.508 at 400 nm, 1.489 at 700 nm).
     Cauchy { a: f64, b_um2: f64 },
+    /// Sellmeier's formula `n² = 1 + Σ Bᵢ λ² / (λ² − Cᵢ)`, three terms, λ in µm (W. Sellmeier,
+    /// Ann. Phys. Chem. 219, 272 (1871), in the form of glass makers' catalogues; e.g. Schott
+    /// N-BK7: B = 1.03961212, 0.231792344, 1.01046945; C = 0.00600069867, 0.0200179144,
+    /// 103.560653 µm², n = 1.5168 at 587.6 nm). The formula holds between the resonances Cᵢ;
+    /// where it gives n² ≤ 0 (just above a resonance) it has no real index, and the coating's
+    /// check refuses the wavelength.
+    Sellmeier { b: [f64; 3], c_um2: [f64; 3] },
+    /// A measured index, linear between its samples (the end value outside them).
+    Measured(Spectrum),
 }
 
 impl Dispersion {
     /// The index at `wavelength_nm`.
     pub fn at(&self, wavelength_nm: f64) -> f64 {
-        match *self {
-            Dispersion::Constant(n) => n,
+        match self {
+            Dispersion::Constant(n) => *n,
             Dispersion::Cauchy { a, b_um2 } => a + b_um2 / (wavelength_nm * 1e-3).powi(2),
+            Dispersion::Sellmeier { b, c_um2 } => {
+                let l2 = (wavelength_nm * 1e-3).powi(2);
+                let terms: f64 = b.iter().zip(c_um2).map(|(b, c)| b * l2 / (l2 - c)).sum();
+                let n2 = 1.0 + terms;
+                if n2.is_finite() && n2 > 0.0 {
+                    n2.sqrt()
+                } else {
+                    f64::NAN
+                }
+            }
+            Dispersion::Measured(n) => n.value_at(wavelength_nm),
         }
     }
 }
@@ -146,6 +166,12 @@ impl ClearCoatOverBase {
         }
         for &w in wavelengths_nm {
             let o = self.at(w)?;
+            if o.n.is_nan() {
+                return Err(CoatingError::Invalid(format!(
+                    "coat index at {w} nm: the Sellmeier formula gives no real index there \
+                     (n² ≤ 0: the wavelength is just above one of its resonances C)"
+                )));
+            }
             if !(o.n.is_finite() && o.n > 1.0) {
                 return Err(CoatingError::Invalid(format!(
                     "coat index {} at {w} nm: must be above 1",

@@ -10,6 +10,9 @@
 //!
 //! [coat]
 //! index = 1.5                     # or { cauchy_a = 1.48, cauchy_b_um2 = 0.0045 }
+//! # or { sellmeier_b = [b1, b2, b3], sellmeier_c_um2 = [c1, c2, c3] }
+//! # or { nm = [...], values = [...] }, or { file = "index.csv" } (wavelength_nm,value; beside
+//! #   this file)
 //! thickness_um = 40
 //! absorption_per_um = 0           # σ(λ), 1/µm: a number or { nm = [...], values = [...] }
 //!
@@ -122,7 +125,22 @@ struct CoatFields {
 #[serde(untagged)]
 enum IndexField {
     Constant(f64),
-    Cauchy { cauchy_a: f64, cauchy_b_um2: f64 },
+    Cauchy {
+        cauchy_a: f64,
+        cauchy_b_um2: f64,
+    },
+    Sellmeier {
+        sellmeier_b: [f64; 3],
+        sellmeier_c_um2: [f64; 3],
+    },
+    Sampled {
+        nm: Vec<f64>,
+        values: Vec<f64>,
+    },
+    /// A `wavelength_nm,value` CSV file, relative to the description's folder.
+    File {
+        file: PathBuf,
+    },
 }
 
 #[derive(Deserialize)]
@@ -288,6 +306,23 @@ fn parse_in(text: &str, folder: &Path, wavelengths_nm: &[f64]) -> Result<Coating
             a: cauchy_a,
             b_um2: cauchy_b_um2,
         },
+        IndexField::Sellmeier {
+            sellmeier_b,
+            sellmeier_c_um2,
+        } => Dispersion::Sellmeier {
+            b: sellmeier_b,
+            c_um2: sellmeier_c_um2,
+        },
+        IndexField::Sampled { nm, values } => {
+            Dispersion::Measured(SpectrumField::Sampled { nm, values }.spectrum("coat.index")?)
+        }
+        IndexField::File { file } => {
+            let path = folder.join(file);
+            Dispersion::Measured(
+                Spectrum::read_csv(&path)
+                    .map_err(|e| CoatingError::Invalid(format!("coat.index: {e}")))?,
+            )
+        }
     };
     let coat = Coat {
         index,
@@ -350,6 +385,57 @@ mod tests {
     use super::*;
 
     const WL: [f64; 3] = [400.0, 550.0, 700.0];
+
+    /// A description with the coat's `index` field as given.
+    fn with_index(index: &str, folder: &Path, wl: &[f64]) -> Result<Coating> {
+        parse_in(
+            &format!(
+                "[coat]\nindex = {index}\nthickness_um = 40\n[base]\nkind = \"diffuse\"\n\
+                 reflectance = 0.3\n"
+            ),
+            folder,
+            wl,
+        )
+    }
+
+    /// Sellmeier's formula with Schott's N-BK7 coefficients gives the catalogue's indices at
+    /// the Fraunhofer lines (nF 1.52238 at 486.13 nm, nd 1.51680 at 587.56 nm, nC 1.51432 at
+    /// 656.27 nm; the catalogue rounds to 1e-5, so the bound is one unit there); a measured index
+    /// inline or from a CSV file beside the description interpolates its samples; below a
+    /// term's resonance the check says why it refuses.
+    #[test]
+    fn sellmeier_and_measured_indices() {
+        let bk7 = "{ sellmeier_b = [1.03961212, 0.231792344, 1.01046945], \
+                   sellmeier_c_um2 = [0.00600069867, 0.0200179144, 103.560653] }";
+        let c = with_index(bk7, Path::new("."), &WL).unwrap();
+        for (nm, n) in [(486.13, 1.52238), (587.56, 1.51680), (656.27, 1.51432)] {
+            assert!(
+                (c.coat.index.at(nm) - n).abs() < 1e-5,
+                "{nm} nm: {}",
+                c.coat.index.at(nm)
+            );
+        }
+        let inline = with_index(
+            "{ nm = [400, 700], values = [1.52, 1.49] }",
+            Path::new("."),
+            &WL,
+        )
+        .unwrap();
+        assert!((inline.coat.index.at(550.0) - 1.505).abs() < 1e-12);
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(
+            dir.path().join("index.csv"),
+            "wavelength_nm,value\n400,1.52\n700,1.49\n",
+        )
+        .unwrap();
+        let file = with_index("{ file = \"index.csv\" }", dir.path(), &WL).unwrap();
+        assert_eq!(file.coat.index, inline.coat.index);
+        let missing = with_index("{ file = \"none.csv\" }", dir.path(), &WL).unwrap_err();
+        assert!(missing.to_string().contains("none.csv"), "{missing}");
+        let resonance = "{ sellmeier_b = [1.0, 0.0, 0.0], sellmeier_c_um2 = [0.2, 0.0, 0.0] }";
+        let err = with_index(resonance, Path::new("."), &WL).unwrap_err();
+        assert!(err.to_string().contains("no real index"), "{err}");
+    }
 
     #[test]
     fn diffuse_and_kubelka_munk_bases() {

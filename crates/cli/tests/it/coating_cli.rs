@@ -92,6 +92,32 @@ fn info_and_compute_agree_with_the_closed_form_and_each_other() {
             assert!((x - y).abs() < 0.1, "{}: {k} {x} vs {y}", t["name"]);
         }
     }
+    // --colour reduces the spectral table as `brdf import` does, saying so in its provenance.
+    let out = gonio(
+        &[
+            "coating",
+            "compute",
+            &toml,
+            "-o",
+            "red_xyz.gbrdf",
+            "--resolution",
+            "20,20,8",
+            "--colour",
+            "xyz",
+            "--observer",
+            "10",
+        ],
+        d,
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = gonio(&["brdf", "info", "red_xyz.gbrdf", "--json"], d);
+    let xyz: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(xyz["channels"]["kind"], "xyz");
+    assert_eq!(xyz["provenance"]["colour"]["observer_deg"], 10);
     let out = gonio(&["coating", "info", &example("red_pigmented.toml")], d);
     assert!(
         out.status.success(),
