@@ -347,11 +347,13 @@ pub(crate) fn radiance<S: Shading>(
         // Continue the path: a smooth coat's mirror with probability F (its weight F / F = 1;
         // no light sample can find a delta, so the emission it meets takes the full weight),
         // else by sampling the BRDF beneath (its density scaled by 1 − F). Only a coated
-        // material draws the lobe's number, so other paths keep their random stream.
-        let (wi, pdf) = if material.coat.is_some() && sampler.next() < mirror {
+        // material draws the lobe's number, so other paths keep their random stream; it draws
+        // the BRDF sample's two whichever lobe it takes, so its paths stay in step.
+        let lobe = material.coat.map(|_| sampler.next());
+        let u = sampler.next2();
+        let (wi, pdf) = if lobe.is_some_and(|x| x < mirror) {
             (DVec3::new(-wo.x, -wo.y, wo.z), None)
         } else {
-            let u = sampler.next2();
             let Some((wi, f, pdf)) = shading.sample(material, wo, u, opts.sampling) else {
                 break;
             };
