@@ -76,7 +76,7 @@ pub struct ComputeArgs {
     bands: String,
     /// Random walks per table cell for a rough top or flakes (the smooth coat over a diffuse
     /// base is computed exactly). The noise falls as 1/sqrt(samples).
-    #[arg(long, default_value_t = 32)]
+    #[arg(long, default_value_t = TABLE_WALKS)]
     samples: usize,
     #[command(flatten)]
     colour: crate::brdf::ColourArgs,
@@ -104,6 +104,9 @@ pub fn run(cmd: CoatingCommand) -> Result<()> {
         CoatingCommand::Study(a) => study(a),
     }
 }
+
+/// Random walks per table cell unless told otherwise (`compute --samples`; the pictures' tables).
+pub(crate) const TABLE_WALKS: usize = 32;
 
 /// The bands of a coating's tables and readings unless told otherwise, as `--bands` takes them.
 const DEFAULT_BANDS: &str = "400:700:10";

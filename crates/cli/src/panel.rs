@@ -53,7 +53,7 @@ fn write_studio(path: &Path) -> Result<()> {
 }
 
 /// Random walks per table cell of a picture's table (`gonio coating compute`'s default).
-pub const WALKS: usize = 32;
+pub const WALKS: usize = crate::coating::TABLE_WALKS;
 
 /// One coating on a panel: the name of its table file (beside the scene), and the index of its
 /// smooth top, whose mirror reflection the renderer adds (`None` for a rough top, whose

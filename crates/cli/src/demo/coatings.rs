@@ -8,6 +8,7 @@ use anyhow::{Context, Result};
 use gonio_brdf::formats::astm;
 use gonio_coating::system::Coating;
 use gonio_coating::{clear_coat, description};
+use gonio_instrument::coating_study::Constituent;
 use gonio_instrument::multiangle::{self, E2194, E2539, Geometry, MultiangleReading, Settings};
 use std::f64::consts::PI;
 use std::path::Path;
@@ -279,24 +280,13 @@ fn effect_coatings(
         })
         .collect();
     let silver = example_coating(dir, "silver_metallic.toml", wl)?;
-    let spread = |tilt: f64| -> Result<MultiangleReading> {
-        let mut c = silver.clone();
-        if let Some(f) = c.flakes.as_mut() {
-            f.tilt_deg = tilt;
-        }
-        read_coating(&c, wl, &E2194)
-    };
-    let spreads: Vec<Coating> = [6.0, 12.0, 24.0]
+    // The description with its flakes' tilt changed, as `gonio coating study --vary tilt` does.
+    let spreads = [6.0, 12.0, 24.0]
         .iter()
-        .map(|&tilt| {
-            let mut c = silver.clone();
-            if let Some(f) = c.flakes.as_mut() {
-                f.tilt_deg = tilt;
-            }
-            c
-        })
-        .collect();
-    let (narrow, medium, wide) = (spread(6.0)?, spread(12.0)?, spread(24.0)?);
+        .map(|&tilt| Constituent::FlakeTilt.apply(&silver, tilt))
+        .collect::<gonio_instrument::Result<Vec<Coating>>>()?;
+    let [narrow, medium, wide] = [0, 1, 2].map(|i| read_coating(&spreads[i], wl, &E2194));
+    let (narrow, medium, wide) = (narrow?, medium?, wide?);
     let flop = |r: &MultiangleReading| r.flop_index().map_or("—".into(), |f| format!("{f:.1}"));
     let silver_rows = narrow
         .geometries

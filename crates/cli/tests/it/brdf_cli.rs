@@ -1,15 +1,7 @@
 //! `gonio brdf` end to end: tabulate a model, summarise, export to every format, import back,
 //! fit, and a missing file exits with status 2.
 
-use crate::common::gonio_in as gonio;
-
-fn succeeded(out: &std::process::Output) {
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-}
+use crate::common::{gonio_in as gonio, ok_in};
 
 /// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
 mod slow {
@@ -27,12 +19,11 @@ mod slow {
         // A coarse table (the default 90,90,48 takes six times as long): the plot and the
         // channel check do not depend on resolving the specular peak.
         let coarse = ["--resolution", "30,30,16"];
-        let out = gonio(
+        ok_in(
             &[&["brdf", "import", astm, "-o", "blue.gbrdf"][..], &coarse].concat(),
             d,
         );
-        succeeded(&out);
-        let out = gonio(
+        ok_in(
             &[
                 "brdf",
                 "plot",
@@ -44,9 +35,8 @@ mod slow {
             ],
             d,
         );
-        succeeded(&out);
         assert!(std::fs::metadata(d.join("blue.png")).unwrap().len() > 10_000);
-        let out = gonio(
+        ok_in(
             &[
                 "brdf",
                 "import",
@@ -60,7 +50,6 @@ mod slow {
             ],
             d,
         );
-        succeeded(&out);
         let out = gonio(
             &[
                 "brdf",

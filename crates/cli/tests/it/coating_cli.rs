@@ -4,7 +4,7 @@
 //! through `gonio multiangle`, the colour `info` prints; a bad description exits with status 2,
 //! naming the file and the field.
 
-use crate::common::gonio_in as gonio;
+use crate::common::{gonio_in as gonio, ok_in};
 use gonio_brdf::fresnel::dielectric as fresnel;
 use std::path::PathBuf;
 
@@ -21,12 +21,7 @@ fn info_and_compute_agree_with_the_closed_form_and_each_other() {
     let tmp = tempfile::tempdir().unwrap();
     let d = tmp.path();
     let toml = example("red_solid.toml");
-    let out = gonio(&["coating", "info", &toml, "--json"], d);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = ok_in(&["coating", "info", &toml, "--json"], d);
     let info: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let n = info["coat_index"]["550"].as_f64().unwrap();
     let rho = info["base_reflectance"]
@@ -54,7 +49,7 @@ fn info_and_compute_agree_with_the_closed_form_and_each_other() {
         assert!((got - want).abs() < 1e-6, "{row}: {got} vs {want}");
     }
 
-    let out = gonio(
+    ok_in(
         &[
             "coating",
             "compute",
@@ -66,17 +61,7 @@ fn info_and_compute_agree_with_the_closed_form_and_each_other() {
         ],
         d,
     );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let out = gonio(&["multiangle", "red.gbrdf", "--json"], d);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = ok_in(&["multiangle", "red.gbrdf", "--json"], d);
     let table: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     for (t, i) in table["geometries"]
         .as_array()
@@ -93,7 +78,7 @@ fn info_and_compute_agree_with_the_closed_form_and_each_other() {
         }
     }
     // --colour reduces the spectral table as `brdf import` does, saying so in its provenance.
-    let out = gonio(
+    ok_in(
         &[
             "coating",
             "compute",
@@ -109,21 +94,11 @@ fn info_and_compute_agree_with_the_closed_form_and_each_other() {
         ],
         d,
     );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     let out = gonio(&["brdf", "info", "red_xyz.gbrdf", "--json"], d);
     let xyz: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(xyz["channels"]["kind"], "xyz");
     assert_eq!(xyz["provenance"]["colour"]["observer_deg"], 10);
-    let out = gonio(&["coating", "info", &example("red_pigmented.toml")], d);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    ok_in(&["coating", "info", &example("red_pigmented.toml")], d);
 }
 
 #[test]
@@ -163,12 +138,7 @@ mod slow {
         let d = tmp.path();
         let toml = example("silver_metallic.toml");
         let json = |args: &[&str]| -> serde_json::Value {
-            let out = gonio(args, d);
-            assert!(
-                out.status.success(),
-                "{}",
-                String::from_utf8_lossy(&out.stderr)
-            );
+            let out = ok_in(args, d);
             serde_json::from_slice(&out.stdout).unwrap()
         };
         let direct = json(&["multiangle", &toml, "--json"]);
@@ -184,7 +154,7 @@ mod slow {
         assert_eq!(info["specular"][0]["reflectance"].as_f64().unwrap(), 0.0);
 
         let table = d.join("silver.gbrdf");
-        let out = gonio(
+        let out = ok_in(
             &[
                 "coating",
                 "compute",
@@ -197,11 +167,6 @@ mod slow {
                 "16",
             ],
             d,
-        );
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
         );
         assert!(String::from_utf8_lossy(&out.stderr).contains("16 random walks per cell"));
         let from_table = json(&["multiangle", table.to_str().unwrap(), "--json"]);

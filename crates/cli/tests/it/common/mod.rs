@@ -25,6 +25,17 @@ pub fn ok(args: &[&str]) -> Output {
     out
 }
 
+/// Run `gonio` with `args` in the working directory `dir` and assert that it succeeded.
+pub fn ok_in(args: &[&str], dir: &std::path::Path) -> Output {
+    let out = gonio_in(args, dir);
+    assert!(
+        out.status.success(),
+        "gonio {args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
 /// Run `gonio` with `args` in the working directory `dir`.
 pub fn gonio_in(args: &[&str], dir: &std::path::Path) -> Output {
     Command::new(env!("CARGO_BIN_EXE_gonio"))
