@@ -3,7 +3,7 @@
 //! ([`gonio_render::difference::relative_rmse`]) against the others.
 //!
 //! ```text
-//! cargo run --release -p gonio-render --example noise -- examples/epoxy.toml [--spp N] [--json]
+//! cargo run --release -p gonio-render --features studies --example noise -- examples/epoxy.toml [--spp N] [--json]
 //! ```
 //!
 //! What the figures mean (σ the raw N-sample picture's noise, relative to the mean):

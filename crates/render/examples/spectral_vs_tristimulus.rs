@@ -3,7 +3,7 @@
 //! costs; results in `docs/color.md`, "Spectral rendering versus the tristimulus shortcut").
 //!
 //! ```text
-//! cargo run --release -p gonio-render --example spectral_vs_tristimulus -- \
+//! cargo run --release -p gonio-render --features studies --example spectral_vs_tristimulus -- \
 //!     examples/metallic.toml --spp 1024 --width 96 --out target/spectral-vs-tri \
 //!     [--seed S] [--max-bounces N] [--grey-environment] [--json]
 //! ```
