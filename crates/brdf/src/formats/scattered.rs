@@ -94,9 +94,8 @@ pub struct ScatteredFit {
 /// samples a query visits are taken in their own order, as a scan of all of them would, so the
 /// sums, and so every fitted value, are the same to the bit.
 struct Cells {
-    /// The grid's lower corner and the size of a cell, in `u` and `t`.
+    /// The grid's lower corner in `u` and `t`.
     origin: [f64; 2],
-    size: [f64; 2],
     /// Cells along `u` and `t`.
     count: [usize; 2],
     /// `samples[start[c]..start[c + 1]]`: the samples in cell `c` (`u` index slowest).
@@ -105,8 +104,9 @@ struct Cells {
 }
 
 impl Cells {
-    /// Half the smallest reach of the cross-validated bandwidths (3.5 × 0.02 in `u`, 3.5 × 0.05
-    /// in `t`): a query with the narrowest kernel visits about three cells per coordinate.
+    /// The size of a cell in `u` and `t`: half the smallest reach of the cross-validated
+    /// bandwidths (3.5 × 0.02 in `u`, 3.5 × 0.05 in `t`), so that a query with the narrowest
+    /// kernel visits about three cells per coordinate.
     const SIZE: [f64; 2] = [0.035, 0.0875];
 
     fn new(points: &[[f64; DIM]]) -> Cells {
@@ -117,7 +117,6 @@ impl Cells {
         });
         let mut cells = Cells {
             origin,
-            size: Self::SIZE,
             count,
             start: Vec::new(),
             samples: Vec::new(),
@@ -144,7 +143,7 @@ impl Cells {
 
     /// The cell index along coordinate `k` of the value `v`, clamped to the grid.
     fn index(&self, k: usize, v: f64) -> usize {
-        (((v - self.origin[k]) / self.size[k]).floor().max(0.0) as usize).min(self.count[k] - 1)
+        (((v - self.origin[k]) / Self::SIZE[k]).floor().max(0.0) as usize).min(self.count[k] - 1)
     }
 
     /// Calls `visit` with every sample that may lie within the kernel of bandwidths `bw` about
@@ -755,13 +754,9 @@ mod tests {
     /// samples is the reference).
     #[test]
     fn cells_find_every_weighted_sample_in_order() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        use rand::{RngExt, SeedableRng};
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(11);
+        let mut next = || rng.random::<f64>();
         let points: Vec<[f64; DIM]> = (0..3000)
             .map(|_| [next(), next(), 0.1 * next() - 0.05, 0.1 * next()])
             .collect();
