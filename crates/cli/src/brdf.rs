@@ -72,7 +72,7 @@ pub struct ImportArgs {
     format: ImportFormat,
     /// Nodes of the table built from scattered samples (ASTM, CSV): theta_h,theta_d,phi_d
     /// (the default resolves a high-gloss paint's specular peak; docs/brdf-tables.md).
-    #[arg(long, value_delimiter = ',', default_values_t = import_resolution())]
+    #[arg(long, value_delimiter = ',', default_value = crate::comma_list(&import_resolution()))]
     resolution: Vec<usize>,
     /// Make the table reciprocal (each pair f(wi, wo), f(wo, wi) replaced by its mean).
     #[arg(long)]
@@ -142,7 +142,7 @@ pub struct ExportArgs {
     #[arg(long, default_value_t = 5.0)]
     step_deg: f64,
     /// pabopto: incidence angles in degrees, one file each.
-    #[arg(long, value_delimiter = ',', default_values_t = pabopto::DEFAULT_THETA_I_DEG)]
+    #[arg(long, value_delimiter = ',', default_value = crate::comma_list(&pabopto::DEFAULT_THETA_I_DEG))]
     incidence_deg: Vec<f64>,
     /// mitsuba: nodes per axis of each incidence's value grid. The default 128 holds a sharply
     /// peaked measured paint's albedo to 3% (64: 7%, a quarter of the file size; enough for
@@ -159,7 +159,7 @@ pub struct PlotArgs {
     #[arg(short, long)]
     output: PathBuf,
     /// Incidence angles of the in-plane curves, degrees.
-    #[arg(long, value_delimiter = ',', default_values_t = [20.0, 45.0, 60.0, 75.0])]
+    #[arg(long, value_delimiter = ',', default_value = "20,45,60,75")]
     incidence_deg: Vec<f64>,
     /// The measurement the table was imported from (.astm or .csv, same channels): its
     /// geometries in the plane of incidence at the plotted incidences (within 0.5°) are drawn
@@ -175,7 +175,7 @@ pub struct TabulateArgs {
     #[arg(long)]
     model: String,
     /// Nodes theta_h,theta_d,phi_d (phi_d even).
-    #[arg(long, value_delimiter = ',', default_values_t = [90usize, 90, 180])]
+    #[arg(long, value_delimiter = ',', default_value = "90,90,180")]
     resolution: Vec<usize>,
     /// One channel (the mean of R, G, B) instead of three.
     #[arg(long)]

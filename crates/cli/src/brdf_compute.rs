@@ -41,13 +41,13 @@ pub struct ComputeArgs {
     index_imag: Option<f64>,
     /// Kirchhoff: wavelengths in nm, comma-separated and increasing; one gives a monochrome
     /// table, several a spectral one.
-    #[arg(long, value_delimiter = ',', default_values_t = [550.0])]
+    #[arg(long, value_delimiter = ',', default_value = "550")]
     wavelength_nm: Vec<f64>,
     /// Table nodes theta_h,theta_d,phi_d for an isotropic table, or theta_h,theta_d,phi_d,phi_h
     /// for an anisotropic one. theta_h nodes are spaced as the square of their index (32 nodes:
     /// 0.09°, 0.35°, 0.8°, 1.4°, ... from the specular direction); theta_d nodes every
     /// 90°/theta_d, phi_d every 360°/phi_d (even), phi_h every 360°/phi_h.
-    #[arg(long, value_delimiter = ',', default_values_t = [32usize, 90, 180])]
+    #[arg(long, value_delimiter = ',', default_value = "32,90,180")]
     resolution: Vec<usize>,
     /// Number of polar angles of incidence computed (every 90°/N from 0°); default: one per
     /// theta_d node.

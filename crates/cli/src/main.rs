@@ -158,6 +158,16 @@ fn die_quietly_on_closed_stdout() {
     }
 }
 
+/// `values` as the one default of an argument that takes a comma-separated list
+/// (`value_delimiter = ','`), e.g. "20,45,60,70". clap splits it as it splits what a user types;
+/// `default_values_t` would show the list joined by spaces ("20 45 60 70"), which the argument
+/// does not accept from a user who copies it. Made once per argument as the command is built
+/// (clap keeps a default for the life of the process).
+fn comma_list<T: std::fmt::Display>(values: &[T]) -> &'static str {
+    let text: Vec<String> = values.iter().map(T::to_string).collect();
+    Box::leak(text.join(",").into_boxed_str())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -169,6 +179,51 @@ mod tests {
         let err = anyhow::Error::new(gonio_surface::SurfaceError::io("a.x3p", io))
             .context("reading the map");
         assert_eq!(message(&err), format!("reading the map: a.x3p: {said}"));
+    }
+
+    /// Every list argument shows its default as one comma-separated value, the form it takes
+    /// ("--resolution 90,90,48"), and clap splits that default as it splits a typed list.
+    #[test]
+    fn list_defaults_are_shown_as_a_user_types_them() {
+        fn check(cmd: &clap::Command, lists: &mut usize) {
+            for arg in cmd.get_arguments() {
+                if arg.get_value_delimiter().is_some() && !arg.get_default_values().is_empty() {
+                    *lists += 1;
+                    assert_eq!(
+                        arg.get_default_values().len(),
+                        1,
+                        "{} --{}: {:?}",
+                        cmd.get_name(),
+                        arg.get_id(),
+                        arg.get_default_values()
+                    );
+                }
+            }
+            for sub in cmd.get_subcommands() {
+                check(sub, lists);
+            }
+        }
+        let mut lists = 0;
+        check(&Cli::command(), &mut lists);
+        assert!(lists >= 10, "{lists} list arguments with a default");
+        let help = Cli::command()
+            .find_subcommand_mut("brdf")
+            .and_then(|b| b.find_subcommand_mut("import"))
+            .expect("gonio brdf import")
+            .render_long_help()
+            .to_string();
+        assert!(help.contains("[default: 90,90,48]"), "{help}");
+        let m = Cli::command()
+            .try_get_matches_from(["gonio", "inplane", "map.x3p"])
+            .unwrap();
+        let incidences: Vec<f64> = m
+            .subcommand_matches("inplane")
+            .unwrap()
+            .get_many::<f64>("incidence_deg")
+            .unwrap()
+            .copied()
+            .collect();
+        assert_eq!(incidences, gonio_scatter::geometry::STARR_INCIDENCES_DEG);
     }
 
     #[test]
