@@ -72,7 +72,7 @@ pub struct ImportArgs {
     format: ImportFormat,
     /// Nodes of the table built from scattered samples (ASTM, CSV): theta_h,theta_d,phi_d
     /// (the default resolves a high-gloss paint's specular peak; docs/brdf-tables.md).
-    #[arg(long, value_delimiter = ',', default_value = crate::comma_list(&import_resolution()))]
+    #[arg(long, value_delimiter = ',', default_value = crate::list_default(&import_resolution()))]
     resolution: Vec<usize>,
     /// Make the table reciprocal (each pair f(wi, wo), f(wo, wi) replaced by its mean).
     #[arg(long)]
@@ -142,7 +142,7 @@ pub struct ExportArgs {
     #[arg(long, default_value_t = 5.0)]
     step_deg: f64,
     /// pabopto: incidence angles in degrees, one file each.
-    #[arg(long, value_delimiter = ',', default_value = crate::comma_list(&pabopto::DEFAULT_THETA_I_DEG))]
+    #[arg(long, value_delimiter = ',', default_value = crate::list_default(&pabopto::DEFAULT_THETA_I_DEG))]
     incidence_deg: Vec<f64>,
     /// mitsuba: nodes per axis of each incidence's value grid. The default 128 holds a sharply
     /// peaked measured paint's albedo to 3% (64: 7%, a quarter of the file size; enough for

@@ -69,7 +69,7 @@ pub struct ComputeArgs {
     #[arg(short, long)]
     output: PathBuf,
     /// Nodes theta_h,theta_d,phi_d of the table.
-    #[arg(long, value_delimiter = ',', default_value = crate::comma_list(&crate::brdf::import_resolution()))]
+    #[arg(long, value_delimiter = ',', default_value = crate::list_default(&crate::brdf::import_resolution()))]
     resolution: Vec<usize>,
     /// Wavelengths of the table's channels, nm: first:last:step.
     #[arg(long, default_value = DEFAULT_BANDS)]

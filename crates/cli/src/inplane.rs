@@ -30,7 +30,7 @@ pub struct InplaneArgs {
     method: Vec<Method>,
     /// Incidence angles in degrees from the surface normal, comma-separated (default: the NIST
     /// STARR geometry, 20,45,60,70).
-    #[arg(long, value_delimiter = ',', default_value = crate::comma_list(&STARR_INCIDENCES_DEG))]
+    #[arg(long, value_delimiter = ',', default_value = crate::list_default(&STARR_INCIDENCES_DEG))]
     incidence_deg: Vec<f64>,
     /// Signed scattering angles in degrees, START:STOP:STEP (both ends included) or a
     /// comma-separated list. The specular direction of incidence ti is at +ti; negative angles

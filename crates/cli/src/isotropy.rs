@@ -36,7 +36,7 @@ pub struct IsotropyArgs {
     wavelength_nm: f64,
     /// Incidence angles in degrees from the normal, comma-separated (NIST STARR: 20,45,60,70).
     /// Scatter angles are -75..75° in 1° steps.
-    #[arg(long, value_delimiter = ',', default_value = crate::comma_list(&STARR_INCIDENCES_DEG))]
+    #[arg(long, value_delimiter = ',', default_value = crate::list_default(&STARR_INCIDENCES_DEG))]
     incidence_deg: Vec<f64>,
     /// Detector half-angle in degrees.
     #[arg(long, default_value_t = STARR_APERTURE_DEG)]

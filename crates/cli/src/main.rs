@@ -158,14 +158,19 @@ fn die_quietly_on_closed_stdout() {
     }
 }
 
-/// `values` as the one default of an argument that takes a comma-separated list
-/// (`value_delimiter = ','`), e.g. "20,45,60,70". clap splits it as it splits what a user types;
-/// `default_values_t` would show the list joined by spaces ("20 45 60 70"), which the argument
-/// does not accept from a user who copies it. Made once per argument as the command is built
-/// (clap keeps a default for the life of the process).
-fn comma_list<T: std::fmt::Display>(values: &[T]) -> &'static str {
+/// `values` as a list flag takes them, comma-separated: "20,45,60,70".
+pub(crate) fn comma_list<T: std::fmt::Display>(values: &[T]) -> String {
     let text: Vec<String> = values.iter().map(T::to_string).collect();
-    Box::leak(text.join(",").into_boxed_str())
+    text.join(",")
+}
+
+/// [`comma_list`] as the one default of an argument that takes a list (`value_delimiter =
+/// ','`). clap splits it as it splits what a user types; `default_values_t` would show the list
+/// joined by spaces ("20 45 60 70"), which the argument does not accept from a user who copies
+/// it. Made once per argument as the command is built (clap keeps a default for the life of the
+/// process).
+fn list_default<T: std::fmt::Display>(values: &[T]) -> &'static str {
+    Box::leak(comma_list(values).into_boxed_str())
 }
 
 #[cfg(test)]

@@ -518,20 +518,11 @@ fn study_section(out: &StudyOutputs, config: &StudyConfig, plan: &Plan, seconds:
     });
     blocks.push(Block::Code(format!(
         "gonio study --sq-nm {} --corr-um {} --size {} --dx-um {} --wavelength-nm {} -o study",
-        plan.sq_nm
-            .iter()
-            .map(|v| v.to_string())
-            .collect::<Vec<_>>()
-            .join(","),
+        crate::comma_list(&plan.sq_nm),
         gonio_surface::synth::EPOXY_CORR_LENGTH_M * 1e6,
         plan.size,
         plan.dx * 1e6,
-        config
-            .wavelengths_nm
-            .iter()
-            .map(|v| v.to_string())
-            .collect::<Vec<_>>()
-            .join(","),
+        crate::comma_list(&config.wavelengths_nm),
     )));
     for (path, caption) in &out.plots {
         blocks.push(Block::Image {
