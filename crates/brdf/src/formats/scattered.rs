@@ -88,19 +88,26 @@ pub struct ScatteredFit {
     cells: Cells,
 }
 
-/// The samples sorted into a grid of cells over the first two coordinates `(u, t)`, so that a
-/// query visits only the samples of the cells within the kernel's reach instead of all of them
-/// (the kernel is cut at 3.5 bandwidths: a sample farther than that in `u` or `t` weighs 0). The
-/// samples a query visits are taken in their own order, as a scan of all of them would, so the
-/// sums, and so every fitted value, are the same to the bit.
+/// The samples sorted into a grid of cells over the first two coordinates `(u, t)`, and within
+/// each cell by the third, `s cos p`, so that a query visits only the samples of the cells
+/// within the kernel's reach, and of those only the ones within its reach in `s cos p`, instead
+/// of all of them (the kernel is cut at 3.5 bandwidths: a sample farther than that in any
+/// coordinate weighs 0). The third coordinate matters: its bandwidths are ten times narrower
+/// than a cell, so most samples of the cells near a query lie outside the kernel in it, and
+/// testing them was most of an import's time. The samples a query visits are taken in their own
+/// order, as a scan of all of them would, so the sums, and so every fitted value, are the same
+/// to the bit.
 struct Cells {
     /// The grid's lower corner in `u` and `t`.
     origin: [f64; 2],
     /// Cells along `u` and `t`.
     count: [usize; 2],
-    /// `samples[start[c]..start[c + 1]]`: the samples in cell `c` (`u` index slowest).
+    /// `samples[start[c]..start[c + 1]]`: the samples in cell `c` (`u` index slowest), in
+    /// increasing `s cos p`.
     start: Vec<usize>,
     samples: Vec<usize>,
+    /// `keys[i]`: the `s cos p` of `samples[i]`.
+    keys: Vec<f64>,
 }
 
 impl Cells {
@@ -120,6 +127,7 @@ impl Cells {
             count,
             start: Vec::new(),
             samples: Vec::new(),
+            keys: Vec::new(),
         };
         let cell_of: Vec<usize> = points
             .iter()
@@ -138,6 +146,11 @@ impl Cells {
             cells.samples[next[c]] = j;
             next[c] += 1;
         }
+        for c in 0..count[0] * count[1] {
+            cells.samples[cells.start[c]..cells.start[c + 1]]
+                .sort_by(|&i, &j| points[i][2].total_cmp(&points[j][2]));
+        }
+        cells.keys = cells.samples.iter().map(|&j| points[j][2]).collect();
         cells
     }
 
@@ -146,18 +159,34 @@ impl Cells {
         (((v - self.origin[k]) / Self::SIZE[k]).floor().max(0.0) as usize).min(self.count[k] - 1)
     }
 
+    /// The runs of `samples` (ranges of indices into it) that hold every sample which may lie
+    /// within the kernel of bandwidths `bw` about `x`: one run per cell within reach in `u` and
+    /// `t`, cut to the samples within reach in `s cos p`.
+    fn runs(&self, x: &[f64; DIM], bw: &Bandwidths) -> impl Iterator<Item = (usize, usize)> {
+        // 3.5 bandwidths, widened by a part in a million against rounding at the boundary.
+        let reach = [0, 1, 2].map(|k| 3.5 * bw[k] * (1.0 + 1e-6));
+        let [u0, u1] = [x[0] - reach[0], x[0] + reach[0]].map(|v| self.index(0, v));
+        let [t0, t1] = [x[1] - reach[1], x[1] + reach[1]].map(|v| self.index(1, v));
+        let (lo, hi) = (x[2] - reach[2], x[2] + reach[2]);
+        (u0..=u1)
+            .flat_map(move |iu| (iu * self.count[1] + t0)..=(iu * self.count[1] + t1))
+            .map(move |c| {
+                let (a, b) = (self.start[c], self.start[c + 1]);
+                let keys = &self.keys[a..b];
+                (
+                    a + keys.partition_point(|&k| k < lo),
+                    a + keys.partition_point(|&k| k <= hi),
+                )
+            })
+    }
+
     /// Calls `visit` with every sample that may lie within the kernel of bandwidths `bw` about
     /// `x`, in increasing order (a superset of those with nonzero weight).
     fn near(&self, x: &[f64; DIM], bw: &Bandwidths, mut visit: impl FnMut(usize)) {
-        // 3.5 bandwidths, widened by a part in a million against rounding at the boundary.
-        let reach = [0, 1].map(|k| 3.5 * bw[k] * (1.0 + 1e-6));
-        let [u0, u1] = [x[0] - reach[0], x[0] + reach[0]].map(|v| self.index(0, v));
-        let [t0, t1] = [x[1] - reach[1], x[1] + reach[1]].map(|v| self.index(1, v));
         let n = self.samples.len();
         let mut marked = vec![0u64; n.div_ceil(64)];
-        for iu in u0..=u1 {
-            let row = iu * self.count[1];
-            for &j in &self.samples[self.start[row + t0]..self.start[row + t1 + 1]] {
+        for (first, last) in self.runs(x, bw) {
+            for &j in &self.samples[first..last] {
                 marked[j / 64] |= 1 << (j % 64);
             }
         }
@@ -165,6 +194,18 @@ impl Cells {
             while bits != 0 {
                 visit(w * 64 + bits.trailing_zeros() as usize);
                 bits &= bits - 1;
+            }
+        }
+    }
+
+    /// Calls `visit` with the samples that may lie within the kernel of bandwidths `bw` about
+    /// `x`, in no particular order, until it returns true.
+    fn any_near(&self, x: &[f64; DIM], bw: &Bandwidths, mut visit: impl FnMut(usize) -> bool) {
+        for (first, last) in self.runs(x, bw) {
+            for &j in &self.samples[first..last] {
+                if visit(j) {
+                    return;
+                }
             }
         }
     }
@@ -202,15 +243,31 @@ fn coordinates_of(a: &HalfDiff, delta: f64) -> [f64; DIM] {
 /// the instrument's circular aperture is measured as the aperture's round image.
 pub const ROUND_CORE: f64 = 2.0 * PI / 180.0;
 
-/// Gaussian kernel weight, cut at 3.5 bandwidths.
+/// The squared kernel distance `Σ ((x_k - y_k) / h_k)²` between two points.
 #[inline]
-fn kernel(x: &[f64; DIM], y: &[f64; DIM], bw: &Bandwidths) -> f64 {
+fn distance2(x: &[f64; DIM], y: &[f64; DIM], bw: &Bandwidths) -> f64 {
     let mut q = 0.0;
     for k in 0..DIM {
         let d = (x[k] - y[k]) / bw[k.min(2)];
         q += d * d;
     }
-    if q > 12.25 { 0.0 } else { (-0.5 * q).exp() }
+    q
+}
+
+/// The kernel's cut-off: 3.5 bandwidths, squared.
+const CUT2: f64 = 12.25;
+
+/// Gaussian kernel weight, cut at 3.5 bandwidths.
+#[inline]
+fn kernel(x: &[f64; DIM], y: &[f64; DIM], bw: &Bandwidths) -> f64 {
+    let q = distance2(x, y, bw);
+    if q > CUT2 { 0.0 } else { (-0.5 * q).exp() }
+}
+
+/// Whether `y` is within the kernel's reach of `x` (its weight is nonzero).
+#[inline]
+fn within(x: &[f64; DIM], y: &[f64; DIM], bw: &Bandwidths) -> bool {
+    distance2(x, y, bw) <= CUT2
 }
 
 impl ScatteredFit {
@@ -340,6 +397,12 @@ impl ScatteredFit {
 
     /// Local linear regression at `x` of the per-sample vectors `z(j)`, leaving out sample
     /// `skip`: the weight sum of the samples that count, `None` when no sample is near.
+    ///
+    /// The fitted value is the plane's intercept `b0 = e0ᵀ A⁻¹ Σ_j w_j d_j z_j`, with `A` the
+    /// normal matrix `Σ_j w_j d_j d_jᵀ` (plus the ridge) and `d_j = (1, (y_j - x)/h)`. `A` is
+    /// the same for every channel, so `b0 = Σ_j w_j (g·d_j) z_j` with `g = A⁻¹ e0` (`A` is
+    /// symmetric): one weight per sample, found once, instead of five right-hand sides per
+    /// channel carried through the elimination. The intercept is the same up to rounding.
     fn local_linear<'a>(
         &self,
         x: &[f64; DIM],
@@ -348,16 +411,11 @@ impl ScatteredFit {
         z: impl Fn(usize) -> &'a [f64],
         out: &mut [f64],
     ) -> Option<f64> {
-        let m = out.len();
-        // Normal equations of z ≈ b0 + b·(y - x)/bw, accumulated as a 5×5 matrix and 5×m right
-        // sides.
+        // Normal equations of z ≈ b0 + b·(y - x)/bw, accumulated as a 5×5 matrix, and the
+        // samples that count with their weights and offsets.
         let mut a = [[0.0f64; DIM + 1]; DIM + 1];
-        let mut rhs = vec![0.0f64; (DIM + 1) * m];
         let mut wsum = 0.0;
-        // Range of the values of the well-weighted samples: the plane may not extrapolate
-        // beyond it.
-        let mut lo = vec![f64::INFINITY; m];
-        let mut hi = vec![f64::NEG_INFINITY; m];
+        let mut weighed: Vec<(usize, f64, [f64; DIM + 1])> = Vec::with_capacity(64);
         self.cells.near(x, bw, |j| {
             let y = &self.points[j];
             let w = kernel(x, y, bw);
@@ -377,15 +435,7 @@ impl ScatteredFit {
                     *x += w * dr * dc;
                 }
             }
-            for (k, zk) in z(j).iter().enumerate() {
-                for r in 0..=DIM {
-                    rhs[r * m + k] += w * d[r] * zk;
-                }
-                if w > 0.05 {
-                    lo[k] = lo[k].min(*zk);
-                    hi[k] = hi[k].max(*zk);
-                }
-            }
+            weighed.push((j, w, d));
         });
         if wsum < 1e-6 {
             return None;
@@ -394,22 +444,43 @@ impl ScatteredFit {
         for (r, row) in a.iter_mut().enumerate().skip(1) {
             row[r] += 0.05 * wsum;
         }
-        // The local constant (kernel-weighted mean), inside the samples' range by construction.
-        let mean: Vec<f64> = rhs[..m].iter().map(|v| v / wsum).collect();
-        if solve(a, &mut rhs, m).is_none() {
-            // Samples on a line or a point: no plane, the local constant.
-            out.copy_from_slice(&mean);
-            return Some(wsum);
+        let mut g = [1.0, 0.0, 0.0, 0.0, 0.0];
+        // Samples on a line or a point: no plane, the local constant.
+        let plane = solve(a, &mut g, 1).is_some();
+        // The local constant (kernel-weighted mean), inside the samples' range by construction,
+        // the intercept, and the range of the values of the well-weighted samples: the plane may
+        // not extrapolate beyond it.
+        let m = out.len();
+        let mut mean = vec![0.0f64; m];
+        let mut lo = vec![f64::INFINITY; m];
+        let mut hi = vec![f64::NEG_INFINITY; m];
+        out.fill(0.0);
+        for (j, w, d) in weighed {
+            let zj = z(j);
+            for (s, zk) in mean.iter_mut().zip(zj) {
+                *s += w * zk;
+            }
+            if plane {
+                let l = w * g.iter().zip(d).map(|(g, d)| g * d).sum::<f64>();
+                for (o, zk) in out.iter_mut().zip(zj) {
+                    *o += l * zk;
+                }
+            }
+            if w > 0.05 {
+                for ((lo, hi), &zk) in lo.iter_mut().zip(hi.iter_mut()).zip(zj) {
+                    *lo = lo.min(zk);
+                    *hi = hi.max(zk);
+                }
+            }
         }
         for (k, o) in out.iter_mut().enumerate() {
+            let mean = mean[k] / wsum;
             // Where the plane leaves the range of its well-weighted samples it is
             // extrapolating: the weighted mean is used instead of pinning the value to the
             // range's end (which made whole regions equal to the file's maximum).
-            *o = if lo[k] <= hi[k] && !(lo[k]..=hi[k]).contains(&rhs[k]) {
-                mean[k]
-            } else {
-                rhs[k]
-            };
+            if !plane || (lo[k] <= hi[k] && !(lo[k]..=hi[k]).contains(o)) {
+                *o = mean;
+            }
         }
         Some(wsum)
     }
@@ -433,12 +504,14 @@ impl ScatteredFit {
         let mut model = vec![0.0; nc];
         self.model.eval(wi, wo, &mut model);
         self.correction(x, out);
-        let cap = self.nearby_maximum(x);
-        for (((o, m), e), c) in out.iter_mut().zip(&model).zip(&self.eps).zip(cap) {
-            *o = soft_cap(((m + e) * o.exp() - e).max(0.0), c);
+        for ((o, m), e) in out.iter_mut().zip(&model).zip(&self.eps) {
+            *o = ((m + e) * o.exp() - e).max(0.0);
+        }
+        let cap = self.nearby_maximum(x, out);
+        for (o, c) in out.iter_mut().zip(cap) {
+            *o = soft_cap(*o, c);
         }
     }
-
     /// The smoothed log-ratio of data to model at `x` for prediction. Where no sample is within
     /// the kernel's reach it is widened (up to 8 times): beyond the measured angles the
     /// correction of the nearest data continues as a constant ratio, i.e. the table follows the
@@ -460,19 +533,34 @@ impl ScatteredFit {
     }
 
     /// Per channel, the largest measured value among the samples within twice the kernel's
-    /// reach of `x` (the file's largest where none is): the data's own bound on the peak there.
-    fn nearby_maximum(&self, x: &[f64; DIM]) -> Vec<f64> {
+    /// reach of `x` (the file's largest where none is): the data's own bound on the peak there,
+    /// as far as [`soft_cap`] of the uncapped values `v` needs it. The scan stops once every
+    /// channel's running maximum `m` leaves its value unchanged (`v` is 0, or `m > 0` and
+    /// `v / m` at most the knee): the maximum only grows, and a larger cap leaves such a value
+    /// unchanged too (rounded division is monotonic in the divisor), so the capped values are
+    /// those of the full scan, to the bit. Most of the table is well below the data near it, and
+    /// the scan ends at the first few samples instead of visiting the hundreds within reach.
+    fn nearby_maximum(&self, x: &[f64; DIM], v: &[f64]) -> Vec<f64> {
         let nc = self.nc;
         let wide = self.bw.map(|b| 2.0 * b);
         let mut cap = vec![0.0f64; nc];
+        let settled = |cap: &[f64]| {
+            v.iter()
+                .zip(cap)
+                .all(|(&v, &m)| v == 0.0 || (m > 0.0 && v / m <= SOFT_CAP_KNEE))
+        };
         let mut any = false;
-        self.cells.near(x, &wide, |j| {
-            if kernel(x, &self.points[j], &wide) > 0.0 {
-                any = true;
-                for (c, v) in cap.iter_mut().zip(&self.values[j * nc..(j + 1) * nc]) {
-                    *c = c.max(*v);
+        self.cells.any_near(x, &wide, |j| {
+            if !within(x, &self.points[j], &wide) {
+                return false;
+            }
+            any = true;
+            for (c, &s) in cap.iter_mut().zip(&self.values[j * nc..(j + 1) * nc]) {
+                if s > *c {
+                    *c = s;
                 }
             }
+            settled(&cap)
         });
         if any { cap } else { self.largest.clone() }
     }
@@ -580,7 +668,7 @@ pub fn import_samples(
 /// `tanh` toward the cap (slope 1 at the knee), so a capped peak keeps a rounded top instead of
 /// a flat box and never exceeds the data's bound.
 fn soft_cap(v: f64, cap: f64) -> f64 {
-    const KNEE: f64 = 0.9;
+    const KNEE: f64 = SOFT_CAP_KNEE;
     if cap <= 0.0 {
         return 0.0;
     }
@@ -591,6 +679,9 @@ fn soft_cap(v: f64, cap: f64) -> f64 {
         cap * (KNEE + (1.0 - KNEE) * ((x - KNEE) / (1.0 - KNEE)).tanh())
     }
 }
+
+/// The fraction of the cap up to which [`soft_cap`] leaves a value unchanged.
+const SOFT_CAP_KNEE: f64 = 0.9;
 
 /// Relative residuals of any prediction against samples, over the (sample, channel) values of
 /// at least `floor_per_sr` (below it measurements are at their noise level).
@@ -749,8 +840,8 @@ mod tests {
         }
     }
 
-    /// The cells find every sample the kernel weighs, in increasing order, for narrow and wide
-    /// kernels and for queries inside, at the edge of and beyond the samples (a scan of all
+    /// The cells find every sample the kernel weighs, in increasing order (and in any order,
+    /// without repeats, for the cap's scan), for narrow and wide kernels and for queries inside, at the edge of and beyond the samples (a scan of all
     /// samples is the reference).
     #[test]
     fn cells_find_every_weighted_sample_in_order() {
@@ -763,7 +854,12 @@ mod tests {
         let cells = Cells::new(&points);
         for bw in [[0.02, 0.05, 0.002], [0.08, 0.2, 0.02], [0.64, 1.6, 0.16]] {
             for _ in 0..200 {
-                let x = [1.4 * next() - 0.2, 1.4 * next() - 0.2, 0.0, 0.05];
+                let x = [
+                    1.4 * next() - 0.2,
+                    1.4 * next() - 0.2,
+                    0.14 * next() - 0.07,
+                    0.12 * next() - 0.01,
+                ];
                 let scan: Vec<usize> = (0..points.len())
                     .filter(|&j| kernel(&x, &points[j], &bw) > 0.0)
                     .collect();
@@ -774,6 +870,15 @@ mod tests {
                     }
                 });
                 assert_eq!(found, scan, "x {x:?}, bandwidths {bw:?}");
+                let mut any = Vec::new();
+                cells.any_near(&x, &bw, |j| {
+                    if within(&x, &points[j], &bw) {
+                        any.push(j);
+                    }
+                    false
+                });
+                any.sort();
+                assert_eq!(any, scan, "x {x:?}, bandwidths {bw:?}");
             }
         }
     }
