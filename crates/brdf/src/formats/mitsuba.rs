@@ -434,10 +434,10 @@ impl TensorBrdf {
         } else {
             1.0
         };
-        let lambdas = self.values.param_values(2);
-        for (c, o) in out.iter_mut().enumerate().take(self.channels) {
-            let v = self.values.eval(s, &[params[0], params[1], lambdas[c]]);
-            *o = (v * scale).max(0.0) / wi.z;
+        let out = &mut out[..self.channels];
+        self.values.eval_at_last_nodes(s, &params, out);
+        for o in out {
+            *o = (*o * scale).max(0.0) / wi.z;
         }
     }
 }

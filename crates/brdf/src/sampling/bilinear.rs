@@ -167,14 +167,34 @@ impl Marginal2D {
 
     /// The interpolant (a warp: the normalised density on the unit square) at `pos`.
     pub fn eval(&self, pos: [f64; 2], param: &[f64]) -> f64 {
-        let wt = self.weights(param);
+        self.eval_weighted(pos, &self.weights(param))
+    }
+
+    /// [`Self::eval`] at `pos` for the leading parameters `head` (all but the last) at every
+    /// node of the last parameter: `out[c]` is `eval(pos, [head.., nodes[c]])` to the bit (at a
+    /// node the interpolation in the last parameter takes that node's slice with weight one),
+    /// with the leading parameters' weights found once instead of once per node. A spectral
+    /// table's wavelengths are such nodes.
+    pub fn eval_at_last_nodes(&self, pos: [f64; 2], head: &[f64], out: &mut [f64]) {
+        let last = self.params.len() - 1;
+        let mut param = head.to_vec();
+        param.push(self.params[last][0]);
+        let mut wt = self.weights(&param);
+        let base = wt.offset;
+        for (c, o) in out.iter_mut().enumerate().take(self.params[last].len()) {
+            wt.offset = base + self.strides[last] * c;
+            *o = self.eval_weighted(pos, &wt);
+        }
+    }
+
+    fn eval_weighted(&self, pos: [f64; 2], wt: &Weights) -> f64 {
         let n = self.nx * self.ny;
         let x = pos[0].clamp(0.0, 1.0) * (self.nx - 1) as f64;
         let y = pos[1].clamp(0.0, 1.0) * (self.ny - 1) as f64;
         let (ix, iy) = ((x as usize).min(self.nx - 2), (y as usize).min(self.ny - 2));
         let (tx, ty) = (x - ix as f64, y - iy as f64);
         let at =
-            |dx: usize, dy: usize| self.lookup(&self.data, n, (iy + dy) * self.nx + ix + dx, &wt);
+            |dx: usize, dy: usize| self.lookup(&self.data, n, (iy + dy) * self.nx + ix + dx, wt);
         let v = (1.0 - ty) * ((1.0 - tx) * at(0, 0) + tx * at(1, 0))
             + ty * ((1.0 - tx) * at(0, 1) + tx * at(1, 1));
         if self.warp { v * self.patch_scale() } else { v }
@@ -307,5 +327,30 @@ mod tests {
         let m = Marginal2D::new(&data, 4, 3, vec![], false).unwrap();
         assert_eq!(m.eval([1.0 / 3.0, 0.5], &[]), 5.0);
         assert!((m.eval([0.5, 0.25], &[]) - (1.5 + 4.0 * 0.5)).abs() < 1e-12);
+    }
+
+    /// Evaluating at every node of the last parameter at once gives each node's `eval` to the
+    /// bit, between and at the leading parameter's nodes (a tensor file's values: two angles and
+    /// the wavelengths, here one angle and four uneven wavelengths on a 3 × 4 grid).
+    #[test]
+    fn every_node_of_the_last_parameter_at_once() {
+        let lambdas = vec![400.0, 430.0, 550.0, 700.0];
+        let data: Vec<f32> = (0..2 * 4 * 12)
+            .map(|i| ((i * 37) % 11) as f32 * 0.3 + 0.1)
+            .collect();
+        let m = Marginal2D::new(&data, 3, 4, vec![vec![0.0, 1.0], lambdas.clone()], false).unwrap();
+        for p in [0.0, 0.37, 1.0] {
+            for pos in [[0.0, 0.0], [0.3, 0.8], [1.0, 0.45]] {
+                let mut all = [0.0; 4];
+                m.eval_at_last_nodes(pos, &[p], &mut all);
+                for (l, got) in lambdas.iter().zip(all) {
+                    assert_eq!(
+                        got.to_bits(),
+                        m.eval(pos, &[p, *l]).to_bits(),
+                        "{p} {pos:?} {l}"
+                    );
+                }
+            }
+        }
     }
 }

@@ -5,10 +5,9 @@
 //! Data: tests/data/{cayman,krylon_blue}.astm (Cornell University Program of Computer Graphics
 //! reflectance data).
 
-use crate::common::{astm_table, cayman_path, krylon_blue_path};
+use crate::common::{astm_fit, astm_table, cayman_path, krylon_blue_path};
 use glam::DVec3;
 use gonio_brdf::formats::astm::AstmFile;
-use gonio_brdf::formats::scattered::ScatteredFit;
 use gonio_brdf::table::BrdfTable;
 use gonio_brdf::table::coords::{HalfDiff, dir};
 
@@ -201,7 +200,7 @@ fn no_phantom_peak() {
         let mx = file_max(file);
         let at_max = table.values().iter().filter(|&&v| v == mx as f32).count();
         let top = table.values().iter().copied().fold(0.0f32, f32::max) as f64;
-        let fit = ScatteredFit::new(&file.samples, None).unwrap();
+        let fit = astm_fit(&path);
         let rms = fit.residual(&file.samples).rms_relative;
         let model = fit.model();
         let lobes = |b: &gonio_brdf::formats::lobe_model::BandModel| {
@@ -257,7 +256,7 @@ mod slow {
         // Each band is reproduced at the measured points to its own residual, fitted separately: a
         // ratio of two bands may move by the sum of their median residuals beyond the measured
         // range (and by 1e-6 for the f32 cells).
-        let fit = ScatteredFit::new(&file.samples, None).unwrap();
+        let fit = astm_fit(&krylon_blue_path());
         let per_band = fit.residual_per_band(&file.samples);
         let slack = per_band[c440] + per_band[c700] + 1e-6;
         println!(

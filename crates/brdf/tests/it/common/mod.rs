@@ -36,7 +36,7 @@ fn fit_and_table(file: &AstmFile, samples: &[Sample]) -> (ScatteredFit, BrdfTabl
 }
 
 /// The Cayman file and the spectral table of the fit of all its geometries.
-pub fn cayman_table() -> &'static (AstmFile, BrdfTable) {
+pub fn cayman_table() -> (&'static AstmFile, &'static BrdfTable) {
     astm_table(&cayman_path())
 }
 
@@ -68,18 +68,23 @@ pub fn krylon_blue_path() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/krylon_blue.astm")
 }
 
-/// An ASTM file of `tests/data` (Cayman or Krylon blue) and the spectral table of the fit of
-/// all its geometries, made once per test run: the tests that read a paint's table share it
-/// (the fit takes seconds, and six tests read each paint's).
-pub fn astm_table(path: &Path) -> &'static (AstmFile, BrdfTable) {
-    fn import(path: &Path) -> (AstmFile, BrdfTable) {
+/// An ASTM file of `tests/data` (Cayman or Krylon blue), the fit of all its geometries and the
+/// fit's spectral table, made once per test run: the tests that read a paint's fit or table
+/// share it (the fit takes seconds, and seven tests read each paint's).
+struct Imported {
+    file: AstmFile,
+    fit: ScatteredFit,
+    table: BrdfTable,
+}
+
+fn imported(path: &Path) -> &'static Imported {
+    fn import(path: &Path) -> Imported {
         let file = astm::read(path).unwrap();
-        let (_, table) = fit_and_table(&file, &file.samples);
-        (file, table)
+        let (fit, table) = fit_and_table(&file, &file.samples);
+        Imported { file, fit, table }
     }
-    static CAYMAN: LazyLock<(AstmFile, BrdfTable)> = LazyLock::new(|| import(&cayman_path()));
-    static KRYLON_BLUE: LazyLock<(AstmFile, BrdfTable)> =
-        LazyLock::new(|| import(&krylon_blue_path()));
+    static CAYMAN: LazyLock<Imported> = LazyLock::new(|| import(&cayman_path()));
+    static KRYLON_BLUE: LazyLock<Imported> = LazyLock::new(|| import(&krylon_blue_path()));
     if path == cayman_path() {
         &CAYMAN
     } else if path == krylon_blue_path() {
@@ -87,6 +92,18 @@ pub fn astm_table(path: &Path) -> &'static (AstmFile, BrdfTable) {
     } else {
         panic!("{}: not a paint of tests/data", path.display())
     }
+}
+
+/// A paint of `tests/data` (Cayman or Krylon blue) and the spectral table of the fit of all its
+/// geometries (shared: [`Imported`]).
+pub fn astm_table(path: &Path) -> (&'static AstmFile, &'static BrdfTable) {
+    let paint = imported(path);
+    (&paint.file, &paint.table)
+}
+
+/// The fit of all the geometries of a paint of `tests/data` (shared: [`Imported`]).
+pub fn astm_fit(path: &Path) -> &'static ScatteredFit {
+    &imported(path).fit
 }
 
 /// An oracle (an independent implementation run by a test: Mitsuba 3, Radiance) is missing:
