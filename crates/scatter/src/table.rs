@@ -42,7 +42,7 @@ use crate::error::{Result, ScatterError};
 use crate::kirchhoff::Kirchhoff;
 use crate::ray::{HemisphereGrid, HemisphereTable, RayEngine};
 use glam::DVec3;
-use gonio_brdf::table::coords::{dir, theta_of, turn_about_z};
+use gonio_brdf::table::coords::{TurnAboutZ, dir, theta_of, turn_about_z};
 use gonio_brdf::table::{BrdfTable, Channels, Provenance, Resolution, TableBuilder};
 use gonio_io::Progress;
 use rayon::prelude::*;
@@ -345,6 +345,7 @@ fn ray_deposits(
     normals: Option<&[(f64, f64)]>,
 ) -> Result<Vec<Vec<f64>>> {
     let source = turn_about_z(wi, turn);
+    let back = TurnAboutZ::new(-turn);
     engine.fold_rays(
         source,
         || vec![0.0; grid.len()],
@@ -353,12 +354,9 @@ fn ray_deposits(
                 grid.deposit(part, rays.iter().map(|r| (coords[r.facet], r.share)));
             }
             _ => {
-                let coords = rays.iter().map(|r| {
-                    (
-                        grid.coords(turn_about_z(source + r.direction, -turn)),
-                        r.share,
-                    )
-                });
+                let coords = rays
+                    .iter()
+                    .map(|r| (grid.coords(back.apply(source + r.direction)), r.share));
                 grid.deposit(part, coords);
             }
         },

@@ -28,12 +28,20 @@ pub struct HalfDiff {
 }
 
 fn rot_z(v: DVec3, a: f64) -> DVec3 {
-    let (s, c) = a.sin_cos();
-    DVec3::new(v.x * c - v.y * s, v.x * s + v.y * c, v.z)
+    rot_z_by(v, a.sin_cos())
 }
 
 fn rot_y(v: DVec3, a: f64) -> DVec3 {
-    let (s, c) = a.sin_cos();
+    rot_y_by(v, a.sin_cos())
+}
+
+/// `v` turned about z by the angle of sine `s` and cosine `c`.
+fn rot_z_by(v: DVec3, (s, c): (f64, f64)) -> DVec3 {
+    DVec3::new(v.x * c - v.y * s, v.x * s + v.y * c, v.z)
+}
+
+/// `v` turned about y by the angle of sine `s` and cosine `c`.
+fn rot_y_by(v: DVec3, (s, c): (f64, f64)) -> DVec3 {
     DVec3::new(v.x * c + v.z * s, v.y, -v.x * s + v.z * c)
 }
 
@@ -62,13 +70,21 @@ impl HalfDiff {
 
     /// The pair of directions `(wi, wo)` with these angles (inverse of [`HalfDiff::from_dirs`]).
     pub fn to_dirs(&self) -> (DVec3, DVec3) {
-        let (sh, ch) = self.theta_h.sin_cos();
-        let (sph, cph) = self.phi_h.sin_cos();
+        self.to_dirs_with([
+            self.theta_h.sin_cos(),
+            self.phi_h.sin_cos(),
+            self.theta_d.sin_cos(),
+            self.phi_d.sin_cos(),
+        ])
+    }
+
+    /// [`HalfDiff::to_dirs`] from the `(sine, cosine)` of `theta_h`, `phi_h`, `theta_d` and
+    /// `phi_d`, found once for many pairs (a table's nodes share them along each axis).
+    pub fn to_dirs_with(&self, trig: [(f64, f64); 4]) -> (DVec3, DVec3) {
+        let [(sh, ch), (sph, cph), (sd, cd), (spd, cpd)] = trig;
         let h = DVec3::new(sh * cph, sh * sph, ch);
-        let (sd, cd) = self.theta_d.sin_cos();
-        let (spd, cpd) = self.phi_d.sin_cos();
         let d = DVec3::new(sd * cpd, sd * spd, cd);
-        let wi = rot_z(rot_y(d, self.theta_h), self.phi_h);
+        let wi = rot_z_by(rot_y_by(d, trig[0]), trig[1]);
         let wo = 2.0 * wi.dot(h) * h - wi;
         (wi, wo)
     }
@@ -259,8 +275,30 @@ pub fn dir(theta: f64, phi: f64) -> DVec3 {
 
 /// `v` turned about the normal (z) by `angle` (radians, counter-clockwise seen from above).
 pub fn turn_about_z(v: DVec3, angle: f64) -> DVec3 {
-    let (s, c) = angle.sin_cos();
-    DVec3::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z)
+    TurnAboutZ::new(angle).apply(v)
+}
+
+/// A turn about the normal (z) by a fixed angle, its sine and cosine found once, for turning
+/// many vectors: [`TurnAboutZ::apply`] is [`turn_about_z`] to the bit.
+#[derive(Debug, Clone, Copy)]
+pub struct TurnAboutZ {
+    sin: f64,
+    cos: f64,
+}
+
+impl TurnAboutZ {
+    /// The turn by `angle` (radians, counter-clockwise seen from above).
+    pub fn new(angle: f64) -> TurnAboutZ {
+        let (sin, cos) = angle.sin_cos();
+        TurnAboutZ { sin, cos }
+    }
+
+    /// `v` turned.
+    #[inline]
+    pub fn apply(&self, v: DVec3) -> DVec3 {
+        let (s, c) = (self.sin, self.cos);
+        DVec3::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z)
+    }
 }
 
 #[cfg(test)]

@@ -98,23 +98,33 @@ impl SliceGrid {
 
     /// The nodes around `(u, phi)` (phi relative, already folded) with their tent weights.
     fn stencil(&self, u: f64, phi: f64) -> Stencil {
-        let x = u * self.n_u_f.0;
-        let last = self.n_u - 1;
-        let (j0, t) = if x.is_nan() || x >= self.n_u_f.1 {
-            (last, 0.0)
-        } else {
-            // 0 <= x < n_u: truncation is the floor (and no call to libm's floor).
-            let j = x as u32;
-            (j as usize, x - f64::from(j))
-        };
+        let (j0, t) = self.ring_position(u);
         let [a, b] = self.ring_weights(j0, phi);
-        let [c, d] = self.ring_weights((j0 + 1).min(last), phi);
+        let [c, d] = self.ring_weights(self.outer_ring(j0), phi);
         [
             (a.0, a.1 * (1.0 - t)),
             (b.0, b.1 * (1.0 - t)),
             (c.0, c.1 * t),
             (d.0, d.1 * t),
         ]
+    }
+
+    /// The ring `j0` at or inside `u` and the tent weight `t` of the ring outside it (`1 - t`
+    /// is ring `j0`'s); beyond the last ring all weight is the last ring's.
+    fn ring_position(&self, u: f64) -> (usize, f64) {
+        let x = u * self.n_u_f.0;
+        if x.is_nan() || x >= self.n_u_f.1 {
+            (self.n_u - 1, 0.0)
+        } else {
+            // 0 <= x < n_u: truncation is the floor (and no call to libm's floor).
+            let j = x as u32;
+            (j as usize, x - f64::from(j))
+        }
+    }
+
+    /// The ring outside ring `j` (the last ring is its own).
+    fn outer_ring(&self, j: usize) -> usize {
+        (j + 1).min(self.n_u - 1)
     }
 
     /// The two azimuth nodes of ring `j` around `phi` (relative: `[0, π]` folded, `[0, 2π]`
@@ -161,6 +171,11 @@ impl SliceGrid {
     /// midpoint quadrature over `(u, phi)` of the half vector (`dwh = sin(theta_h) π u du dphi`).
     /// The quadrature rows between two rings touch only those rings' nodes; each interval of
     /// rows is one parallel work item, added in order (the same sums on any thread count).
+    /// Within an interval a point's tent weight is the product of its weight in `u` (the
+    /// same for the whole row) and its weight in azimuth (the same for the whole column), so
+    /// each column's measure is summed over the rows with the `u` weights of the two rings
+    /// first and spread over the azimuth nodes once per column: two additions per point where
+    /// a stencil per point was most of a table's quadrature.
     pub fn measures(&self, wi: DVec3) -> Vec<f64> {
         let n_phi_max = self.ring_len.iter().copied().max().unwrap_or(1);
         let (span, fold) = if self.folded { (PI, 2.0) } else { (TAU, 1.0) };
@@ -173,13 +188,17 @@ impl SliceGrid {
         let partials: Vec<Vec<f64>> = (0..self.n_u)
             .into_par_iter()
             .map(|ring| {
-                let mut part = vec![0.0; self.len];
+                // Per column, the measure carried by the ring itself and by the one outside.
+                let mut inner = vec![0.0; n_phi];
+                let mut outer = vec![0.0; n_phi];
                 for iu in ring * MEASURE_U_STEPS..(ring + 1) * MEASURE_U_STEPS {
                     let u = (iu as f64 + 0.5) * du;
+                    let (j0, t) = self.ring_position(u);
+                    debug_assert_eq!(j0, ring);
                     let theta_h = FRAC_PI_2 * u * u;
                     let (st, ct) = theta_h.sin_cos();
                     let d_omega_h = st * PI * u * du * dphi;
-                    for (ip, &(sp, cp)) in azimuths.iter().enumerate() {
+                    for ((&(sp, cp), i), o) in azimuths.iter().zip(&mut inner).zip(&mut outer) {
                         let h = DVec3::new(st * cp, st * sp, ct);
                         let c = wi.dot(h);
                         let wo_z = 2.0 * c * h.z - wi.z;
@@ -187,10 +206,18 @@ impl SliceGrid {
                             continue;
                         }
                         let m = fold * wo_z * 4.0 * c * d_omega_h;
-                        let phi = (ip as f64 + 0.5) * dphi;
-                        for (node, w) in self.stencil(u, phi) {
-                            part[node] += w * m;
-                        }
+                        *i += (1.0 - t) * m;
+                        *o += t * m;
+                    }
+                }
+                let mut part = vec![0.0; self.len];
+                for (ip, (i, o)) in inner.into_iter().zip(outer).enumerate() {
+                    let phi = (ip as f64 + 0.5) * dphi;
+                    for (node, w) in self.ring_weights(ring, phi) {
+                        part[node] += w * i;
+                    }
+                    for (node, w) in self.ring_weights(self.outer_ring(ring), phi) {
+                        part[node] += w * o;
                     }
                 }
                 part
@@ -380,6 +407,47 @@ mod tests {
                     (total / PI - 1.0).abs() < tol,
                     "{ti}°, folded {folded}: {total}"
                 );
+            }
+        }
+    }
+
+    /// Each node's measure is the quadrature sum of its stencil weight over the points, as a
+    /// stencil per point sums it (the summation order differs: within a few parts in 1e13 of
+    /// the largest measure), in folded and periodic grids, at normal and oblique incidence.
+    #[test]
+    fn measures_are_the_stencils_sums() {
+        for folded in [true, false] {
+            let g = SliceGrid::new(12, 20, folded);
+            let n_phi = MEASURE_PHI_STEPS * g.ring_len.iter().copied().max().unwrap();
+            let n_u = MEASURE_U_STEPS * g.n_u;
+            let (span, fold) = if folded { (PI, 2.0) } else { (TAU, 1.0) };
+            let (du, dphi) = (1.0 / n_u as f64, span / n_phi as f64);
+            for (ti, pi) in [(0.0f64, 0.0f64), (35.0, 0.0), (60.0, 100.0)] {
+                let wi = dir(ti.to_radians(), pi.to_radians());
+                let mut want = vec![0.0; g.len()];
+                for iu in 0..n_u {
+                    let u = (iu as f64 + 0.5) * du;
+                    for ip in 0..n_phi {
+                        let phi = (ip as f64 + 0.5) * dphi;
+                        let h = dir(FRAC_PI_2 * u * u, phi);
+                        let (c, st) = (wi.dot(h), (FRAC_PI_2 * u * u).sin());
+                        let wo_z = 2.0 * c * h.z - wi.z;
+                        if c > 0.0 && wo_z > 0.0 {
+                            let m = fold * wo_z * 4.0 * c * st * PI * u * du * dphi;
+                            for (node, w) in g.stencil(u, phi) {
+                                want[node] += w * m;
+                            }
+                        }
+                    }
+                }
+                let got = g.measures(wi);
+                let largest = want.iter().copied().fold(0.0, f64::max);
+                for (k, (a, b)) in got.iter().zip(&want).enumerate() {
+                    assert!(
+                        (a - b).abs() <= 1e-12 * largest,
+                        "{ti}°/{pi}°, folded {folded}, node {k}: {a} vs {b}"
+                    );
+                }
             }
         }
     }
