@@ -24,6 +24,7 @@ use gonio_brdf::bxdf::SpectralBrdf;
 use gonio_brdf::quadrature::gauss_legendre_on;
 use gonio_brdf::table::{BrdfTable, Channels};
 use gonio_color::{Illuminant, Lab, Observer, SpectralToXyz, Xyz, ciede2000, white};
+use rayon::prelude::*;
 use std::f64::consts::PI;
 use std::fmt;
 
@@ -224,7 +225,7 @@ pub fn read_spectral(
 /// Read a spectral BRDF given as `brdf(wo, wi, out)`, which writes `f(wo, wi)` in 1/sr at each
 /// of `wavelengths_nm` (nm, increasing) into `out`, at `geometries`.
 pub fn read(
-    brdf: &dyn Fn(DVec3, DVec3, &mut [f64]),
+    brdf: &(dyn Fn(DVec3, DVec3, &mut [f64]) + Sync),
     wavelengths_nm: &[f64],
     geometries: &[Geometry],
     settings: &Settings,
@@ -239,8 +240,9 @@ pub fn read(
         .map_err(|e| InstrumentError::Invalid(format!("wavelengths of the BRDF: {e}")))?;
     let white = white(settings.illuminant, settings.observer);
     let cone = Cone::new(a.to_radians());
+    // The geometries in parallel, each reading independent of the others and of the order.
     let readings = geometries
-        .iter()
+        .par_iter()
         .map(|&geometry| {
             geometry.check()?;
             let (wi, wo) = geometry.directions();
