@@ -24,10 +24,21 @@ pub struct Marginal2D {
     warp: bool,
 }
 
-/// Slice offset and, per parameter, the (lower weight, upper weight) of a parameter point.
+/// The slices that a parameter point interpolates between: `(slice, weight)` of each corner
+/// of its cell in the parameter grid with a nonzero weight, in corner order (bit k of the
+/// corner's number set for the upper node of parameter k), found once per point so that every
+/// lookup at the point is a short weighted sum.
 struct Weights {
-    offset: usize,
-    w: Vec<(f64, f64)>,
+    corners: Vec<(usize, f64)>,
+}
+
+impl Weights {
+    /// The same weights `by` slices further on.
+    fn shifted(&self, by: usize) -> Weights {
+        Weights {
+            corners: self.corners.iter().map(|&(s, w)| (s + by, w)).collect(),
+        }
+    }
 }
 
 /// Largest index i in [0, n - 2] with `pred(i)`, by bisection (Mitsuba's `find_interval`).
@@ -131,27 +142,30 @@ impl Marginal2D {
             w.push((1.0 - t, t));
             offset += self.strides[k] * i;
         }
-        Weights { offset, w }
+        let d = self.params.len();
+        let corners = (0..1usize << d)
+            .filter_map(|corner| {
+                let mut weight = 1.0;
+                let mut slice = offset;
+                for (k, &(lower, upper)) in w.iter().enumerate() {
+                    if corner >> k & 1 == 1 {
+                        weight *= upper;
+                        slice += self.strides[k];
+                    } else {
+                        weight *= lower;
+                    }
+                }
+                (weight != 0.0).then_some((slice, weight))
+            })
+            .collect();
+        Weights { corners }
     }
 
     /// Parameter-interpolated element `i` of a slice of `size` elements of `array`.
     fn lookup(&self, array: &[f64], size: usize, i: usize, wt: &Weights) -> f64 {
-        let d = self.params.len();
         let mut total = 0.0;
-        for corner in 0..1usize << d {
-            let mut w = 1.0;
-            let mut off = wt.offset;
-            for k in 0..d {
-                if corner >> k & 1 == 1 {
-                    w *= wt.w[k].1;
-                    off += self.strides[k];
-                } else {
-                    w *= wt.w[k].0;
-                }
-            }
-            if w != 0.0 {
-                total += w * array[off * size + i];
-            }
+        for &(slice, w) in &wt.corners {
+            total += w * array[slice * size + i];
         }
         total
     }
@@ -179,11 +193,9 @@ impl Marginal2D {
         let last = self.params.len() - 1;
         let mut param = head.to_vec();
         param.push(self.params[last][0]);
-        let mut wt = self.weights(&param);
-        let base = wt.offset;
+        let wt = self.weights(&param);
         for (c, o) in out.iter_mut().enumerate().take(self.params[last].len()) {
-            wt.offset = base + self.strides[last] * c;
-            *o = self.eval_weighted(pos, &wt);
+            *o = self.eval_weighted(pos, &wt.shifted(self.strides[last] * c));
         }
     }
 
