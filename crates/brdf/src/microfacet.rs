@@ -218,7 +218,9 @@ fn beckmann_visible_slope_11(cos_theta: f64, u: DVec2) -> DVec2 {
     let theta = cos_theta.acos();
     let fit = 1.0 + theta * (-0.876 + theta * (0.4265 - 0.0594 * theta));
     let (mut lo, mut hi) = (-ERFINV_MAX, cot_theta);
-    let mut x = erfinv(erf_cot - (1.0 + erf_cot) * (1.0 - target).powf(fit)).clamp(lo, hi);
+    // Jakob's fit is a first guess to a few per cent: erfinv's refinement to double precision
+    // would be wasted on it, the Newton steps below refine it.
+    let mut x = erfinv_estimate(erf_cot - (1.0 + erf_cot) * (1.0 - target).powf(fit)).clamp(lo, hi);
     for _ in 0..100 {
         let e = (-x * x).exp();
         let value = norm * (1.0 + libm::erf(x) + inv_sqrt_pi * tan_theta * e) - target;
@@ -250,6 +252,21 @@ const ERFINV_MAX: f64 = 5.9;
 /// the erfinv function", GPU Computing Gems, 2011) refined by two Newton steps on `libm::erf`
 /// to double precision. Saturates at ±5.9 (where `erf` rounds to ±1).
 pub fn erfinv(y: f64) -> f64 {
+    if y <= -1.0 || y >= 1.0 {
+        // Saturated.
+        return erfinv_estimate(y);
+    }
+    let mut x = erfinv_estimate(y);
+    for _ in 0..2 {
+        let err = libm::erf(x) - y;
+        x -= err / (2.0 / PI.sqrt() * (-x * x).exp());
+    }
+    x
+}
+
+/// Giles' approximation of [`erfinv`] alone (relative error about 1e-7): a starting point for
+/// a solver that refines it anyway.
+fn erfinv_estimate(y: f64) -> f64 {
     if y <= -1.0 {
         return -ERFINV_MAX;
     }
@@ -257,7 +274,7 @@ pub fn erfinv(y: f64) -> f64 {
         return ERFINV_MAX;
     }
     let w = -((1.0 - y) * (1.0 + y)).ln();
-    let mut x = if w < 5.0 {
+    if w < 5.0 {
         let w = w - 2.5;
         let mut p = 2.810_226_36e-08;
         for c in [
@@ -289,12 +306,7 @@ pub fn erfinv(y: f64) -> f64 {
             p = c + p * w;
         }
         p * y
-    };
-    for _ in 0..2 {
-        let err = libm::erf(x) - y;
-        x -= err / (2.0 / PI.sqrt() * (-x * x).exp());
     }
-    x
 }
 
 /// Beckmann distribution of normals `D(h)` in 1/sr (projected-area normalised:
