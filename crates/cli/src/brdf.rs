@@ -590,8 +590,11 @@ fn tabulate(a: TabulateArgs) -> Result<()> {
     } else {
         a.model.clone()
     };
-    let spec: ModelSpec = serde_json::from_str(&text)
-        .with_context(|| "--model: not a model description (see docs/brdf-models.md), e.g. '{\"model\":\"ward\",\"specular\":0.05,\"alpha\":0.1}'")?;
+    let spec = ModelSpec::from_json(&text).map_err(|e| {
+        anyhow::anyhow!(
+            "--model: {e}; e.g. '{{\"model\":\"ward\",\"specular\":0.05,\"alpha\":0.1}}'"
+        )
+    })?;
     let model = spec.build()?;
     let res = resolution(&a.resolution)?;
     let pb = spinner("tabulating");

@@ -244,11 +244,7 @@ pub fn tabulate(
     resolution: Vec<usize>,
     mono: bool,
 ) -> Result<Table> {
-    let spec: ModelSpec = serde_json::from_str(model_json).map_err(|e| {
-        invalid(format!(
-            "not a model description (docs/brdf-models.md): {e}"
-        ))
-    })?;
+    let spec = ModelSpec::from_json(model_json)?;
     let model = spec.build()?;
     let res = self::resolution(&resolution)?;
     let provenance = Provenance::new(model_json.trim(), "model");

@@ -38,6 +38,15 @@ pub struct SceneDesc {
     pub lights: Vec<LightDesc>,
 }
 
+impl SceneDesc {
+    /// Parse the TOML text of a scene file without building it (a caller may change the
+    /// description first, then call [`Scene::build`]); `path` names the file in errors, which
+    /// quote the line and column of the problem.
+    pub fn from_toml(text: &str, path: &Path) -> Result<SceneDesc> {
+        toml::from_str(text).map_err(|e| RenderError::scene(path, e.to_string()))
+    }
+}
+
 /// `[camera]`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -337,9 +346,7 @@ impl Scene {
     /// Build a scene from TOML text; `path` names the file in errors and relative paths are
     /// taken from its directory.
     pub fn from_toml(text: &str, path: &Path) -> Result<Scene> {
-        let desc: SceneDesc =
-            toml::from_str(text).map_err(|e| RenderError::scene(path, e.to_string()))?;
-        Scene::build(&desc, path)
+        Scene::build(&SceneDesc::from_toml(text, path)?, path)
     }
 
     /// Build the scene of a parsed description, section by section.

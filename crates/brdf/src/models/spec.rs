@@ -130,6 +130,17 @@ pub enum ModelSpec {
 }
 
 impl ModelSpec {
+    /// Parse a JSON description (`{"model": "ward", "specular": 0.05, "alpha": 0.1}`), as the
+    /// CLI's `--model` and the Python package take it. Unknown fields are refused; the error
+    /// quotes the parser's message (with its line and column) and points to the field list.
+    pub fn from_json(text: &str) -> Result<ModelSpec> {
+        serde_json::from_str(text).map_err(|e| {
+            BrdfError::Invalid(format!(
+                "not a model description (docs/brdf-models.md): {e}"
+            ))
+        })
+    }
+
     /// The `model` tag: `lambert`, `phong`, `blinn-phong`, `ward`, `beckmann`, `ggx` or `mix`.
     pub fn name(&self) -> &'static str {
         match self {
@@ -360,9 +371,14 @@ mod tests {
                 "{json}: {err}"
             );
         }
-        let unknown = serde_json::from_str::<ModelSpec>(
+        let unknown = ModelSpec::from_json(
             r#"{"model": "ward", "specular": 0.1, "alpha": 0.1, "roughness": 2}"#,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            unknown.contains("roughness") && unknown.contains("docs/brdf-models.md"),
+            "unknown fields are rejected: {unknown}"
         );
-        assert!(unknown.is_err(), "unknown fields are rejected");
     }
 }

@@ -92,7 +92,7 @@ fn white_furnace_analytic_models_render_their_albedo() {
         r#"{"model": "phong", "specular": 0.5, "exponent": 30, "diffuse": 0.4}"#,
     ];
     for json in specs {
-        let spec: ModelSpec = serde_json::from_str(json).unwrap();
+        let spec = ModelSpec::from_json(json).unwrap();
         let err = furnace_error(Arc::new(spec.build().unwrap()), 64);
         assert!(err < 0.01, "{json}: furnace off by {:.2}%", 100.0 * err);
     }
@@ -109,8 +109,8 @@ fn white_furnace_tabulated_brdfs_render_their_albedo() {
         "Lambert table: furnace off by {:.2}%",
         100.0 * err
     );
-    let ward: ModelSpec =
-        serde_json::from_str(r#"{"model": "ward", "specular": 0.4, "alpha": 0.2, "diffuse": 0.5}"#)
+    let ward =
+        ModelSpec::from_json(r#"{"model": "ward", "specular": 0.4, "alpha": 0.2, "diffuse": 0.5}"#)
             .unwrap();
     let res = Resolution::isotropic(64, 32, 48);
     let table =
@@ -217,7 +217,7 @@ fn rel_rmse(a: &Image, b: &Image, pixels: &[(usize, f64)]) -> f64 {
 fn tabulated_ward_renders_like_the_analytic_ward() {
     let dir = tempfile::tempdir().unwrap();
     let mut s = env_scene(&write_environment(dir.path(), 40.0));
-    let ward: ModelSpec = serde_json::from_str(
+    let ward = ModelSpec::from_json(
         r#"{"model": "ward", "specular": 0.3, "alpha": 0.15, "diffuse": 0.4}"#,
     )
     .unwrap();
@@ -347,8 +347,8 @@ mod slow {
     #[test]
     fn denoising_a_few_samples_comes_near_the_converged_picture() {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/plastic.toml");
-        let mut desc: gonio_render::scene::SceneDesc =
-            toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let mut desc = gonio_render::scene::SceneDesc::from_toml(&text, &path).unwrap();
         (desc.camera.width, desc.camera.height) = (192, 128);
         let s = Scene::build(&desc, &path).unwrap();
         let (reference, _) = render(&s, &opts(256, 7, ColourMode::Tristimulus)).unwrap();
@@ -391,7 +391,7 @@ fn white_furnace_coated_materials_render_mirror_plus_albedo() {
         r#"{"model": "lambert", "albedo": 0.7}"#,
         r#"{"model": "ggx", "alpha": 0.3, "index": 1.5, "diffuse": 0.5}"#,
     ] {
-        let spec: ModelSpec = serde_json::from_str(json).unwrap();
+        let spec = ModelSpec::from_json(json).unwrap();
         let brdf: Arc<dyn Brdf> = Arc::new(spec.build().unwrap());
         let mut s = scene(FURNACE);
         let albedo = albedo_curve(brdf.as_ref());
