@@ -186,6 +186,3 @@ impl Brdf for Mix {
         }
     }
 }
-
-#[cfg(test)]
-mod tests;

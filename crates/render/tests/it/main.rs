@@ -1,5 +1,11 @@
-//! Integration tests of gonio-render: the renderer against conservation laws and independent renders, scene files, spectral rendering. One test binary per crate (one
-//! link instead of one per file); each module is one subject.
+//! Integration tests of gonio-render: the renderer against conservation laws and independent
+//! renders, scene files, spectral rendering, and its parts through the public API (camera,
+//! shapes, images and their files, the denoiser, picture differences).
+//!
+//! Every test that the public API can express lives here; the library keeps as unit tests only
+//! those that reach private items. A library's unit-test binary compiles again, optimised, every
+//! function its tests reach, where these link the library's compiled copy. One test binary per
+//! crate (one link instead of one per file); each module is one subject.
 
 mod camera;
 mod common;

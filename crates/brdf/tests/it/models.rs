@@ -1,11 +1,13 @@
 //! Tests of the analytic models against closed-form properties (normalisation, reciprocity,
 //! the facet formula `R D G2 / (4 cos ti cos to)` written out by hand) and of every sampler against
-//! its pdf and the albedo ([`crate::validate::check_sampler`]).
+//! its pdf and the albedo ([`gonio_brdf::validate::check_sampler`]).
 
-use super::*;
-use crate::fresnel::{Ior, dielectric};
-use crate::microfacet::{Distribution, Microfacet};
-use crate::validate::{SamplerCheck, albedo, check_sampler};
+use glam::{DVec2, DVec3};
+use gonio_brdf::bxdf::{Brdf, Rgb};
+use gonio_brdf::fresnel::{Ior, dielectric};
+use gonio_brdf::microfacet::{Distribution, Microfacet};
+use gonio_brdf::models::*;
+use gonio_brdf::validate::{SamplerCheck, albedo, check_sampler};
 use std::f64::consts::PI;
 
 fn dir(theta_deg: f64, phi_deg: f64) -> DVec3 {
