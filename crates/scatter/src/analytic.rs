@@ -294,6 +294,3 @@ pub fn cone_reflectance(detector: &Detector, f: impl Fn(DVec3) -> f64) -> f64 {
     }
     sum * detector.solid_angle()
 }
-
-#[cfg(test)]
-mod tests;

@@ -1,5 +1,15 @@
-use super::*;
-use crate::geometry::cone_solid_angle;
+//! The analytic models (Beckmann-Spizzichino series, the geometric-optics facet model) against
+//! their limits and laws: a Lambertian cone by quadrature, the geometric and smooth limits of the
+//! series, energy conservation, masking, the coherent term, reciprocity.
+
+use glam::DVec3;
+use gonio_brdf::Ior;
+use gonio_scatter::analytic::*;
+use gonio_scatter::geometry::cone_solid_angle;
+use gonio_scatter::geometry::{
+    Detector, incidence_direction, inplane_direction, spherical_direction,
+};
+use std::f64::consts::PI;
 
 const N: f64 = 1.55;
 
