@@ -383,17 +383,19 @@ impl RayEngine {
         ))
     }
 
-    /// What `visit` makes of each facet (with its index) for each fixed chunk of `chunk`
-    /// facets (per azimuth step), handed to `fold` in batches of up to [`RAY_BATCH`] facets'
-    /// results, folded into one partial result per chunk, in chunk order.
+    /// What `visit` makes of each facet (with its index) for each fixed chunk of facets (per
+    /// azimuth step; [`chunk_len`] facets, at most `max_chunk`), handed to `fold` in batches of
+    /// up to [`RAY_BATCH`] facets' results, folded into one partial result per chunk, in chunk
+    /// order.
     fn fold_chunks<T: Send, E>(
         &self,
         wi: DVec3,
-        chunk: usize,
+        max_chunk: usize,
         init: impl Fn() -> T + Sync,
         visit: impl Fn(&Tracer, usize, &Facet) -> Option<E> + Sync,
         fold: impl Fn(&mut T, &[E]) + Sync,
     ) -> Vec<T> {
+        let chunk = chunk_len(self.facets.len(), max_chunk);
         let mut out = Vec::new();
         for k in 0..self.options.azimuths {
             let tracer = self.tracer(wi, k, None);
@@ -572,9 +574,25 @@ const HEMISPHERE_CHUNK: usize = 1 << 16;
 /// Facets traced before their rays are handed on together by [`RayEngine::fold_rays`].
 pub const RAY_BATCH: usize = 256;
 
-/// Facets per chunk of [`RayEngine::fold_rays`], whose partial results are small (a table's
-/// slice): 2¹⁴ facets keep the tail of a parallel run short (64 chunks for a 1024² map).
+/// Most facets per chunk of [`RayEngine::fold_rays`], whose partial results are small (a
+/// table's slice): 2¹⁴ facets keep the tail of a parallel run short (64 chunks for a 1024² map).
 const FOLD_CHUNK: usize = 1 << 14;
+
+/// Fewest chunks a run is cut into (per azimuth step) where its facets allow: a map of 128²
+/// points in chunks of the largest size would be one chunk, traced on one thread.
+const MIN_CHUNKS: usize = 16;
+
+/// Fewest facets per chunk: four batches of [`RAY_BATCH`], so that a chunk's partial result is
+/// worth its cost.
+const MIN_CHUNK: usize = 4 * RAY_BATCH;
+
+/// Facets per chunk of a run over `facets` facets whose chunks hold at most `max`: at least
+/// [`MIN_CHUNKS`] chunks, of at least [`MIN_CHUNK`] facets. It depends on the map alone, never on
+/// the thread count, so the partials, added in chunk order, give the same result on any number
+/// of threads; maps of `16 max` facets or more keep chunks of `max`.
+fn chunk_len(facets: usize, max: usize) -> usize {
+    facets.div_ceil(MIN_CHUNKS).clamp(MIN_CHUNK, max)
+}
 
 /// Bins per axis of the direction index: about one smallest half-angle wide, so that a
 /// detector visits a few bins, but no more bins than rays.

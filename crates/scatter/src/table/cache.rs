@@ -17,8 +17,9 @@ use std::path::PathBuf;
 
 /// Revision of the tables [`super::ray_table`] makes from the same inputs. Raise it with every
 /// change that alters a table's values, so that caches written before are not read. Revision 2:
-/// the ray method levels the map (angles from its mean plane).
-pub const TABLE_REVISION: u32 = 2;
+/// the ray method levels the map (angles from its mean plane). Revision 3: maps of fewer than
+/// 2¹⁸ facets are folded in smaller chunks (the partial sums, and so the last bits, change).
+pub const TABLE_REVISION: u32 = 3;
 
 /// Tables cached as `.gbrdf` files in one directory.
 #[derive(Debug, Clone)]
