@@ -21,6 +21,7 @@ use glam::{DVec2, DVec3};
 use gonio_brdf::fresnel::dielectric;
 use gonio_brdf::microfacet::Microfacet;
 use gonio_brdf::quadrature::gauss_legendre_on;
+use rayon::prelude::*;
 use std::f64::consts::PI;
 
 /// What a BSDF value carries.
@@ -174,8 +175,10 @@ impl Compensation {
             }
             sum / (strata * strata) as f64
         };
+        // Each μ's albedo is its own sum, so computing them in parallel changes no bit.
         let table = |sign: f64| -> Vec<f64> {
             (0..Self::STEPS)
+                .into_par_iter()
                 .map(|i| {
                     let mu = (i as f64 / (Self::STEPS - 1) as f64).max(1e-4);
                     let w = DVec3::new((1.0 - mu * mu).sqrt(), 0.0, sign * mu);
