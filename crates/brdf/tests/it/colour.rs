@@ -4,10 +4,8 @@
 use glam::DVec3;
 use gonio_brdf::bxdf::Brdf;
 use gonio_brdf::table::colour::*;
-use gonio_brdf::table::{BrdfTable, Channels};
-use gonio_brdf::table::{Resolution, TableBuilder};
-use gonio_color::{Illuminant, Observer, SpectralToXyz};
-use gonio_color::{Xyz, white};
+use gonio_brdf::table::{BrdfTable, Channels, Resolution, TableBuilder};
+use gonio_color::{Illuminant, Observer, SpectralToXyz, Xyz, white};
 
 fn bands() -> Vec<f64> {
     (0..31).map(|i| 400.0 + 10.0 * i as f64).collect()

@@ -2,8 +2,7 @@
 //! interpolation stencil.
 
 use gonio_brdf::table::coords::*;
-use std::f64::consts::PI;
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
 
 #[test]
 fn half_diff_round_trip_and_reciprocity() {

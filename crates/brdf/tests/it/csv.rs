@@ -1,9 +1,8 @@
 //! The BRDF CSV format: export and import round trip, headers that explain what is wrong.
 
 use gonio_brdf::formats::csv::*;
-use gonio_brdf::table::TableBuilder;
 use gonio_brdf::table::coords::dir;
-use gonio_brdf::table::{Channels, Resolution};
+use gonio_brdf::table::{Channels, Resolution, TableBuilder};
 
 /// Export on a grid, import as scattered samples: a smooth BRDF comes back within a few
 /// per cent.

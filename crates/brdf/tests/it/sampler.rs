@@ -3,10 +3,8 @@
 
 use glam::{DVec2, DVec3};
 use gonio_brdf::bxdf::Brdf;
-use gonio_brdf::table::BrdfTable;
 use gonio_brdf::table::coords::dir;
 use gonio_brdf::table::*;
-use gonio_brdf::table::{Channels, Resolution, TableBuilder};
 use rand::{RngExt, SeedableRng};
 use std::f64::consts::{PI, TAU};
 

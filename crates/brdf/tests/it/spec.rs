@@ -4,10 +4,8 @@
 //! in TOML are read by scene files (gonio-render's scene and spectral tests).
 
 use glam::DVec3;
-use gonio_brdf::bxdf::Brdf;
-use gonio_brdf::bxdf::Rgb;
+use gonio_brdf::bxdf::{Brdf, Rgb};
 use gonio_brdf::models::*;
-use gonio_brdf::models::{Lambert, Model};
 
 #[test]
 fn documented_example_builds_a_diffuse_plus_ggx_mix() {

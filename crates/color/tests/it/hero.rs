@@ -4,8 +4,7 @@
 use gonio_color::cie::{Illuminant, Observer};
 use gonio_color::hero::*;
 use gonio_color::spectrum::Spectrum;
-use gonio_color::tristimulus::WeightingFactors;
-use gonio_color::tristimulus::reflectance_xyz;
+use gonio_color::tristimulus::{WeightingFactors, reflectance_xyz};
 
 /// With u on a stratified grid of N points (N a multiple of C), each λ_j on its own takes
 /// exactly the midpoints of N equal cells of the range (it is uniform), and the C wavelengths

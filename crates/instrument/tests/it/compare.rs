@@ -1,8 +1,7 @@
 //! Comparing curves: a Gaussian peak's height and FWHM, a self-comparison is zero, a scaling shows.
 
 use gonio_instrument::compare::*;
-use gonio_scatter::CurvePoint;
-use gonio_scatter::InplaneCurve;
+use gonio_scatter::{CurvePoint, InplaneCurve};
 
 fn gaussian_curve(centre: f64, sigma: f64, height: f64) -> InplaneCurve {
     InplaneCurve {

@@ -3,8 +3,7 @@
 
 use glam::DVec3;
 use gonio_brdf::bxdf::SpectralBrdf;
-use gonio_color::{Colorimetry, Spectrum};
-use gonio_color::{Illuminant, Observer};
+use gonio_color::{Colorimetry, Illuminant, Observer, Spectrum};
 use gonio_instrument::multiangle::*;
 use std::f64::consts::PI;
 

@@ -5,8 +5,7 @@ use gonio_brdf::Ior;
 use gonio_instrument::gloss::{Smooth, measure};
 use gonio_instrument::specimens::*;
 use gonio_scatter::kirchhoff::Kirchhoff;
-use gonio_scatter::ray::RayEngine;
-use gonio_scatter::ray::RayOptions;
+use gonio_scatter::ray::{RayEngine, RayOptions};
 use gonio_surface::HeightMap;
 use ndarray::Array2;
 

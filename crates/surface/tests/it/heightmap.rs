@@ -2,8 +2,7 @@
 //! is a map of one marked row.
 
 use gonio_surface::heightmap::*;
-use ndarray::Array2;
-use ndarray::array;
+use ndarray::{Array2, array};
 
 #[test]
 fn nan_marks_invalid_points() {
