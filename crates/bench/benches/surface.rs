@@ -1,7 +1,7 @@
 //! Benchmarks of the surface crate on a 4096 × 4096 map: reading it from X3P and GSF files,
 //! plane levelling, the ISO 25178-2 statistics, facet normals and synthesis; and the time to read
 //! each instrument file of the test fixtures (one per format, from the file to a `HeightMap`).
-//! Run with `cargo bench -p gonio-surface --bench surface`; figures go into docs/performance.md.
+//! Run with `cargo bench -p gonio-bench --bench surface`; figures go into docs/performance.md.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use gonio_surface::normals::{NormalMethod, facet_normals};
@@ -64,7 +64,7 @@ fn bench(c: &mut Criterion) {
 
 /// One real file of each format read from disk (the test fixtures, tests/data).
 fn fixtures(c: &mut Criterion) {
-    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../surface/tests/data");
     let mut g = c.benchmark_group("read fixture");
     g.sample_size(20)
         .warm_up_time(Duration::from_millis(500))

@@ -38,8 +38,13 @@ fn models() -> Vec<(&'static str, Model)> {
     ]
     .into_iter()
     .map(|(name, json)| {
-        let spec: ModelSpec = serde_json::from_str(json).expect("valid spec");
-        (name, spec.build().expect("valid model"))
+        (
+            name,
+            ModelSpec::from_json(json)
+                .expect("valid spec")
+                .build()
+                .expect("valid model"),
+        )
     })
     .collect()
 }

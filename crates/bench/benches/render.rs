@@ -62,7 +62,7 @@ fn bench_denoise(c: &mut Criterion) {
 /// The metallic-paint scene at 96 × 64 pixels.
 fn small_metallic() -> Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/metallic.toml");
-    let mut desc: SceneDesc = toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let mut desc = SceneDesc::from_toml(&std::fs::read_to_string(&path).unwrap(), &path).unwrap();
     (desc.camera.width, desc.camera.height) = (96, 64);
     Scene::build(&desc, &path).unwrap()
 }

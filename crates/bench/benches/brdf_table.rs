@@ -1,6 +1,6 @@
 //! Table evaluation (lookups per second), sampling, the .gbrdf read, on tables of the default
 //! sizes, and the import of a measured paint (the scattered-data fit resampled on a table).
-//! Run with `cargo bench -p gonio-brdf --bench table`.
+//! Run with `cargo bench -p gonio-bench --bench brdf_table`.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use glam::{DVec2, DVec3};
@@ -78,7 +78,8 @@ fn bench(c: &mut Criterion) {
     g.finish();
 
     // The Cornell Cayman file (1 450 geometries × 31 bands) imported at the default 90 × 90 × 48.
-    let cayman = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cayman.astm");
+    let cayman =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../brdf/tests/data/cayman.astm");
     let mut g = c.benchmark_group("import");
     g.sample_size(10);
     g.bench_function("astm_cayman_90x90x48", |b| {

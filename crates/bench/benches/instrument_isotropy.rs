@@ -1,7 +1,7 @@
 //! Benchmarks of the isotropy check on a 1024 × 1024 map (the epoxy sample's grid, Sq 201 nm):
 //! the exact quarter turn, the turn by 45° with its crop, and the whole check (ray method, STARR
 //! geometry) at 90° and at 45°.
-//! Run with `cargo bench -p gonio-instrument --bench isotropy`; figures go into
+//! Run with `cargo bench -p gonio-bench --bench instrument_isotropy`; figures go into
 //! docs/performance.md.
 
 use criterion::{Criterion, criterion_group, criterion_main};
