@@ -286,7 +286,7 @@ impl Evaluator {
                 let mut values = Vec::new();
                 for (g, (bands, walk)) in walks.iter().enumerate() {
                     values.resize(bands.len(), 0.0);
-                    let seed = seed * groups + g as u64;
+                    let seed = seed.wrapping_mul(groups).wrapping_add(g as u64);
                     walk.eval_body(wo, wi, samples, seed, scratch, &mut values);
                     for (&b, v) in bands.iter().zip(&values) {
                         out[b] = *v;

@@ -103,3 +103,59 @@ mod slow {
         assert!(count == 400 && rms < 0.02, "{rms} over {count}");
     }
 }
+
+/// A dispersive coat (Schott N-BK7 by Sellmeier's formula) under a rough top: each band has its
+/// own index, so its own walk and its own stream of random numbers (the groups' seeds overflowed
+/// in a build with overflow checks, so that such a table could not be made there). Each band's
+/// albedo is that of a coat of the band's index held constant: the base is dark in one band and
+/// light in the other, so bands given each other's walk would differ by a factor of several.
+/// Bound: each estimate has a standard error of about 0.5/√N of the value (`Evaluator::albedo`),
+/// the two are independent walks (their seeds differ), so their difference has a standard
+/// deviation of 0.5 √(2/N) = 1.1% of the value at N = 4000; 5% is 4.4 of those.
+#[test]
+fn dispersive_rough_coat_has_a_walk_per_band() {
+    let wl = [450.0, 650.0];
+    let coating = |index: &str, wl: &[f64]| {
+        description::parse(
+            &format!(
+                "[top]\nroughness = {{ alpha = 0.15 }}\n[coat]\nindex = {index}\n\
+                 thickness_um = 40\n[base]\nkind = \"diffuse\"\n\
+                 reflectance = {{ nm = [450, 650], values = [0.1, 0.8] }}\n"
+            ),
+            wl,
+        )
+        .unwrap()
+    };
+    let bk7 = "{ sellmeier_b = [1.03961212, 0.231792344, 1.01046945], \
+               sellmeier_c_um2 = [0.00600069867, 0.0200179144, 103.560653] }";
+    let dispersive = coating(bk7, &wl);
+    let table = dispersive
+        .table(
+            Resolution::isotropic(6, 6, 4),
+            &wl,
+            2,
+            Provenance::default(),
+        )
+        .unwrap();
+    // NaN marks the nodes below the horizon, in every table.
+    let values = table.values();
+    assert!(values.iter().all(|v| v.is_nan() || *v >= 0.0));
+    assert!(values.iter().filter(|v| **v > 0.0).count() > values.len() / 2);
+    let evaluator = dispersive.evaluator(&wl).unwrap();
+    match &evaluator {
+        Evaluator::Walks(groups) => assert_eq!(groups.len(), 2),
+        Evaluator::Exact(_) => panic!("a rough top takes the walks"),
+    }
+    let n = 4000;
+    let albedo = evaluator.albedo(0.8, n);
+    for (band, &w) in wl.iter().enumerate() {
+        let index = dispersive.coat.index.at(w);
+        let constant = coating(&format!("{index}"), &[w]);
+        let expected = constant.evaluator(&[w]).unwrap().albedo(0.8, n)[0];
+        assert!(
+            (albedo[band] / expected - 1.0).abs() < 0.05,
+            "{w} nm (index {index}): {} against {expected}",
+            albedo[band]
+        );
+    }
+}
