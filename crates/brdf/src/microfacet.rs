@@ -103,7 +103,13 @@ impl Microfacet {
 
     /// Height-correlated masking-shadowing `G2 = 1/(1 + Λ(wi) + Λ(wo))`.
     pub fn g2(&self, wi: DVec3, wo: DVec3) -> f64 {
-        1.0 / (1.0 + self.lambda(wi) + self.lambda(wo))
+        self.g2_with(self.lambda(wi), wo)
+    }
+
+    /// [`Microfacet::g2`] with `Λ(wi)` already evaluated (`lambda_wi`, from
+    /// [`Microfacet::lambda`]): the same value to the bit, for loops over `wo` from one `wi`.
+    pub fn g2_with(&self, lambda_wi: f64, wo: DVec3) -> f64 {
+        1.0 / (1.0 + lambda_wi + self.lambda(wo))
     }
 
     /// Sample a normal with pdf `D(h) cos θ_h` (per steradian): draw the slope of the stretched
@@ -134,7 +140,7 @@ impl Microfacet {
     /// W. Jakob, "An improved visible normal sampling routine for the Beckmann distribution"
     /// (2014, as in Mitsuba), solved here to f64 accuracy.
     pub fn sample_visible(&self, w: DVec3, u: DVec2) -> DVec3 {
-        let stretched = DVec3::new(self.alpha_x * w.x, self.alpha_y * w.y, w.z).normalize();
+        let stretched = self.stretched(w);
         match self.distribution {
             Distribution::Ggx => {
                 let v = stretched;
@@ -154,24 +160,60 @@ impl Microfacet {
                 DVec3::new(self.alpha_x * nh.x, self.alpha_y * nh.y, nh.z.max(0.0)).normalize()
             }
             Distribution::Beckmann => {
-                let slope = beckmann_visible_slope_11(stretched.z, u);
-                // Rotate from the plane of incidence of the stretched direction to the frame.
-                let sin_t = (1.0 - stretched.z * stretched.z).max(0.0).sqrt();
-                let (cos_p, sin_p) = if sin_t > 1e-12 {
-                    (stretched.x / sin_t, stretched.y / sin_t)
-                } else {
-                    (1.0, 0.0)
-                };
-                let rotated = DVec2::new(
-                    cos_p * slope.x - sin_p * slope.y,
-                    sin_p * slope.x + cos_p * slope.y,
-                );
-                normal_from_slope(DVec2::new(
-                    self.alpha_x * rotated.x,
-                    self.alpha_y * rotated.y,
-                ))
+                self.beckmann_visible_normal(stretched, beckmann_visible_slope_11(stretched.z, u))
             }
         }
+    }
+
+    /// The normals [`Microfacet::sample_visible`] returns from `w` at the `n × n` stratified
+    /// points `u = ((i + ½)/n, (j + ½)/n)`, `i` slowest, each the same to the bit. Beckmann's
+    /// visible slopes of the stretched α = 1 distribution are separable away from normal
+    /// incidence (the slope in the plane of incidence depends on `u.x` alone, the other on `u.y`
+    /// alone), so its grid takes `2n` slope inversions instead of `n²`.
+    pub fn sample_visible_stratified(&self, w: DVec3, n: usize) -> Vec<DVec3> {
+        let at = |k: usize| (k as f64 + 0.5) / n as f64;
+        let stretched = self.stretched(w);
+        if self.distribution == Distribution::Ggx || stretched.z > BECKMANN_NORMAL_INCIDENCE {
+            return (0..n * n)
+                .map(|k| self.sample_visible(w, DVec2::new(at(k / n), at(k % n))))
+                .collect();
+        }
+        let xs: Vec<f64> = (0..n)
+            .map(|i| beckmann_visible_slope_x(stretched.z, at(i)))
+            .collect();
+        let ys: Vec<f64> = (0..n).map(|j| beckmann_slope_y(at(j))).collect();
+        xs.iter()
+            .flat_map(|&x| {
+                ys.iter()
+                    .map(move |&y| self.beckmann_visible_normal(stretched, DVec2::new(x, y)))
+            })
+            .collect()
+    }
+
+    /// `w` in the frame where the distribution is isotropic with α = 1, normalised.
+    fn stretched(&self, w: DVec3) -> DVec3 {
+        DVec3::new(self.alpha_x * w.x, self.alpha_y * w.y, w.z).normalize()
+    }
+
+    /// The normal of the Beckmann facet whose α = 1 slope `slope` was drawn in the plane of
+    /// incidence of the stretched direction `stretched`: the slope rotated to the frame and
+    /// scaled by the roughness.
+    fn beckmann_visible_normal(&self, stretched: DVec3, slope: DVec2) -> DVec3 {
+        // Rotate from the plane of incidence of the stretched direction to the frame.
+        let sin_t = (1.0 - stretched.z * stretched.z).max(0.0).sqrt();
+        let (cos_p, sin_p) = if sin_t > 1e-12 {
+            (stretched.x / sin_t, stretched.y / sin_t)
+        } else {
+            (1.0, 0.0)
+        };
+        let rotated = DVec2::new(
+            cos_p * slope.x - sin_p * slope.y,
+            sin_p * slope.x + cos_p * slope.y,
+        );
+        normal_from_slope(DVec2::new(
+            self.alpha_x * rotated.x,
+            self.alpha_y * rotated.y,
+        ))
     }
 
     /// The pdf (per steradian of `h`) of [`Microfacet::sample_visible`] from `w`.
@@ -197,22 +239,36 @@ fn beckmann_lambda_a(a: f64) -> f64 {
     -0.5 * libm::erfc(a) + (-a * a).exp() / (2.0 * a * PI.sqrt())
 }
 
+/// Above this cosine the direction is taken as normal incidence, where the visible slopes of
+/// the α = 1 Beckmann distribution are its slopes (radius and azimuth drawn instead).
+const BECKMANN_NORMAL_INCIDENCE: f64 = 1.0 - 1e-12;
+
 /// Sample the slopes of the α = 1 Beckmann distribution visible from a direction at
-/// `cos_theta` from the normal in the x-z plane (positive x): the x slope from its marginal,
-/// whose cdf is `C(x) = (1 + erf x + tanθ/√π e^(-x²)) / (1 + erf(cot θ) + tanθ/√π
-/// e^(-cot²θ))` on `x < cot θ`, inverted by Newton steps safeguarded by bisection from
-/// Jakob's (2014) fitted first guess; the y slope is an independent Gaussian.
+/// `cos_theta` from the normal in the x-z plane (positive x): the x slope from its marginal
+/// ([`beckmann_visible_slope_x`]) and the y slope, an independent Gaussian, from `u.y`.
 fn beckmann_visible_slope_11(cos_theta: f64, u: DVec2) -> DVec2 {
-    if cos_theta > 1.0 - 1e-12 {
+    if cos_theta > BECKMANN_NORMAL_INCIDENCE {
         let r = (-(1.0 - u.x).ln()).sqrt();
         let phi = 2.0 * PI * u.y;
         return DVec2::new(r * phi.cos(), r * phi.sin());
     }
+    DVec2::new(
+        beckmann_visible_slope_x(cos_theta, u.x),
+        beckmann_slope_y(u.y),
+    )
+}
+
+/// The x slope (in the plane of incidence) of the α = 1 Beckmann distribution visible from a
+/// direction at `cos_theta` (below [`BECKMANN_NORMAL_INCIDENCE`]), from its marginal, whose cdf
+/// is `C(x) = (1 + erf x + tanθ/√π e^(-x²)) / (1 + erf(cot θ) + tanθ/√π e^(-cot²θ))` on
+/// `x < cot θ`, at `ux`: inverted by Newton steps safeguarded by bisection from Jakob's (2014)
+/// fitted first guess.
+fn beckmann_visible_slope_x(cos_theta: f64, ux: f64) -> f64 {
     let sin_theta = (1.0 - cos_theta * cos_theta).sqrt();
     let tan_theta = sin_theta / cos_theta;
     let cot_theta = cos_theta / sin_theta;
     let inv_sqrt_pi = 1.0 / PI.sqrt();
-    let target = u.x.clamp(1e-16, 1.0 - 1e-16);
+    let target = ux.clamp(1e-16, 1.0 - 1e-16);
     let erf_cot = libm::erf(cot_theta);
     let norm = 1.0 / (1.0 + erf_cot + inv_sqrt_pi * tan_theta * (-cot_theta * cot_theta).exp());
     let theta = cos_theta.acos();
@@ -242,7 +298,13 @@ fn beckmann_visible_slope_11(cos_theta: f64, u: DVec2) -> DVec2 {
             break;
         }
     }
-    DVec2::new(x, erfinv(2.0 * u.y.clamp(1e-300, 1.0 - 1e-16) - 1.0))
+    x
+}
+
+/// The y slope of the visible α = 1 Beckmann distribution at `uy`: a Gaussian of variance ½,
+/// independent of the direction.
+fn beckmann_slope_y(uy: f64) -> f64 {
+    erfinv(2.0 * uy.clamp(1e-300, 1.0 - 1e-16) - 1.0)
 }
 
 /// Where [`erfinv`] saturates: `erf(5.9)` rounds to 1 in double precision.

@@ -150,27 +150,22 @@ impl Compensation {
         let m = single.roughness.expect("compensation of a rough interface");
         let strata = Self::STRATA;
         // Single-scattering albedo from a direction of cosine mu on either side: the mean of
-        // G2/G1 over the visible normals, reflection and refraction weighted by Fresnel.
+        // G2/G1 over the visible normals, reflection and refraction weighted by Fresnel. The
+        // normals at the strata and G1(w), Λ(w) are those of one direction, found once.
         let albedo = |w: DVec3| {
+            let lambda_w = m.lambda(upper(w));
+            let g1 = m.g1(upper(w));
             let mut sum = 0.0;
-            for i in 0..strata {
-                for j in 0..strata {
-                    let u = DVec2::new(
-                        (i as f64 + 0.5) / strata as f64,
-                        (j as f64 + 0.5) / strata as f64,
-                    );
-                    let wm = m.sample_visible(upper(w), u);
-                    let r = fresnel(w.dot(wm), single.eta);
-                    let g1 = m.g1(upper(w));
-                    let reflected = -w + 2.0 * w.dot(wm) * wm;
-                    if reflected.z * w.z > 0.0 {
-                        sum += r * m.g2(upper(w), upper(reflected)) / g1;
-                    }
-                    if let Some((t, _)) = refract(w, wm, single.eta)
-                        && t.z * w.z < 0.0
-                    {
-                        sum += (1.0 - r) * m.g2(upper(w), upper(t)) / g1;
-                    }
+            for wm in m.sample_visible_stratified(upper(w), strata) {
+                let r = fresnel(w.dot(wm), single.eta);
+                let reflected = -w + 2.0 * w.dot(wm) * wm;
+                if reflected.z * w.z > 0.0 {
+                    sum += r * m.g2_with(lambda_w, upper(reflected)) / g1;
+                }
+                if let Some((t, _)) = refract(w, wm, single.eta)
+                    && t.z * w.z < 0.0
+                {
+                    sum += (1.0 - r) * m.g2_with(lambda_w, upper(t)) / g1;
                 }
             }
             sum / (strata * strata) as f64
