@@ -438,7 +438,13 @@ fn info_text(path: &Path, map: &HeightMap, st: &Statistics, rms_as_read: f64) ->
     s += &line("Sa", length(st.sa), "mean absolute height");
     s += &line("Ssk", format!("{:.4}", st.ssk), "skewness");
     s += &line("Sku", format!("{:.4}", st.sku), "kurtosis");
-    s += &line("Sdq", format!("{:.5}", st.sdq), "rms gradient");
+    // A damaged header's spacing can make the gradient astronomically large: no run of digits.
+    let sdq = if st.sdq.abs() < 1e4 {
+        format!("{:.5}", st.sdq)
+    } else {
+        format!("{:.4e}", st.sdq)
+    };
+    s += &line("Sdq", sdq, "rms gradient");
     s += &line(
         "Sal",
         opt(st.sal, &|v| length(v)),

@@ -4,9 +4,15 @@
 
 /// `metres` in the unit that puts it between 1 and 1000 (nm below 1 µm, m from 1 m up), with
 /// four significant digits: "3.500 nm", "201.0 nm", "18.16 µm", "3.766 m". Not finite: "-".
+/// Beyond what any instrument measures (below a picometre, from 10 km up: a damaged header's
+/// spacing, say) in metres in scientific notation, "1.188e-41 m", rather than "0.000 nm".
 pub fn length(metres: f64) -> String {
     if !metres.is_finite() {
         return "-".into();
+    }
+    let a = metres.abs();
+    if a != 0.0 && !(1e-12..1e4).contains(&a) {
+        return format!("{metres:.3e} m");
     }
     let (value, unit) = length_parts(metres);
     format!("{} {unit}", four_digits(value))
@@ -78,6 +84,9 @@ mod tests {
         assert_eq!(length(18.1554e-6), "18.16 µm");
         assert_eq!(length(3.766353231797), "3.766 m");
         assert_eq!(length(-2.5e-4), "-250.0 µm");
+        assert_eq!(length(0.0), "0.000 nm");
+        assert_eq!(length(1.1884e-41), "1.188e-41 m");
+        assert_eq!(length(3.2e15), "3.200e15 m");
         assert_eq!(length(1.5e-3), "1.500 mm");
         assert_eq!(length(0.0), "0.000 nm");
         assert_eq!(length(f64::NAN), "-");

@@ -335,8 +335,23 @@ fn finish_read(
     };
     map.meta.source = Some(path.to_path_buf());
     map.meta.format = Some(reader.name.to_string());
+    let aspect = map.dx().max(map.dy()) / map.dx().min(map.dy());
+    if !map.is_profile() && aspect > MAX_PLAUSIBLE_ASPECT {
+        map.meta.warn(format!(
+            "the spacings differ by a factor of {aspect:.3e} (x {:.4e} m, y {:.4e} m): the \
+             header may be damaged; statistics that compare directions (Sal, Str) mean little",
+            map.dx(),
+            map.dy()
+        ));
+    }
     Ok(map)
 }
+
+/// Largest ratio of the two spacings a map is read without a warning. Instruments write square
+/// pixels or nearly so (the shared X3P export: 2.5); a stylus instrument's areal scan may space
+/// its lines a few hundred times its points. Far beyond that the header is likelier damaged (one
+/// changed byte of a TrueMap header made 3 × 10³⁸).
+const MAX_PLAUSIBLE_ASPECT: f64 = 1e3;
 
 /// Write a height map; the extension picks the format (`.x3p` or `.gsf`). The file is written to
 /// a temporary file beside the target and renamed, so a failure never leaves half a file.

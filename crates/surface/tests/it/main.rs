@@ -11,6 +11,7 @@ mod afm_formats;
 mod atomic_write;
 mod binary_formats;
 mod corrupt;
+mod extreme_spacings;
 mod fixture_tools;
 mod formats_x3p_sdf_gwyddion;
 mod heightmap;
