@@ -305,9 +305,10 @@ fn with_file_fields(mut out: Value, map: &HeightMap) -> Value {
     let channels: Vec<Value> = meta
         .channels
         .iter()
-        .map(
-            |c| json!({"index": c.index, "name": c.name, "unit": c.unit, "is_height": c.is_height}),
-        )
+        .map(|c| {
+            json!({"index": c.index, "name": c.name, "unit": c.unit, "is_height": c.is_height,
+                        "problem": c.problem})
+        })
         .collect();
     let fields = json!({
         "format": meta.format,
@@ -338,7 +339,10 @@ fn channels_text(map: &HeightMap) -> String {
             } else {
                 ""
             };
-            format!("{c}{mark}")
+            match &c.problem {
+                Some(problem) => format!("{c} [cannot be read: {problem}]{mark}"),
+                None => format!("{c}{mark}"),
+            }
         })
         .collect();
     format!(

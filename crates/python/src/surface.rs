@@ -103,6 +103,7 @@ impl Surface {
                 ch.set_item("name", &c.name)?;
                 ch.set_item("unit", &c.unit)?;
                 ch.set_item("is_height", c.is_height)?;
+                ch.set_item("problem", &c.problem)?;
                 Ok(ch)
             })
             .collect::<PyResult<Vec<_>>>()?;

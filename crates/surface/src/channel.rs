@@ -19,6 +19,10 @@ pub struct Channel {
     pub unit: Option<String>,
     /// Whether the channel holds heights (a length), which gonio can read as a height map.
     pub is_height: bool,
+    /// Why the channel cannot be read, when it cannot (a scale gonio cannot interpret, say):
+    /// the file's other channels read all the same, and asking for this one is an error that
+    /// says this.
+    pub problem: Option<String>,
 }
 
 impl fmt::Display for Channel {
@@ -63,8 +67,9 @@ impl fmt::Display for ChannelSelector {
 }
 
 /// The index of the channel to read among `channels`: the one `selector` names, or by default
-/// the first height channel. Errors name the file and list its channels when the selector
-/// matches none, or when the channel picked does not hold heights.
+/// the first height channel that can be read. Errors name the file and list its channels when the
+/// selector matches none, and say why when the channel picked cannot be read or does not hold
+/// heights.
 pub(crate) fn select(
     path: &Path,
     format: &'static str,
@@ -80,12 +85,15 @@ pub(crate) fn select(
     };
     let err = |message: String| SurfaceError::format(path, format, message);
     let found = match selector {
-        None => channels.iter().find(|c| c.is_height).ok_or_else(|| {
-            err(format!(
-                "no height channel among the file's channels: {}",
-                listing()
-            ))
-        })?,
+        None => channels
+            .iter()
+            .find(|c| c.is_height && c.problem.is_none())
+            .ok_or_else(|| {
+                err(format!(
+                    "no height channel among the file's channels: {}",
+                    listing()
+                ))
+            })?,
         Some(wanted) => channels
             .iter()
             .find(|c| match wanted {
@@ -99,6 +107,12 @@ pub(crate) fn select(
                 ))
             })?,
     };
+    if let Some(problem) = &found.problem {
+        return Err(err(format!(
+            "channel {found} cannot be read: {problem}; the file's channels are: {}",
+            listing()
+        )));
+    }
     if !found.is_height {
         return Err(err(format!(
             "channel {found} does not hold heights; the file's channels are: {}",
@@ -118,6 +132,7 @@ mod tests {
             name: name.into(),
             unit: Some(unit.into()),
             is_height,
+            problem: None,
         };
         vec![
             c(0, "Phase", "º", false),

@@ -159,6 +159,7 @@ fn read<E: ByteOrder>(b: &Binary, selector: Option<&ChannelSelector>) -> Result<
             name: name(index),
             unit: (!data_units.is_empty()).then(|| data_units.clone()),
             is_height,
+            problem: None,
         })
         .collect();
     let index = select(b.path(), NAME, &channels, selector)?;

@@ -325,6 +325,7 @@ fn finish_read(
                 name: "Height".into(),
                 unit: None,
                 is_height: true,
+                problem: None,
             }];
             select(path, reader.name, &only, selector)?;
             let mut map = parse(path, bytes)?;

@@ -11,10 +11,13 @@
 //! signed integers, stored line after line; a value `v` is
 //! `v · (Z scale value) / 256^(bytes per pixel) · (soft scale)`, the soft scale being the value
 //! of the `@Sens. Zsens` key (bracketed name) in the scanner or scan list, e.g. `V 20.8 nm/V`:
-//! its numerator (nm) is the unit of the channel, and its denominator must be the unit of the
-//! Z scale value; a soft scale without a unit (`V 1.000000`) keeps the Z scale's unit. A
-//! channel without a length unit (phase in º, amplitude in mV) is listed but is not a height
-//! channel. From version 9.2 the data may be int32 although `Bytes/pixel` says 2; such blocks
+//! its numerator (nm) is the unit of the channel, and its denominator is the unit of the Z scale
+//! value, or another voltage it converts to (a Z scale in mV under a soft scale in nm/V, as an
+//! amplitude-error channel writes it); a soft scale without a unit (`V 1.000000`) keeps the Z
+//! scale's unit. A channel without a length unit (phase in º, amplitude in mV) is listed but is
+//! not a height channel. A channel whose scale cannot be interpreted (a soft scale per a unit the
+//! Z scale is not in, a missing Z scale) is listed with what is wrong with it, and only asking
+//! for it is an error: the file's other channels read as usual. From version 9.2 the data may be int32 although `Bytes/pixel` says 2; such blocks
 //! are refused (no test file). Lines are kept in their stored order (SurfaceTopography and
 //! Gwyddion show them bottom-up, so their first row is the file's last line).
 
@@ -96,8 +99,8 @@ struct Scaled<'a> {
     unit: &'a str,
 }
 
-fn scaled<'a>(b: &Binary, key: &str, text: &'a str) -> Result<Scaled<'a>> {
-    let bad = || b.err(format!("cannot read the value of '{key}': '{text}'"));
+fn scaled<'a>(key: &str, text: &'a str) -> std::result::Result<Scaled<'a>, String> {
+    let bad = || format!("cannot read the value of '{key}': '{text}'");
     let mut rest = text.get(1..).ok_or_else(bad)?.trim_start();
     let mut soft = None;
     if let Some(inner) = rest.strip_prefix('[') {
@@ -178,39 +181,11 @@ fn image(
         _ => return Err(b.err(format!("cannot read the scan size '{size_text}'"))),
     };
     let lateral = unit_scale(b.path(), NAME, "scan size", &unit.replace('~', "µ"))?;
-    let key = ["@2:z scale", "@4:z scale"]
-        .into_iter()
-        .find(|k| get(s, k).is_some())
-        .ok_or_else(|| {
-            b.err(format!(
-                "image section {index} lacks '@2:Z scale' (files before version 4.3 are not read)"
-            ))
-        })?;
-    let z = scaled(b, key, get(s, key).unwrap_or_default())?;
-    let hard = z.value / 256f64.powi(bytes_per_pixel as i32);
-    // The soft scale turns the hard scale's unit (V) into the channel's (nm); without one the
-    // channel stays in the hard scale's unit.
-    let soft = z
-        .soft
-        .and_then(|name| get(scales, &format!("@{}", name.to_ascii_lowercase())));
-    let (scale, unit) = match soft {
-        Some(text) => {
-            let soft = scaled(b, "soft scale", text)?;
-            match soft.unit.split_once('/') {
-                Some((num, den)) if den.trim() == z.unit => (hard * soft.value, num.trim()),
-                Some((_, den)) => {
-                    return Err(b.err(format!(
-                        "soft scale '{text}' is per {den}, but the Z scale of image section \
-                         {index} is in {}",
-                        z.unit
-                    )));
-                }
-                // A bare factor (`V 1.000000`) keeps the Z scale's unit.
-                None if soft.unit.is_empty() => (hard * soft.value, z.unit),
-                None => (hard * soft.value, soft.unit),
-            }
-        }
-        None => (hard, z.unit),
+    // A scale that cannot be interpreted is this channel's problem: the file's other channels
+    // read all the same.
+    let (scale, unit, problem) = match value_scale(s, scales, bytes_per_pixel) {
+        Ok((scale, unit)) => (scale, unit, None),
+        Err(problem) => (f64::NAN, String::new(), Some(problem)),
     };
     let unit_metres = metres_per_unit(&unit.replace('~', "µ"));
     Ok(Image {
@@ -219,6 +194,7 @@ fn image(
             name: name.to_string(),
             unit: (!unit.is_empty()).then(|| unit.to_string()),
             is_height: unit_metres.is_some(),
+            problem,
         },
         offset: integer("data offset")?
             .try_into()
@@ -230,6 +206,65 @@ fn image(
         grid,
         size: (sx * lateral, sy * lateral),
         scale: scale * unit_metres.unwrap_or(1.0),
+    })
+}
+
+/// The value of one count of an image section and the unit it is in: the Z scale's value over
+/// `256^bytes_per_pixel`, times the soft scale it names (module docs). `Err` says, without the
+/// file's name, why the channel's values cannot be interpreted.
+fn value_scale(
+    s: &[(String, String)],
+    scales: &[(String, String)],
+    bytes_per_pixel: usize,
+) -> std::result::Result<(f64, String), String> {
+    let key = ["@2:z scale", "@4:z scale"]
+        .into_iter()
+        .find(|k| get(s, k).is_some())
+        .ok_or("it lacks '@2:Z scale' (files before version 4.3 are not read)")?;
+    let z = scaled(key, get(s, key).unwrap_or_default())?;
+    let hard = z.value / 256f64.powi(bytes_per_pixel as i32);
+    // The soft scale turns the hard scale's unit (V) into the channel's (nm); without one the
+    // channel stays in the hard scale's unit.
+    let Some(text) = z
+        .soft
+        .and_then(|name| get(scales, &format!("@{}", name.to_ascii_lowercase())))
+    else {
+        return Ok((hard, z.unit.to_string()));
+    };
+    let soft = scaled("soft scale", text)?;
+    match soft.unit.split_once('/') {
+        Some((num, den)) => {
+            let den = den.trim();
+            // Per V under a Z scale in mV (an amplitude channel's sensitivity, say) is a unit
+            // conversion: the hard scale's value in the soft scale's denominator.
+            let conversion = if den == z.unit {
+                Some(1.0)
+            } else {
+                volts(z.unit).zip(volts(den)).map(|(z, d)| z / d)
+            };
+            match conversion {
+                Some(c) => Ok((hard * c * soft.value, num.trim().to_string())),
+                None => Err(format!(
+                    "its soft scale '{text}' is per {den}, but its Z scale is in {}",
+                    z.unit
+                )),
+            }
+        }
+        // A bare factor (`V 1.000000`) keeps the Z scale's unit.
+        None if soft.unit.is_empty() => Ok((hard * soft.value, z.unit.to_string())),
+        None => Ok((hard * soft.value, soft.unit.to_string())),
+    }
+}
+
+/// Volts in one `unit` of voltage as the headers write it (`~V` is µV, as `~m` is µm).
+fn volts(unit: &str) -> Option<f64> {
+    Some(match unit {
+        "V" => 1.0,
+        "mV" => 1e-3,
+        "~V" | "\u{b5}V" | "\u{3bc}V" | "uV" => 1e-6,
+        "nV" => 1e-9,
+        "kV" => 1e3,
+        _ => return None,
     })
 }
 

@@ -262,6 +262,7 @@ fn data_set(
             name: format!("{frame} ({quantity})"),
             unit: Some(unit.to_string()),
             is_height: metres_per_unit(unit).is_some(),
+            problem: None,
         },
         offset,
         grid,

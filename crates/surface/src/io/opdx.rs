@@ -277,6 +277,7 @@ pub(crate) fn parse(
                 index,
                 name: kind,
                 is_height: metres_per_unit(&unit).is_some(),
+                problem: None,
                 unit: Some(unit),
             })
         })

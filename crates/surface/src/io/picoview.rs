@@ -116,6 +116,7 @@ pub(crate) fn parse(
                 name: get(buffer, "bufferLabel").unwrap_or_default().to_string(),
                 unit: unit.map(str::to_string),
                 is_height: unit.and_then(metres_per_unit).is_some(),
+                problem: None,
             }
         })
         .collect();

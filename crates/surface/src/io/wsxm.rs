@@ -98,6 +98,7 @@ pub(crate) fn parse(
             .to_string(),
         unit: (!z_unit.is_empty()).then(|| z_unit.to_string()),
         is_height: metres_per_unit(z_unit).is_some(),
+        problem: None,
     }];
     select(path, NAME, &channels, selector)?;
     let z_scale = unit_scale(path, NAME, "height", z_unit)?;

@@ -437,18 +437,29 @@ fn heights_match_surface_topography_point_by_point() {
     }
 }
 
+/// The fixture `name` with each `(from, to)` of `edits` replaced once, `to` as long as `from`
+/// so that every offset in the file stays valid.
+fn edited(name: &str, edits: &[(&[u8], &[u8])]) -> Vec<u8> {
+    let mut bytes = std::fs::read(fixture(name)).unwrap();
+    for (from, to) in edits {
+        assert_eq!(from.len(), to.len(), "an edit keeps the file's length");
+        let at = bytes.windows(from.len()).position(|w| w == *from).unwrap();
+        bytes[at..at + to.len()].copy_from_slice(to);
+    }
+    bytes
+}
+
 #[test]
 fn nanoscope_32_bit_storage_is_refused() {
     // di-3.di made to look like a version 9.2 file whose first block holds 4 bytes per point
-    // while Bytes/pixel says 2 (same lengths, so every offset stays valid).
-    let mut patched = std::fs::read(fixture("di-3.di")).unwrap();
-    for (from, to) in [
-        (&b"\\Version: 0x09010201"[..], &b"\\Version: 0x09200000"[..]),
-        (b"\\Data length: 131072", b"\\Data length: 262144"),
-    ] {
-        let at = patched.windows(from.len()).position(|w| w == from).unwrap();
-        patched[at..at + to.len()].copy_from_slice(to);
-    }
+    // while Bytes/pixel says 2.
+    let patched = edited(
+        "di-3.di",
+        &[
+            (b"\\Version: 0x09010201", b"\\Version: 0x09200000"),
+            (b"\\Data length: 131072", b"\\Data length: 262144"),
+        ],
+    );
     let e = io::read_bytes(std::path::Path::new("di-3.di"), &patched)
         .unwrap_err()
         .to_string();
@@ -474,4 +485,100 @@ fn opdx_uneven_positions_are_refused() {
         e.contains("opdx-3.opdx") && e.contains("not evenly spaced"),
         "{e}"
     );
+}
+
+/// di-3.di with its AmplitudeError channel given a soft scale in nm/V over its Z scale in mV
+/// (`@2:Z scale: V [Sens. Amplitude Error] (0.04577637 mV/LSB) 2999.954 mV`), the layout of a
+/// Bruker file a user met: `\@Sens. Amplitude Error: V 1.000000 ` edited to `V 62.0 nm/V`.
+fn di3_amplitude_error_per_volt() -> Vec<u8> {
+    edited(
+        "di-3.di",
+        &[(
+            b"\\@Sens. Amplitude Error: V 1.000000 ",
+            b"\\@Sens. Amplitude Error: V 62.0 nm/V",
+        )],
+    )
+}
+
+#[test]
+fn nanoscope_z_scale_in_mv_under_a_soft_scale_per_volt_is_converted() {
+    let bytes = di3_amplitude_error_per_volt();
+    let path = std::path::Path::new("di-3-amplitude.di");
+    // The default channel reads as in the unedited file.
+    let map = io::read_bytes(path, &bytes).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(map.meta.channel, 0);
+    assert!(rel(sq_plane(&map), 35.2229 * NM) < 0.005);
+    let amplitude = &map.meta.channels[1];
+    assert_eq!(amplitude.name, "AmplitudeError");
+    assert_eq!(amplitude.unit.as_deref(), Some("nm"));
+    assert!(amplitude.is_height && amplitude.problem.is_none());
+    // The channel itself: a count is 2999.954 mV / 65536 × 10⁻³ V/mV × 62 nm/V. Reference:
+    // SurfaceTopography 1.27.1 on this edited file, `open_topography(path).topography(
+    // channel_index=1).to_unit('m')`: heights()[x, y] at three points (lines reversed, as for
+    // every Nanoscope file) and the levelled Sq.
+    let options = io::ReadOptions {
+        channel: Some("AmplitudeError".parse().unwrap()),
+    };
+    let map = io::read_bytes_with(path, &bytes, &options).unwrap_or_else(|e| panic!("{e}"));
+    let ny = map.ny();
+    for ((x, y), want) in [(0, 0), (17, 5), (200, 100)].into_iter().zip([
+        -1.5041883612060548e-10,
+        -1.6177120111083984e-10,
+        1.4190456237792971e-11,
+    ]) {
+        let got = map.get(x, ny - 1 - y).unwrap();
+        assert!(
+            rel(got, want) < 1e-9,
+            "({x}, {y}): {got:e} m against {want:e} m"
+        );
+    }
+    let sq = sq_plane(&map);
+    assert!(rel(sq, 1.983169978817549e-10) < 1e-6, "Sq {sq:e} m");
+}
+
+#[test]
+fn a_nanoscope_channel_whose_scale_cannot_be_read_is_that_channels_problem() {
+    // di-3.di with its Phase channel's soft scale made per kHz, while its Z scale is in º.
+    let bytes = edited(
+        "di-3.di",
+        &[(
+            b"\\@Sens. Phase: V 1.000000 ",
+            b"\\@Sens. Phase: V 1 nm/kHz ",
+        )],
+    );
+    let path = std::path::Path::new("di-3-phase.di");
+    let map = io::read_bytes(path, &bytes).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(map.meta.channel, 0);
+    assert!(rel(sq_plane(&map), 35.2229 * NM) < 0.005);
+    let phase = &map.meta.channels[2];
+    let problem = phase
+        .problem
+        .as_deref()
+        .expect("the Phase channel has a problem");
+    assert!(
+        problem.contains("per kHz") && problem.contains("º"),
+        "{problem}"
+    );
+    assert!(!phase.is_height);
+    // The other channels are unaffected; asking for this one, by name or index, says why not.
+    assert!(
+        map.meta
+            .channels
+            .iter()
+            .filter(|c| c.problem.is_some())
+            .count()
+            == 1
+    );
+    for selector in ["Phase", "2"] {
+        let options = io::ReadOptions {
+            channel: Some(selector.parse().unwrap()),
+        };
+        let e = io::read_bytes_with(path, &bytes, &options)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("di-3-phase.di") && e.contains("cannot be read") && e.contains("per kHz"),
+            "{e}"
+        );
+    }
 }
