@@ -68,9 +68,14 @@ pub fn krylon_blue_path() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/krylon_blue.astm")
 }
 
-/// An ASTM file of `tests/data` (Cayman or Krylon blue), the fit of all its geometries and the
-/// fit's spectral table, made once per test run: the tests that read a paint's fit or table
-/// share it (the fit takes seconds, and seven tests read each paint's).
+/// Path of tests/data/garnet_red.astm.
+pub fn garnet_red_path() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/garnet_red.astm")
+}
+
+/// An ASTM file of `tests/data` (Cayman, Krylon blue or Garnet red), the fit of all its
+/// geometries and the fit's spectral table, made once per test run: the tests that read a
+/// paint's fit or table share it (the fit takes seconds, and up to seven tests read a paint's).
 struct Imported {
     file: AstmFile,
     fit: ScatteredFit,
@@ -85,17 +90,20 @@ fn imported(path: &Path) -> &'static Imported {
     }
     static CAYMAN: LazyLock<Imported> = LazyLock::new(|| import(&cayman_path()));
     static KRYLON_BLUE: LazyLock<Imported> = LazyLock::new(|| import(&krylon_blue_path()));
+    static GARNET_RED: LazyLock<Imported> = LazyLock::new(|| import(&garnet_red_path()));
     if path == cayman_path() {
         &CAYMAN
     } else if path == krylon_blue_path() {
         &KRYLON_BLUE
+    } else if path == garnet_red_path() {
+        &GARNET_RED
     } else {
         panic!("{}: not a paint of tests/data", path.display())
     }
 }
 
-/// A paint of `tests/data` (Cayman or Krylon blue) and the spectral table of the fit of all its
-/// geometries (shared: [`Imported`]).
+/// A paint of `tests/data` (Cayman, Krylon blue or Garnet red) and the spectral table of the
+/// fit of all its geometries (shared: [`Imported`]).
 pub fn astm_table(path: &Path) -> (&'static AstmFile, &'static BrdfTable) {
     let paint = imported(path);
     (&paint.file, &paint.table)
