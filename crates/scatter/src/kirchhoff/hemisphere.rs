@@ -295,33 +295,47 @@ impl Kirchhoff {
             })
             .collect();
         bins.sort_by_key(|b| b.node);
-        let mut out = Vec::with_capacity(bins.len());
-        let mut window: Vec<Vec<Complex64>> = (0..4)
-            .map(|i| spectrum(facets, lo + i as f64 * step))
-            .collect();
-        let mut first = 0;
-        for b in &bins {
-            while first < b.node {
-                window.remove(0);
-                window.push(spectrum(facets, lo + (first + 4) as f64 * step));
-                first += 1;
-            }
-            let l = lagrange4(b.t);
-            let e: Complex64 = (0..4).map(|i| window[i][b.index] * l[i]).sum();
-            out.push((b.wo, b.weight * e.norm_sqr()));
+        // Each node's transform is added into the fields of the bins it serves (those whose
+        // four nodes include it) as soon as it is made, so one transform is held at a time, in
+        // buffers reused from node to node: no grid-sized allocation per node.
+        let mut fields = vec![Complex64::default(); bins.len()];
+        let mut buffers = SpectrumBuffers::new(facets);
+        for node in 0..nodes {
+            let spectrum = buffers.spectrum(facets, lo + node as f64 * step);
+            let first = bins.partition_point(|b| b.node + 3 < node);
+            let last = bins.partition_point(|b| b.node <= node);
+            fields[first..last]
+                .par_iter_mut()
+                .zip(&bins[first..last])
+                .for_each(|(e, b)| *e += spectrum[b.index] * lagrange4(b.t)[node - b.node]);
         }
-        out
+        bins.iter()
+            .zip(&fields)
+            .map(|(b, e)| (b.wo, b.weight * e.norm_sqr()))
+            .collect()
     }
 }
 
-/// The 2D transform `Σ_j A_j exp(i vz h_j) exp(i (vx x_j + vy y_j))` on the lattice, transposed:
-/// element `p * ny + q` holds `(vx, vy) = (p Δvx, q Δvy)` (indices modulo the grid size). Rows
-/// and columns run in parallel, each a fixed computation, so the result does not depend on the
-/// thread count.
-fn spectrum(facets: &FacetGrid, vz: f64) -> Vec<Complex64> {
-    let (nx, ny) = (facets.nx, facets.ny);
-    let mut rows = vec![Complex64::default(); nx * ny];
-    rows.par_chunks_mut(nx).enumerate().for_each(|(m, row)| {
+/// The two grid-sized buffers of [`SpectrumBuffers::spectrum`], made once per facet grid.
+struct SpectrumBuffers {
+    rows: Vec<Complex64>,
+    columns: Vec<Complex64>,
+}
+
+impl SpectrumBuffers {
+    fn new(facets: &FacetGrid) -> SpectrumBuffers {
+        SpectrumBuffers {
+            rows: vec![Complex64::default(); facets.nx * facets.ny],
+            columns: vec![Complex64::default(); facets.nx * facets.ny],
+        }
+    }
+
+    /// The 2D transform `Σ_j A_j exp(i vz h_j) exp(i (vx x_j + vy y_j))` on the lattice,
+    /// transposed: element `p * ny + q` holds `(vx, vy) = (p Δvx, q Δvy)` (indices modulo the
+    /// grid size). Rows and columns run in parallel, each a fixed computation, so the result
+    /// does not depend on the thread count.
+    fn spectrum(&mut self, facets: &FacetGrid, vz: f64) -> &[Complex64] {
+        let (nx, ny) = (facets.nx, facets.ny);
         let params = RowParams {
             vz,
             phase0: 0.0,
@@ -332,20 +346,20 @@ fn spectrum(facets: &FacetGrid, vz: f64) -> Vec<Complex64> {
             sy1: 0.0,
             area: facets.ax * facets.ay,
         };
-        fill_row(&facets.row(m), &params, row);
-        facets.row_fft.process(row);
-    });
-    let mut columns = vec![Complex64::default(); nx * ny];
-    columns
-        .par_chunks_mut(ny)
-        .enumerate()
-        .for_each(|(p, column)| {
-            for (q, c) in column.iter_mut().enumerate() {
-                *c = rows[q * nx + p];
-            }
-            facets.col_fft.process(column);
-        });
-    columns
+        self.rows.par_chunks_mut(nx).enumerate().for_each_init(
+            || vec![Complex64::default(); facets.row_fft.get_inplace_scratch_len()],
+            |scratch, (m, row)| {
+                fill_row(&facets.row(m), &params, row);
+                facets.row_fft.process_with_scratch(row, scratch);
+            },
+        );
+        gonio_fft::fft2::transpose_into(&self.rows, ny, nx, &mut self.columns);
+        self.columns.par_chunks_mut(ny).for_each_init(
+            || vec![Complex64::default(); facets.col_fft.get_inplace_scratch_len()],
+            |scratch, column| facets.col_fft.process_with_scratch(column, scratch),
+        );
+        &self.columns
+    }
 }
 
 /// Lagrange weights of the nodes 0, 1, 2, 3 at position `t`.
