@@ -16,7 +16,7 @@
 
 use super::aperture::{brdf_factor, lattice_spacing, outgoing};
 use super::facets::FacetGrid;
-use super::kernel::{RowParams, fill_row};
+use super::kernel::fill_row_sampled;
 use super::{Kirchhoff, MAX_REFINEMENT, Spot};
 use crate::error::{Result, ScatterError};
 use crate::geometry::Detector;
@@ -31,7 +31,7 @@ const POINTS_PER_WAVE: f64 = 10.0;
 
 /// One lattice point that lands above the surface.
 struct Bin {
-    /// Index into the transposed FFT output, `p * ny + q`.
+    /// Index into the transposed FFT output, `c * ny + q` (see [`SpectrumBuffers::spectrum`]).
     index: usize,
     /// Outgoing direction.
     wo: DVec3,
@@ -248,37 +248,47 @@ impl Kirchhoff {
             .fold(0.0f64, |m, (h, _)| m.max(h.abs()));
         let (dvx, dvy) = lattice_spacing(facets);
         let (nx, ny) = (facets.nx, facets.ny);
-        let signed = |i: usize, n: usize| {
-            if i < n.div_ceil(2) {
-                i as f64
-            } else {
-                i as f64 - n as f64
-            }
+        // Signed lattice indices whose directions can lie above the surface (`|wo.x| ≤ 1` with
+        // `vx = -k (wi.x + wo.x)`), within the lattice: the columns to transform.
+        let range = |n: usize, dv: f64, w: f64| {
+            let (lo, hi) = (-(n as isize / 2), (n as isize - 1) / 2);
+            let first = ((-k * (1.0 + w) / dv).floor() as isize).max(lo);
+            let last = ((k * (1.0 - w) / dv).ceil() as isize).min(hi);
+            first..=last
         };
+        let (ps, qs) = (range(nx, dvx, wi.x), range(ny, dvy, wi.y));
         // Directions of the lattice points and the vz range they span.
-        let points: Vec<(usize, DVec3)> = (0..nx * ny)
-            .filter_map(|index| {
-                let (p, q) = (index / ny, index % ny);
-                outgoing(k, wi, signed(p, nx) * dvx, signed(q, ny) * dvy)
-                    .filter(|&wo| keep(wo))
-                    .map(|wo| (index, wo))
+        let points: Vec<(isize, isize, DVec3)> = ps
+            .clone()
+            .into_par_iter()
+            .flat_map_iter(|p| {
+                qs.clone().filter_map(move |q| {
+                    outgoing(k, wi, p as f64 * dvx, q as f64 * dvy)
+                        .filter(|&wo| keep(wo))
+                        .map(|wo| (p, q, wo))
+                })
             })
             .collect();
         if points.is_empty() {
             return Vec::new();
         }
         let vz_of = |wo: DVec3| -k * (wi.z + wo.z);
-        let (lo, hi) = points
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &(_, wo)| {
-                (lo.min(vz_of(wo)), hi.max(vz_of(wo)))
-            });
+        let (lo, hi) = points.iter().fold(
+            (f64::INFINITY, f64::NEG_INFINITY),
+            |(lo, hi), &(_, _, wo)| (lo.min(vz_of(wo)), hi.max(vz_of(wo))),
+        );
+        let p_first = points.iter().map(|&(p, _, _)| p).min().unwrap_or(0);
+        let p_last = points.iter().map(|&(p, _, _)| p).max().unwrap_or(0);
+        let columns = Columns {
+            first: p_first,
+            count: (p_last - p_first + 1) as usize,
+        };
         let nodes = (((hi - lo) * height / 0.5).ceil() as usize + 1).max(4);
         let step = (hi - lo) / (nodes - 1) as f64;
         let norm = dvx * dvy * wi.z / (4.0 * PI * PI * facets.w2_area);
         let mut bins: Vec<Bin> = points
             .iter()
-            .map(|&(index, wo)| {
+            .map(|&(p, q, wo)| {
                 let x = if step > 0.0 {
                     (vz_of(wo) - lo) / step
                 } else {
@@ -286,7 +296,7 @@ impl Kirchhoff {
                 };
                 let node = (x.floor() as usize).saturating_sub(1).min(nodes - 4);
                 Bin {
-                    index,
+                    index: (p - p_first) as usize * ny + q.rem_euclid(ny as isize) as usize,
                     wo,
                     node,
                     t: x - node as f64,
@@ -299,7 +309,7 @@ impl Kirchhoff {
         // four nodes include it) as soon as it is made, so one transform is held at a time, in
         // buffers reused from node to node: no grid-sized allocation per node.
         let mut fields = vec![Complex64::default(); bins.len()];
-        let mut buffers = SpectrumBuffers::new(facets);
+        let mut buffers = SpectrumBuffers::new(ny, columns);
         for node in 0..nodes {
             let spectrum = buffers.spectrum(facets, lo + node as f64 * step);
             let first = bins.partition_point(|b| b.node + 3 < node);
@@ -316,49 +326,63 @@ impl Kirchhoff {
     }
 }
 
-/// The two grid-sized buffers of [`SpectrumBuffers::spectrum`], made once per facet grid.
+/// The columns of the lattice a transform needs: signed `p` from `first` on, `count` of them.
+#[derive(Debug, Clone, Copy)]
+struct Columns {
+    first: isize,
+    count: usize,
+}
+
+/// The buffers of [`SpectrumBuffers::spectrum`], made once per facet grid: the needed columns of
+/// the row transforms, row by row and then transposed.
 struct SpectrumBuffers {
+    columns: Columns,
     rows: Vec<Complex64>,
-    columns: Vec<Complex64>,
+    transposed: Vec<Complex64>,
 }
 
 impl SpectrumBuffers {
-    fn new(facets: &FacetGrid) -> SpectrumBuffers {
+    fn new(ny: usize, columns: Columns) -> SpectrumBuffers {
         SpectrumBuffers {
-            rows: vec![Complex64::default(); facets.nx * facets.ny],
-            columns: vec![Complex64::default(); facets.nx * facets.ny],
+            columns,
+            rows: vec![Complex64::default(); columns.count * ny],
+            transposed: vec![Complex64::default(); columns.count * ny],
         }
     }
 
-    /// The 2D transform `Σ_j A_j exp(i vz h_j) exp(i (vx x_j + vy y_j))` on the lattice,
-    /// transposed: element `p * ny + q` holds `(vx, vy) = (p Δvx, q Δvy)` (indices modulo the
-    /// grid size). Rows and columns run in parallel, each a fixed computation, so the result
-    /// does not depend on the thread count.
+    /// The 2D transform `Σ_j A_j exp(i vz h_j) exp(i (vx x_j + vy y_j))` on the lattice columns
+    /// of [`Columns`], transposed: element `c * ny + q` holds
+    /// `(vx, vy) = ((first + c) Δvx, q Δvy)` (`q` modulo the grid size). Each row is
+    /// transformed whole and its needed columns kept; those are then transformed. Rows and
+    /// columns run in parallel, each a fixed computation, so the result does not depend on the
+    /// thread count.
     fn spectrum(&mut self, facets: &FacetGrid, vz: f64) -> &[Complex64] {
         let (nx, ny) = (facets.nx, facets.ny);
-        let params = RowParams {
-            vz,
-            phase0: 0.0,
-            dphase: 0.0,
-            sx0: 0.0,
-            sx1: 0.0,
-            sy0: 0.0,
-            sy1: 0.0,
-            area: facets.ax * facets.ay,
-        };
-        self.rows.par_chunks_mut(nx).enumerate().for_each_init(
-            || vec![Complex64::default(); facets.row_fft.get_inplace_scratch_len()],
-            |scratch, (m, row)| {
-                fill_row(&facets.row(m), &params, row);
+        let Columns { first, count } = self.columns;
+        let area = facets.ax * facets.ay;
+        self.rows.par_chunks_mut(count).enumerate().for_each_init(
+            || {
+                let scratch = facets.row_fft.get_inplace_scratch_len();
+                (
+                    vec![Complex64::default(); nx],
+                    vec![Complex64::default(); scratch],
+                )
+            },
+            |(row, scratch), (m, kept)| {
+                let cells = facets.row(m);
+                fill_row_sampled(cells.h, cells.w, vz, area, row);
                 facets.row_fft.process_with_scratch(row, scratch);
+                for (c, out) in kept.iter_mut().enumerate() {
+                    *out = row[(first + c as isize).rem_euclid(nx as isize) as usize];
+                }
             },
         );
-        gonio_fft::fft2::transpose_into(&self.rows, ny, nx, &mut self.columns);
-        self.columns.par_chunks_mut(ny).for_each_init(
+        gonio_fft::fft2::transpose_into(&self.rows, ny, count, &mut self.transposed);
+        self.transposed.par_chunks_mut(ny).for_each_init(
             || vec![Complex64::default(); facets.col_fft.get_inplace_scratch_len()],
             |scratch, column| facets.col_fft.process_with_scratch(column, scratch),
         );
-        &self.columns
+        &self.transposed
     }
 }
 
