@@ -13,6 +13,11 @@
 //! the facets' sinc factors, on a grid refined until the phase `vz h` advances by at most 2π/10
 //! between neighbouring points (99.9th percentile of the slope, largest `|vz|`): about ten points
 //! per wavelength of the phase, and far inside the Nyquist limit, so no scattered light aliases.
+//!
+//! Where the Rayleigh parameter is large the integral's cost grows as `g` (finer sampling, more
+//! nodes) while its result tends to the stationary-phase limit (`geometric`): directions with
+//! `g` above [`super::KirchhoffOptions::geometric_above`] take the limit, and the FFTs are
+//! sampled only for the `|vz|` below it.
 
 use super::aperture::{brdf_factor, lattice_spacing, outgoing};
 use super::facets::FacetGrid;
@@ -28,6 +33,21 @@ use std::f64::consts::{PI, TAU};
 
 /// Points per wavelength of the phase `vz h` on the sampled grid.
 const POINTS_PER_WAVE: f64 = 10.0;
+
+/// Cost of one sampled cell at one `vz` node (its term, its share of the row and column FFTs
+/// and of the transpose), nanoseconds of one core. Measured on the project's 2-core machine with
+/// the Kirchhoff table of the 805 nm epoxy map (1024², 550 nm): its integral's parts, 5.9·10⁹
+/// cell-nodes, took about 66 of its 88 s of CPU; the 88° map alone 10.3 s for 0.7·10⁹.
+pub const NODE_CELL_NS: f64 = 12.0;
+
+/// Cost of one facet of the stationary-phase limit (its ray and its hemisphere cell),
+/// nanoseconds of one core: 0.2 s for the 0.8 million facets of the 805 nm epoxy map's spot.
+pub const FACET_NS: f64 = 250.0;
+
+/// Cost of building one cell of a facet grid (the spline and its slopes at the cell's centre),
+/// nanoseconds of one core: 2.5 s for the 16.8 million cells of the 805 nm epoxy map's grid
+/// sampled 4 times finer than the map.
+pub const BUILD_CELL_NS: f64 = 150.0;
 
 /// One lattice point that lands above the surface.
 struct Bin {
@@ -56,8 +76,9 @@ impl Kirchhoff {
     /// The spots whose mean [`Kirchhoff::scattered`] (and the hemisphere and cone variants)
     /// returns for light of `wavelength` metres from `wi`: the engine's own spot, or the smaller
     /// spots that its bounding square is cut into when the whole spot's grid would exceed the
-    /// facet limit.
-    /// `cone`: the detector of [`Kirchhoff::scattered_in_cone`], `None` for the whole hemisphere.
+    /// facet limit. `cone`: the detector of [`Kirchhoff::scattered_in_cone`], `None` for the
+    /// whole hemisphere (whose spots depend on the wavelength only, see
+    /// [`Kirchhoff::scattered`]).
     pub fn sampling_spots_for(
         &self,
         wavelength: f64,
@@ -66,12 +87,14 @@ impl Kirchhoff {
     ) -> Result<Vec<Spot>> {
         super::check_wavelength(wavelength)?;
         let k = TAU / wavelength;
-        let r = match cone {
-            Some(detector) => self.cone_sampling_refinement(k, wi, detector),
-            None => self.sampling_refinement(k * (wi.z + 1.0)),
-        };
-        self.check_refinement(r, wavelength)?;
-        Ok(self.sampling_spots(r))
+        match cone {
+            Some(detector) => {
+                let r = self.cone_sampling_refinement(k, wi, detector);
+                self.check_refinement(r, wavelength)?;
+                Ok(self.sampling_spots(r))
+            }
+            None => Ok(self.hemisphere_spots(wavelength)),
+        }
     }
 
     /// Refinement of the sampled grid for the lattice directions inside `detector`'s cone only:
@@ -146,8 +169,9 @@ impl Kirchhoff {
     }
 
     /// The BRDF over the whole hemisphere for light of `wavelength` metres from `wi`, binned into
-    /// the cells of `grid`: each cell's reflectance `∫ f cos t dω` and the number of lattice points
-    /// (speckle samples) it holds, in `hits`.
+    /// the cells of `grid`: each cell's reflectance `∫ f cos t dω` and the number of directions
+    /// it holds, in `hits` (lattice points, i.e. speckle samples, where the integral is used;
+    /// facets where its stationary-phase limit is, see [`Kirchhoff::scattered`]).
     pub fn hemisphere(
         &self,
         wavelength: f64,
@@ -170,25 +194,142 @@ impl Kirchhoff {
     }
 
     /// The light scattered over the whole hemisphere for light of `wavelength` metres from `wi`,
-    /// as the lattice of outgoing directions the spot resolves, each with its share of the
-    /// reflectance (`f cos t dω` of its lattice cell). A detector of any shape reads the sum of
-    /// the shares that fall in it.
+    /// as a set of outgoing directions, each with its share of the reflectance (`f cos t dω` of
+    /// its lattice cell, or a facet's share). A detector of any shape reads the sum of the
+    /// shares that fall in it.
+    ///
+    /// Where the Rayleigh parameter `g = (k σ (cos ti + cos to))²` is at most
+    /// [`super::KirchhoffOptions::geometric_above`] the directions are the lattice the spot
+    /// resolves, from the integral (FFTs, sampled finely enough for the largest `|vz|` there);
+    /// above it they are the facets' mirror directions of the stationary-phase limit
+    /// ([`Kirchhoff::method_split`] says where; `docs/kirchhoff.md`, "Rough maps").
     ///
     /// When the sampled grid of the whole spot would exceed the facet limit
     /// ([`super::KirchhoffOptions::max_facets`]; rough maps need fine sampling), the spot's
     /// bounding square is cut into `m × m` smaller spots that fit, and the result is the mean
-    /// over them: the lattices of all spots, each share divided by `m²`. A real instrument
-    /// averages speckle the same way over its large spot; every reading is then the mean of
-    /// `m²` independent speckle patterns (see `docs/kirchhoff.md`, "Spot averaging").
+    /// over them: the lattices and facets of all spots, each share divided by `m²`. A real
+    /// instrument averages speckle the same way over its large spot; every reading is then the
+    /// mean of `m²` independent speckle patterns (see `docs/kirchhoff.md`, "Spot averaging").
+    /// The spots are those the finest sampling at this wavelength needs
+    /// ([`Kirchhoff::sampling_spots_for`]), the same for every incidence and for both methods:
+    /// the surface is weighted alike in every direction of a table (the slopes of one part of a
+    /// map differ from another's; on a 256 µm crop of the 805 nm epoxy map the lobe of 128 µm
+    /// spots peaked 33% higher than that of the inscribed 256 µm spot).
     pub fn scattered(&self, wavelength: f64, wi: DVec3) -> Result<Vec<(DVec3, f64)>> {
         super::check_wavelength(wavelength)?;
-        let r = self.sampling_refinement(TAU / wavelength * (wi.z + 1.0));
-        self.scattered_where(wavelength, wi, r, |_| true)
+        let k = TAU / wavelength;
+        let split = self.method_split(wavelength);
+        let refinement = self.hemisphere_refinement(wavelength, wi);
+        if let Some(r) = refinement {
+            self.check_refinement(r, wavelength)?;
+        }
+        let geometric = split.cos_sum() < wi.z + 1.0;
+        let integral_part = |wo: DVec3| !split.is_geometric(wi, wo);
+        let limit_part = |wo: DVec3| split.is_geometric(wi, wo);
+        Ok(self.spot_mean(&self.hemisphere_spots(wavelength), |spot| {
+            let mut out = Vec::new();
+            let mut lit = false;
+            if let Some(r) = refinement {
+                self.with_grid(spot, r, |grid| {
+                    lit |= grid.w2_area > 0.0;
+                    out.extend(self.scattered_on(grid, k, wi, &integral_part));
+                });
+            }
+            if geometric {
+                self.with_grid(spot, 1, |grid| {
+                    lit |= grid.w2_area > 0.0;
+                    out.extend(self.geometric_on(grid, wi, &limit_part));
+                });
+            }
+            lit.then_some(out)
+        }))
+    }
+
+    /// The spots of the full-hemisphere maps at `wavelength` metres: those of the sampling for
+    /// the largest `|vz|` the integral is used for at any incidence (at most
+    /// [`MAX_REFINEMENT`] times finer than the map).
+    fn hemisphere_spots(&self, wavelength: f64) -> Vec<Spot> {
+        let k = TAU / wavelength;
+        let vz = self.method_split(wavelength).vz().min(2.0 * k);
+        self.sampling_spots(self.sampling_refinement(vz).min(MAX_REFINEMENT))
+    }
+
+    /// The mean over `spots` of the directions and shares `each` makes of a spot (`None` for a
+    /// spot without a measured point): the shares divided by the number of spots that have one.
+    fn spot_mean(
+        &self,
+        spots: &[Spot],
+        mut each: impl FnMut(&Spot) -> Option<Vec<(DVec3, f64)>>,
+    ) -> Vec<(DVec3, f64)> {
+        let mut out = Vec::new();
+        let mut count = 0;
+        for spot in spots {
+            if let Some(part) = each(spot) {
+                out.extend(part);
+                count += 1;
+            }
+        }
+        if count > 1 {
+            let share = 1.0 / count as f64;
+            out.iter_mut().for_each(|(_, s)| *s *= share);
+        }
+        out
+    }
+
+    /// `f` of the facet grid of refinement `r` over `spot`: the engine's own grid (built once)
+    /// for its own spot, else a grid built for this call and dropped after it, so that memory
+    /// holds one grid of the smaller spots at a time.
+    fn with_grid<T>(&self, spot: &Spot, r: usize, f: impl FnOnce(&FacetGrid) -> T) -> T {
+        if *spot == self.spot {
+            f(self.grid(r))
+        } else {
+            f(&FacetGrid::build(&self.spline, spot, r))
+        }
+    }
+
+    /// The expected cost of [`Kirchhoff::hemisphere`] for light of `wavelength` metres from
+    /// `wi`, in nanoseconds of one core (calibrated on the project's machine; a progress
+    /// display weighs the steps of a computation by it): [`NODE_CELL_NS`] per sampled cell and
+    /// `vz` node of the integral's part, [`FACET_NS`] per facet of the stationary-phase limit,
+    /// [`BUILD_CELL_NS`] per cell of the grids built for this map alone (those of smaller spots).
+    pub fn hemisphere_cost(&self, wavelength: f64, wi: DVec3) -> Result<f64> {
+        super::check_wavelength(wavelength)?;
+        let k = TAU / wavelength;
+        let split = self.method_split(wavelength);
+        let spots = self.hemisphere_spots(wavelength);
+        let cells = |r: usize| -> f64 {
+            spots
+                .iter()
+                .map(|spot| self.cells(spot.diameter, r) as f64)
+                .sum()
+        };
+        let built = if spots.len() > 1 { BUILD_CELL_NS } else { 0.0 };
+        let mut cost = 0.0;
+        if let Some(r) = self.hemisphere_refinement(wavelength, wi) {
+            let span = split.vz().min(k * (wi.z + 1.0)) - k * wi.z;
+            let nodes = (span * self.height_stats().1 / 0.5).ceil().max(3.0) + 1.0;
+            cost += (NODE_CELL_NS * nodes + built) * cells(r);
+        }
+        if split.cos_sum() < wi.z + 1.0 {
+            // The facets inside the spots' circles: π/4 of their grids' cells.
+            cost += (FACET_NS * PI / 4.0 + built) * cells(1);
+        }
+        Ok(cost)
+    }
+
+    /// Refinement of the sampled grid of the integral's part of [`Kirchhoff::scattered`]: for
+    /// the largest `|vz|` of the directions below the split, `None` when there are none (the
+    /// stationary-phase limit covers the whole hemisphere).
+    fn hemisphere_refinement(&self, wavelength: f64, wi: DVec3) -> Option<usize> {
+        let k = TAU / wavelength;
+        let split = self.method_split(wavelength).vz();
+        (split > k * wi.z).then(|| self.sampling_refinement(split.min(k * (wi.z + 1.0))))
     }
 
     /// As [`Kirchhoff::scattered`], for the lattice directions inside the cone of `detector`
-    /// only. FFTs are needed only at the `vz` nodes that the cone spans, so a narrow cone (a gloss
-    /// meter's receptors about the specular direction) costs a few FFTs instead of dozens.
+    /// only, all from the integral. FFTs are needed only at the `vz` nodes that the cone spans,
+    /// so a narrow cone (a gloss meter's receptors about the specular direction) costs a few
+    /// FFTs instead of dozens.
     pub fn scattered_in_cone(
         &self,
         wavelength: f64,
@@ -198,37 +339,15 @@ impl Kirchhoff {
         super::check_wavelength(wavelength)?;
         let cos_alpha = detector.half_angle.cos();
         let axis = detector.direction.normalize();
-        let r = self.cone_sampling_refinement(TAU / wavelength, wi, detector);
-        self.scattered_where(wavelength, wi, r, |wo| wo.dot(axis) >= cos_alpha)
-    }
-
-    /// The lattice directions that `keep` accepts, on sampled grids of refinement `r`, averaged
-    /// over the spots of [`Kirchhoff::sampling_spots`].
-    fn scattered_where(
-        &self,
-        wavelength: f64,
-        wi: DVec3,
-        r: usize,
-        keep: impl Fn(DVec3) -> bool + Sync,
-    ) -> Result<Vec<(DVec3, f64)>> {
         let k = TAU / wavelength;
+        let r = self.cone_sampling_refinement(k, wi, detector);
         self.check_refinement(r, wavelength)?;
-        let spots = self.sampling_spots(r);
-        if spots.len() == 1 {
-            return Ok(self.scattered_on(self.grid(r), k, wi, &keep));
-        }
-        let grids = spots
-            .iter()
-            .map(|spot| FacetGrid::build(&self.spline, spot, r))
-            .filter(|grid| grid.w2_area > 0.0);
-        let mut out = Vec::new();
-        let mut count = 0;
-        for grid in grids {
-            out.extend(self.scattered_on(&grid, k, wi, &keep));
-            count += 1;
-        }
-        let share = 1.0 / count.max(1) as f64;
-        Ok(out.into_iter().map(|(wo, s)| (wo, s * share)).collect())
+        let keep = |wo: DVec3| wo.dot(axis) >= cos_alpha;
+        Ok(self.spot_mean(&self.sampling_spots(r), |spot| {
+            self.with_grid(spot, r, |grid| {
+                (grid.w2_area > 0.0).then(|| self.scattered_on(grid, k, wi, &keep))
+            })
+        }))
     }
 
     /// The lattice of outgoing directions that `keep` accepts, with their shares of the
