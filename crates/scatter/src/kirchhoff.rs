@@ -29,7 +29,7 @@ mod hemisphere;
 mod kernel;
 
 pub use geometric::{GEOMETRIC_ABOVE_G, MethodSplit};
-pub use hemisphere::{FACET_NS, NODE_CELL_NS};
+pub use hemisphere::{BUILD_CELL_NS, FACET_NS, NODE_CELL_NS};
 
 use crate::error::{Result, ScatterError};
 use crate::geometry::{
