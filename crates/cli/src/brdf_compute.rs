@@ -7,9 +7,9 @@ use clap::{Args, ValueEnum};
 use gonio_brdf::Ior;
 use gonio_brdf::gbrdf;
 use gonio_brdf::table::{BrdfTable, Provenance, Resolution};
-use gonio_scatter::kirchhoff::{Kirchhoff, KirchhoffOptions};
+use gonio_scatter::kirchhoff::{GEOMETRIC_ABOVE_G, Kirchhoff, KirchhoffOptions};
 use gonio_scatter::ray::{RayEngine, RayOptions};
-use gonio_scatter::table::{self, TableOptions, kirchhoff_table, ray_table};
+use gonio_scatter::table::{self, KirchhoffMethods, TableOptions, kirchhoff_table, ray_table};
 use num_complex::Complex64;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -43,6 +43,12 @@ pub struct ComputeArgs {
     /// table, several a spectral one.
     #[arg(long, value_delimiter = ',', default_value = "550")]
     wavelength_nm: Vec<f64>,
+    /// Kirchhoff: the Rayleigh parameter g = (2π σ (cos θi + cos θo)/λ)² above which the
+    /// stationary-phase (geometric) limit of the integral is used instead of the integral,
+    /// whose cost grows with g while it tends to the limit (at g = 25 within about 9% at the
+    /// lobe's peak; docs/kirchhoff.md). `inf`: the full integral everywhere.
+    #[arg(long, default_value_t = GEOMETRIC_ABOVE_G)]
+    geometric_above_g: f64,
     /// Table nodes theta_h,theta_d,phi_d for an isotropic table, or theta_h,theta_d,phi_d,phi_h
     /// for an anisotropic one. theta_h nodes are spaced as the square of their index (32 nodes:
     /// 0.09°, 0.35°, 0.8°, 1.4°, ... from the specular direction); theta_d nodes every
@@ -77,6 +83,13 @@ pub fn run(a: ComputeArgs) -> Result<()> {
     if !(a.index.is_finite() && a.index > 0.0) {
         bail!("--index {}: the refractive index must be positive", a.index);
     }
+    if a.geometric_above_g.is_nan() || a.geometric_above_g <= 0.0 {
+        bail!(
+            "--geometric-above-g {}: the Rayleigh parameter must be positive (inf: the full \
+             integral everywhere)",
+            a.geometric_above_g
+        );
+    }
     let map = crate::surface::read(&a.surface)
         .with_context(|| format!("cannot read the height map {}", a.surface.display()))?;
     let str_ratio = table::texture_aspect_ratio(&map);
@@ -108,9 +121,10 @@ pub fn run(a: ComputeArgs) -> Result<()> {
             ComputeMethod::Kirchhoff => a.wavelength_nm.len(),
         };
     let bar = crate::progress::bar(runs as u64);
-    bar.set_message(format!("{method} runs"));
+    bar.set_message(format!("brdf compute ({method})"));
     let progress = crate::progress::reporting(&bar);
     let start = Instant::now();
+    let mut methods = Vec::new();
     let table = match a.method {
         ComputeMethod::Ray => {
             if a.wavelength_nm != [550.0] {
@@ -133,7 +147,15 @@ pub fn run(a: ComputeArgs) -> Result<()> {
             ray_table(&engine, &options, provenance, &progress)?
         }
         ComputeMethod::Kirchhoff => {
-            let engine = Kirchhoff::new(&map, KirchhoffOptions::new(ior))
+            let engine = Kirchhoff::new(
+                &map,
+                KirchhoffOptions {
+                    geometric_above: a.geometric_above_g,
+                    ..KirchhoffOptions::new(ior)
+                },
+            )
+            .with_context(|| format!("{}", a.surface.display()))?;
+            methods = table::kirchhoff_methods(&engine, &a.wavelength_nm, &options)
                 .with_context(|| format!("{}", a.surface.display()))?;
             kirchhoff_table(&engine, &a.wavelength_nm, &options, provenance, &progress)
                 .with_context(|| format!("{}", a.surface.display()))?
@@ -143,7 +165,7 @@ pub fn run(a: ComputeArgs) -> Result<()> {
     let seconds = start.elapsed().as_secs_f64();
     gbrdf::write(&table, &a.output)
         .with_context(|| format!("cannot write {}", a.output.display()))?;
-    report(&a, &table, seconds, ior, &warnings)
+    report(&a, &table, seconds, ior, &warnings, &methods)
 }
 
 /// The table and incidence options from the flags.
@@ -183,6 +205,7 @@ fn report(
     seconds: f64,
     ior: Ior,
     warnings: &[String],
+    methods: &[KirchhoffMethods],
 ) -> Result<()> {
     let angles = [0.0, 30.0, 60.0];
     let albedo = table.albedo_curve(&angles);
@@ -207,6 +230,7 @@ fn report(
             "seconds": seconds,
             "albedo": rows,
             "warnings": warnings,
+            "kirchhoff_methods": methods.iter().map(KirchhoffMethods::to_json).collect::<Vec<_>>(),
         });
         println!("{}", serde_json::to_string_pretty(&out)?);
         return Ok(());
@@ -217,6 +241,9 @@ fn report(
         table.resolution().describe(),
         table.channels().describe()
     );
+    for m in methods {
+        println!("kirchhoff at {}", m.describe());
+    }
     for ((t, al), r) in angles.iter().zip(&albedo.albedo).zip(&fresnel_r) {
         let shown: Vec<String> = al.iter().map(|v| format!("{v:.4}")).collect();
         println!(

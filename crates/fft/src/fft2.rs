@@ -86,10 +86,27 @@ pub fn inverse(spectrum: HalfSpectrum) -> Array2<f64> {
 /// Transpose a row-major `rows × cols` matrix, in parallel over bands of output rows and in
 /// square tiles, so that both the reads and the writes stay in cache.
 pub fn transpose<T: Copy + Default + Send + Sync>(src: &[T], rows: usize, cols: usize) -> Vec<T> {
-    const TILE: usize = 32;
     let mut dst = vec![T::default(); rows * cols];
+    transpose_into(src, rows, cols, &mut dst);
+    dst
+}
+
+/// [`transpose`] into a buffer of the caller's (`rows * cols` long), so that a computation that
+/// transposes many grids of one size reuses one buffer instead of allocating each.
+pub fn transpose_into<T: Copy + Send + Sync>(src: &[T], rows: usize, cols: usize, dst: &mut [T]) {
+    const TILE: usize = 32;
+    assert_eq!(
+        src.len(),
+        rows * cols,
+        "the source holds rows × cols values"
+    );
+    assert_eq!(
+        dst.len(),
+        rows * cols,
+        "the destination holds rows × cols values"
+    );
     if rows == 0 || cols == 0 {
-        return dst;
+        return;
     }
     dst.par_chunks_mut(rows * TILE)
         .enumerate()
@@ -105,7 +122,6 @@ pub fn transpose<T: Copy + Default + Send + Sync>(src: &[T], rows: usize, cols: 
                 }
             }
         });
-    dst
 }
 
 /// The transpose of a 2D array, in standard (row-major) layout.

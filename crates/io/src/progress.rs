@@ -13,7 +13,11 @@ pub struct Report<'a> {
     /// report only counts a step.
     pub stage: &'a str,
     /// Steps finished. Steps that run in parallel are counted as they finish, so two reports
-    /// may arrive in the other order: a display keeps the largest count it has seen.
+    /// may arrive in the other order: a display keeps the largest count it has seen. A
+    /// computation whose steps differ in cost may count each by its expected cost (the
+    /// Kirchhoff tables count nanoseconds of a calibrated cost model), so that `done/total` is
+    /// the share of the time and a display can tell the time left; one that plans its steps
+    /// first reports `0` of them when the work begins.
     pub done: u64,
     /// All the steps, as far as known when reporting (it may grow).
     pub total: u64,

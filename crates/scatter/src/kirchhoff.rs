@@ -24,8 +24,12 @@
 
 mod aperture;
 mod facets;
+mod geometric;
 mod hemisphere;
 mod kernel;
+
+pub use geometric::{GEOMETRIC_ABOVE_G, MethodSplit};
+pub use hemisphere::{BUILD_CELL_NS, FACET_NS, NODE_CELL_NS};
 
 use crate::error::{Result, ScatterError};
 use crate::geometry::{
@@ -120,6 +124,11 @@ pub struct KirchhoffOptions {
     /// full-hemisphere or gloss computation whose sampled grid would be larger is done as the
     /// mean over smaller spots (see [`Kirchhoff::scattered`]).
     pub max_facets: usize,
+    /// Rayleigh parameter `g = (k σ (cos ti + cos to))²` above which full-hemisphere maps
+    /// ([`Kirchhoff::hemisphere`], [`Kirchhoff::scattered`]) use the stationary-phase limit of
+    /// the integral instead of the integral (default [`GEOMETRIC_ABOVE_G`]; infinite: the
+    /// integral everywhere). See [`MethodSplit`].
+    pub geometric_above: f64,
 }
 
 impl KirchhoffOptions {
@@ -130,6 +139,7 @@ impl KirchhoffOptions {
             spot: None,
             phase_tolerance: 0.3,
             max_facets: MAX_FACETS,
+            geometric_above: GEOMETRIC_ABOVE_G,
         }
     }
 }
@@ -142,9 +152,11 @@ pub struct Kirchhoff {
     ior: Ior,
     phase_tolerance: f64,
     max_facets: usize,
+    geometric_above: f64,
     curvature: f64,
     slope: f64,
     grids: Vec<OnceLock<FacetGrid>>,
+    height_stats: OnceLock<(f64, f64)>,
 }
 
 impl Kirchhoff {
@@ -189,6 +201,13 @@ impl Kirchhoff {
                 options.phase_tolerance
             )));
         }
+        if options.geometric_above.is_nan() || options.geometric_above <= 0.0 {
+            return Err(ScatterError::Invalid(format!(
+                "the Rayleigh parameter {} above which the stationary-phase limit is used must \
+                 be positive (infinite: never)",
+                options.geometric_above
+            )));
+        }
         // The sample as an instrument sees it: angles from its mean plane (see RayEngine::new).
         let map = &gonio_surface::ops::level(map)?;
         let spline = BicubicSpline::from_map(map)?;
@@ -199,9 +218,11 @@ impl Kirchhoff {
             ior: options.ior,
             phase_tolerance: options.phase_tolerance,
             max_facets: options.max_facets,
+            geometric_above: options.geometric_above,
             curvature,
             slope,
             grids: (0..MAX_REFINEMENT).map(|_| OnceLock::new()).collect(),
+            height_stats: OnceLock::new(),
         })
     }
 

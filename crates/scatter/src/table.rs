@@ -39,7 +39,7 @@ pub mod cache;
 mod slice;
 
 use crate::error::{Result, ScatterError};
-use crate::kirchhoff::Kirchhoff;
+use crate::kirchhoff::{Kirchhoff, MethodSplit};
 use crate::ray::{HemisphereGrid, HemisphereTable, RayEngine};
 use glam::DVec3;
 use gonio_brdf::table::coords::{TurnAboutZ, dir, theta_of, turn_about_z};
@@ -363,10 +363,19 @@ fn ray_deposits(
     )
 }
 
+/// Cost of depositing one sub-cell ray of a hemisphere map on a slice, nanoseconds of one core
+/// (measured with the 805 nm epoxy map: about 0.3 s per map of 0.25° cells): the table's share
+/// of each run's cost beside [`Kirchhoff::hemisphere_cost`].
+const DEPOSIT_RAY_NS: f64 = 35.0;
+
 /// The Kirchhoff table of a planned engine at the given wavelengths (nm, strictly increasing):
 /// one channel per wavelength (a monochrome table for a single wavelength, which is then
-/// recorded in the provenance as `wavelength_nm`). `progress` counts the hemisphere maps (one
-/// per incidence, wavelength and turn).
+/// recorded in the provenance as `wavelength_nm`). Where the Rayleigh parameter is large the
+/// engine's hemisphere maps use the integral's stationary-phase limit ([`kirchhoff_methods`]
+/// says where; recorded in the provenance as `kirchhoff_methods`). `progress` gets a report of
+/// no step when the work begins, then one per hemisphere map (one per incidence, wavelength and
+/// turn), its steps weighted by the expected cost of each map ([`Kirchhoff::hemisphere_cost`]),
+/// so that the share done is the share of the time.
 pub fn kirchhoff_table(
     engine: &Kirchhoff,
     wavelengths_nm: &[f64],
@@ -394,23 +403,48 @@ pub fn kirchhoff_table(
         },
     };
     channels.validate().map_err(ScatterError::Invalid)?;
+    let methods: Vec<serde_json::Value> = kirchhoff_methods(engine, wavelengths_nm, options)?
+        .iter()
+        .map(KirchhoffMethods::to_json)
+        .collect();
+    provenance
+        .extra
+        .insert("kirchhoff_methods".into(), serde_json::json!(methods));
     let hemisphere = HemisphereGrid::with_step_deg(KIRCHHOFF_STEP_DEG)?;
     let grid = options.slice_grid();
     let incidences = options.incidences();
     let turns = options.turns();
-    let runs_per_incidence = turns.len() * wavelengths_nm.len();
-    let total = incidences.len() * runs_per_incidence;
+    // The runs in the order they are made, with their expected costs (nanoseconds).
+    let deposit = DEPOSIT_RAY_NS * (hemisphere.len() * KIRCHHOFF_SPLIT * KIRCHHOFF_SPLIT) as f64;
+    let mut costs = Vec::with_capacity(incidences.len() * wavelengths_nm.len() * turns.len());
+    for &wi in &incidences {
+        for &nm in wavelengths_nm {
+            for &turn in &turns {
+                costs.push(engine.hemisphere_cost(nm * 1e-9, turn_about_z(wi, turn))? + deposit);
+            }
+        }
+    }
+    let total = costs.iter().sum::<f64>().ceil() as u64;
+    progress.report("", 0, total);
+    let mut done = 0.0;
+    let mut run = 0;
     let mut slices = Vec::with_capacity(incidences.len());
     for (k, &wi) in incidences.iter().enumerate() {
         let measure = grid.measures(wi);
         let mut per_channel = Vec::with_capacity(wavelengths_nm.len());
-        for (c, &nm) in wavelengths_nm.iter().enumerate() {
+        for &nm in wavelengths_nm {
             let mut partials = Vec::new();
-            for (l, &turn) in turns.iter().enumerate() {
+            for &turn in &turns {
                 let map = engine.hemisphere(nm * 1e-9, turn_about_z(wi, turn), &hemisphere)?;
                 partials.extend(hemisphere_deposits(&grid, wi, turn, &map));
-                let done = k * runs_per_incidence + c * turns.len() + l + 1;
-                progress.report("", done as u64, total as u64);
+                done += costs[run];
+                run += 1;
+                let reported = if run == costs.len() {
+                    total
+                } else {
+                    (done as u64).min(total)
+                };
+                progress.report("", reported, total);
             }
             let values = mean_of_turns(grid.values_from(&partials, &measure), turns.len());
             per_channel.push(options.symmetrise(k, values, &grid, &measure));
@@ -418,6 +452,107 @@ pub fn kirchhoff_table(
         slices.push(Slice::from_channels(&per_channel));
     }
     fill(options, &grid, &slices, channels, provenance)
+}
+
+/// Where a Kirchhoff table at one wavelength uses the integral and where its stationary-phase
+/// limit (see [`Kirchhoff::method_split`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KirchhoffMethods {
+    /// The split: the limit where `g = (k σ (cos ti + cos to))²` exceeds its threshold.
+    pub split: MethodSplit,
+    /// The share of the table's pairs of directions that the limit covers: the mean over the
+    /// computed incidences of [`MethodSplit::geometric_share`].
+    pub geometric_share: f64,
+    /// The first computed incidence (degrees) at which the integral is used for some outgoing
+    /// directions; `None` when it never is.
+    pub integral_from_deg: Option<f64>,
+}
+
+impl KirchhoffMethods {
+    /// In words: which method, where.
+    pub fn describe(&self) -> String {
+        let s = &self.split;
+        let head = format!(
+            "{:.0} nm (rms height of the spot {:.0} nm)",
+            s.wavelength * 1e9,
+            s.rms_height * 1e9
+        );
+        let g = format!(
+            "g = (2π σ (cos θi + cos θo)/λ)² > {}, i.e. cos θi + cos θo > {:.3}",
+            s.geometric_above,
+            s.cos_sum()
+        );
+        match self.integral_from_deg {
+            _ if self.geometric_share <= 0.0 => {
+                format!(
+                    "{head}: the full Kirchhoff integral everywhere (g ≤ {})",
+                    s.geometric_above
+                )
+            }
+            None => format!("{head}: the stationary-phase (geometric) limit everywhere ({g})"),
+            Some(from) => format!(
+                "{head}: the stationary-phase (geometric) limit where {g}, {:.0}% of the table's \
+                 directions; the full integral elsewhere (incidences from {from:.0}°, outgoing \
+                 toward grazing)",
+                100.0 * self.geometric_share
+            ),
+        }
+    }
+
+    /// As recorded in a table's provenance.
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "wavelength_nm": self.split.wavelength * 1e9,
+            "rms_height_nm": self.split.rms_height * 1e9,
+            "geometric_above_g": if self.split.geometric_above.is_finite() {
+                serde_json::json!(self.split.geometric_above)
+            } else {
+                serde_json::Value::Null
+            },
+            "geometric_where_cos_sum_above": if self.split.cos_sum().is_finite() {
+                serde_json::json!(self.split.cos_sum())
+            } else {
+                serde_json::Value::Null
+            },
+            "geometric_share": self.geometric_share,
+            "integral_from_incidence_deg": self.integral_from_deg,
+            "description": self.describe(),
+        })
+    }
+}
+
+/// Where the Kirchhoff table of `engine` at these wavelengths (nm) with these options uses the
+/// integral and where its stationary-phase limit, one entry per wavelength.
+pub fn kirchhoff_methods(
+    engine: &Kirchhoff,
+    wavelengths_nm: &[f64],
+    options: &TableOptions,
+) -> Result<Vec<KirchhoffMethods>> {
+    let incidences = options.incidences();
+    wavelengths_nm
+        .iter()
+        .map(|&nm| {
+            let split = engine.method_split(nm * 1e-9);
+            if !(nm > 0.0 && nm.is_finite()) {
+                return Err(ScatterError::Invalid(format!(
+                    "wavelength {nm} nm must be positive and finite"
+                )));
+            }
+            let shares: Vec<f64> = incidences
+                .iter()
+                .map(|&wi| split.geometric_share(wi))
+                .collect();
+            Ok(KirchhoffMethods {
+                split,
+                geometric_share: shares.iter().sum::<f64>() / shares.len().max(1) as f64,
+                integral_from_deg: incidences
+                    .iter()
+                    .zip(&shares)
+                    .find(|(_, s)| **s < 1.0)
+                    .map(|(wi, _)| theta_of(*wi).to_degrees()),
+            })
+        })
+        .collect()
 }
 
 /// The cells of a hemisphere map deposited on the slice's nodes as rays: [`KIRCHHOFF_SPLIT`]²

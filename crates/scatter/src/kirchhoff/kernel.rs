@@ -199,6 +199,60 @@ fn fill_row_generic(cells: &RowCells, p: &RowParams, out: &mut [Complex64]) {
     }
 }
 
+/// `out[n] = area · w[n] · exp(i vz h[n])`: the terms of the plain sampled sum that the
+/// full-hemisphere FFTs transform (no linear phase, which the FFT supplies, and no sinc factors).
+pub(crate) fn fill_row_sampled(h: &[f64], w: &[f64], vz: f64, area: f64, out: &mut [Complex64]) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the running CPU supports AVX2 (checked just above).
+            unsafe { fill_row_sampled_avx2(h, w, vz, area, out) };
+            return;
+        }
+    }
+    fill_row_sampled_generic(h, w, vz, area, out);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn fill_row_sampled_avx2(h: &[f64], w: &[f64], vz: f64, area: f64, out: &mut [Complex64]) {
+    fill_row_sampled_generic(h, w, vz, area, out);
+}
+
+#[inline(always)]
+fn fill_row_sampled_generic(h: &[f64], w: &[f64], vz: f64, area: f64, out: &mut [Complex64]) {
+    let n = out.len();
+    let start = w[..n].iter().position(|&w| w > 0.0).unwrap_or(n);
+    let end = w[..n]
+        .iter()
+        .rposition(|&w| w > 0.0)
+        .map_or(start, |i| i + 1);
+    out[..start].fill(Complex64::default());
+    out[end..].fill(Complex64::default());
+    // Blocks of four, as in `fill_row_generic`, for the vector registers.
+    let body = start + (end - start) / 4 * 4;
+    for ((o, h), w) in out[start..body]
+        .chunks_exact_mut(4)
+        .zip(h[start..body].chunks_exact(4))
+        .zip(w[start..body].chunks_exact(4))
+    {
+        let mut re = [0.0; 4];
+        let mut im = [0.0; 4];
+        for j in 0..4 {
+            let (s, c) = sin_cos(vz * h[j]);
+            re[j] = area * w[j] * c;
+            im[j] = area * w[j] * s;
+        }
+        for j in 0..4 {
+            o[j] = Complex64::new(re[j], im[j]);
+        }
+    }
+    for c in body..end {
+        let (s, co) = sin_cos(vz * h[c]);
+        out[c] = Complex64::new(area * w[c] * co, area * w[c] * s);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -223,6 +277,40 @@ mod tests {
         for z in [0.0, 1e-9, 0.999e-3, 1.001e-3, 0.5, -3.0, 40.0] {
             let exact = if z == 0.0 { 1.0 } else { f64::sin(z) / z };
             assert!((sinc(z) - exact).abs() < 1e-15, "{z}");
+        }
+    }
+
+    /// The sampled row equals the general row with no linear phase and no sinc factors.
+    #[test]
+    fn sampled_row_is_the_row_without_sinc_factors() {
+        let n = 23;
+        let h: Vec<f64> = (0..n).map(|i| 1e-7 * (i as f64 * 0.7).sin()).collect();
+        let zero = vec![0.0; n];
+        let w: Vec<f64> = (0..n)
+            .map(|i| if i < 3 { 0.0 } else { 1.0 / i as f64 })
+            .collect();
+        let p = RowParams {
+            vz: -2.2e7,
+            phase0: 0.0,
+            dphase: 0.0,
+            sx0: 0.0,
+            sx1: 0.0,
+            sy0: 0.0,
+            sy1: 0.0,
+            area: 2.5e-13,
+        };
+        let (mut general, mut sampled) =
+            (vec![Complex64::default(); n], vec![Complex64::default(); n]);
+        let cells = RowCells {
+            h: &h,
+            hx: &zero,
+            hy: &zero,
+            w: &w,
+        };
+        fill_row(&cells, &p, &mut general);
+        fill_row_sampled(&h, &w, p.vz, p.area, &mut sampled);
+        for (a, b) in general.iter().zip(&sampled) {
+            assert!((a - b).norm() <= 1e-15 * p.area, "{a} vs {b}");
         }
     }
 

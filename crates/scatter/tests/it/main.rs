@@ -6,9 +6,11 @@
 //! function its tests reach, where these link the library's compiled copy. One test binary per
 //! crate (one link instead of one per file); each module is one subject.
 
+mod alloc;
 mod analytic;
 mod cache;
 mod geometry;
+mod kirchhoff_rough;
 mod kirchhoff_vs_models;
 mod ray_model;
 mod ray_transmission;

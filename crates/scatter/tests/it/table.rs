@@ -150,10 +150,22 @@ fn kirchhoff_table_agrees_with_ray_table_for_a_rough_surface() {
         &progress,
     )
     .unwrap();
-    // One report per hemisphere map, counting up to the total.
-    let n = options.incidence_count() as u64;
-    let want: Vec<(u64, u64)> = (1..=n).map(|k| (k, n)).collect();
-    assert_eq!(*reports.lock().unwrap(), want);
+    // A report of no step when the work begins, then one per hemisphere map, its steps
+    // weighted by the maps' expected costs: counting up to the total, which is the sum of those
+    // costs (each map's deposit on the slices adds the same amount).
+    let reports = reports.lock().unwrap().clone();
+    assert_eq!(reports.len(), options.incidence_count() + 1);
+    assert_eq!(reports[0].0, 0);
+    let total = reports[0].1;
+    assert!(reports.iter().all(|r| r.1 == total));
+    assert!(reports.windows(2).all(|w| w[0].0 < w[1].0));
+    assert_eq!(reports.last().unwrap().0, total);
+    let costs: f64 = options
+        .incidences()
+        .iter()
+        .map(|&wi| kirchhoff.hemisphere_cost(633e-9, wi).unwrap())
+        .sum();
+    assert!(costs > 0.0 && costs < total as f64, "{costs} vs {total}");
     for ti in [0.0f64, 30.0] {
         let (a, b) = (
             ray_t.albedo(ti.to_radians(), 0.0)[0],
