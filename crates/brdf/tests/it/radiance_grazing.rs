@@ -60,9 +60,10 @@ fn worst(values: &[f64]) -> f64 {
         .fold(0.0, |w: f64, e| if e.abs() > w.abs() { e } else { w })
 }
 
-/// Radiance on the export of `table` at the default incidences plus `more` (degrees), with the
-/// `queries` (`pairs` being grazing ones then inner ones; see `tests/radiance.py`); the worst
-/// errors of the two sets.
+/// Radiance on the export of the Lambert table of albedo `RHO` at the default incidences plus
+/// `more` (degrees), or on the script's own source if `queries` names one (`grid_lambert`,
+/// `function`), with the `queries` (see `tests/radiance.py`) and the pairs `grazing` then
+/// `inner`; the report and the worst errors of the two sets.
 fn lambert_run(more: &[f64], mut queries: serde_json::Value) -> Option<(RadianceReport, f64, f64)> {
     let (grazing, inner) = (grazing(), inner());
     let pairs: Vec<Pair> = grazing.iter().chain(&inner).copied().collect();
@@ -82,11 +83,10 @@ fn lambert_run(more: &[f64], mut queries: serde_json::Value) -> Option<(Radiance
     Some((report, g, i))
 }
 
-/// `value` within a fifth of `measured`: what pins a figure of Radiance's. Each figure is the
-/// same to every digit from run to run (Radiance's interpolant and tree are built without
-/// random numbers for a monochrome table); a fifth leaves room for a Radiance build that rounds
-/// otherwise and flags any change of the interpolant or of the export's samples that moves it
-/// more.
+/// `value` within a fifth of `measured`: what pins a figure of Radiance's. Each figure came out
+/// the same to every digit in repeated runs (a deterministic result of Radiance's algorithms,
+/// not a statistic); a fifth leaves room for a Radiance build that rounds otherwise and flags
+/// any change of the interpolant or of the export's samples that moves it more.
 fn pinned(what: &str, value: f64, measured: f64) {
     println!("{what}: {value:+.4} (measured {measured:+.4} on pyradiance 1.3.1)");
     assert!(
