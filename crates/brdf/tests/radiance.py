@@ -6,11 +6,25 @@ Usage: python3 radiance.py DIR QUERIES.json
 
 DIR holds the .dat files, one per incidence. QUERIES.json is
   {"pairs": [[theta_light, phi_light, theta_view, phi_view], ...], "dhr_theta": [...]}
-with angles in degrees. The script runs `pabopto2bsdf DIR/*.dat > DIR/radiance.sir` and
-`bsdf2ttree DIR/radiance.sir > DIR/radiance.xml` (default settings: a 64 x 64 tensor tree per
-incidence, 90% culling) and prints one JSON object:
+with angles in degrees, and optionally
+  "pabopto2bsdf": [options], "bsdf2ttree": [options]: added to those commands (e.g. ["-g", "6"],
+      ["-g", "5"]); without them Radiance's defaults;
+  "render": [[theta_light, phi_light, theta_view, phi_view], ...]: pairs rendered by rtrace;
+  "grid_lambert": {"albedo": a, "step_deg": s, "max_theta_deg": t, "incidences_deg": [...]}:
+      instead of DIR's files, PAB-Opto files of a Lambertian that this script writes itself, the
+      way a goniophotometer records (every s degrees in theta and in phi up to t), into
+      DIR/grid_lambert (an independent table: gonio writes none of it);
+  "floor_file": {"theta_deg": t, "value": v}: one more file, at incidence t, every direction
+      holding v (written into DIR/floor, on a 2.5 degree grid): it lowers the BSDF minimum that
+      pabopto2bsdf takes from the first percentile of all values (below);
+  "function": "expr": no files; bsdf2ttree tabulates bsdf(ix,iy,iz,ox,oy,oz) = expr itself
+      (its -t3 -e input, e.g. "0.5/PI"), which skips pabopto2bsdf's interpolant.
+The script runs `pabopto2bsdf DIR/*.dat > DIR/radiance.sir` and `bsdf2ttree DIR/radiance.sir >
+DIR/radiance.xml` (by default a 64 x 64 tensor tree per incidence, 90% culling) and prints one
+JSON object:
   "pyradiance": its version;
   "colorimetry": the COLORIMETRY line of the interpolant's header (CIE-Y or CIE-XYZ);
+  "bsdf_min": the BSDFMIN line of that header (the value Radiance never goes below);
   "lobes": per incidence of the interpolant (pabopto2bsdf's radial basis functions, the binary
            format of save_bsdf_rep in Radiance src/cv/bsdfrep.c): the incidence [theta, phi]
            in degrees, the number of lobes and their chromaticity [x, y]: the lobes' (u', v')
@@ -20,11 +34,25 @@ incidence, 90% culling) and prints one JSON object:
              trees (null without colour);
   "y": per pair, the BSDF (Y, 1/sr) that Radiance's BSDF library returns (SDevalBSDF through
        pyradiance.bsdf.query) for light from (theta_light, phi_light) seen from
-       (theta_view, phi_view);
+       (theta_view, phi_view), in the order Radiance's renderer passes them (below);
   "query_xy": per pair, the chromaticity that pyradiance.bsdf.query reports;
+  "rendered": per "render" pair, the BSDF (Y, 1/sr) that rtrace renders (below);
   "dhr": per dhr_theta, the directional-hemispherical reflectance (Y) of the tensor tree for
-         light from (theta, 0) (SDdirectHemi, all reflection components).
+         the tree's incidence at (theta, 0) (SDdirectHemi, all reflection components): the
+         integral over the tree's outgoing directions, which the renderer takes for the lights.
 Exit status 77 when pyradiance is not installed, so the caller can skip.
+
+Which direction is which. pyradiance.bsdf.query(sd, t1, p1, t2, p2) calls SDevalBSDF(sv, vec(t1,
+p1), vec(t2, p2), sd) (pyradiance src/binding/bsdf_ext.cpp); the first direction indexes the
+tensor tree's incidence, where bsdf2ttree puts pabopto2bsdf's incidences, the files'
+#intheta/#inphi (a tree of bsdf = iz returns cos t1). Radiance's renderer passes the direction
+toward the viewer first and the one toward the light second (src/rt/m_bsdf.c, dir_bsdf:
+SDevalBSDF(&sv, vjit, vsmp, sd), the jittered ray and source directions): rtrace, lighting a
+plane of the BSDF material with a distant source, returns query(view, light), so a table whose
+value grows with the file's incidence brightens with the viewing angle. Radiance thus renders
+the files' incidence as the view, which needs reciprocity (f(light, view) = f(view, light)), and
+the "pairs" here are evaluated the way it renders: query(sd, theta_view, phi_view, theta_light,
+phi_light).
 """
 
 import glob
@@ -63,11 +91,56 @@ def run(cmd, out_path):
         f.write(done.stdout)
 
 
-files = sorted(glob.glob(os.path.join(directory, "*.dat")))
+def write_pabopto(path, theta_in, directions, value):
+    """One PAB-Opto file (the header pabopto2bsdf reads, src/cv/pabopto2bsdf.c) holding `value`
+    at every (theta, phi) of `directions`."""
+    with open(path, "w") as f:
+        f.write('#sample_name "independent"\n#format: theta phi BSDF\n#colorimetry: CIE-Y\n')
+        f.write(f"#upphi 90\n#intheta {theta_in}\n#inphi 0\n")
+        for theta, phi in directions:
+            f.write(f"{theta:.4f} {phi:.4f} {value:.6e}\n")
+
+
+def grid(step, max_theta):
+    """A goniophotometer's grid: the pole, then every `step` degrees in theta up to
+    `max_theta`, every `step` degrees in phi."""
+    out = [(0.0, 0.0)]
+    rings = int(round(max_theta / step))
+    azimuths = int(round(360.0 / step))
+    for i in range(1, rings + 1):
+        out += [(i * step, j * 360.0 / azimuths) for j in range(azimuths)]
+    return out
+
+
+ttree = [os.path.join(binpath, "bsdf2ttree"), *queries.get("bsdf2ttree", [])]
 sir = os.path.join(directory, "radiance.sir")
 xml = os.path.join(directory, "radiance.xml")
-run([os.path.join(binpath, "pabopto2bsdf"), *files], sir)
-run([os.path.join(binpath, "bsdf2ttree"), sir], xml)
+if "function" in queries:
+    # bsdf2ttree's own tabulation of a function (-t3: isotropic), no interpolant.
+    expr = f"bsdf(ix,iy,iz,ox,oy,oz)={queries['function']};"
+    run([*ttree, "-t3", "-e", expr, "bsdf"], xml)
+    sir = None
+else:
+    if "grid_lambert" in queries:
+        lam = queries["grid_lambert"]
+        source = os.path.join(directory, "grid_lambert")
+        os.makedirs(source, exist_ok=True)
+        directions = grid(lam["step_deg"], lam["max_theta_deg"])
+        for t in lam["incidences_deg"]:
+            path = os.path.join(source, f"lambert_t{t}.dat")
+            write_pabopto(path, t, directions, lam["albedo"] / math.pi)
+    else:
+        source = directory
+    files = sorted(glob.glob(os.path.join(source, "*.dat")))
+    if "floor_file" in queries:
+        floor = queries["floor_file"]
+        os.makedirs(os.path.join(directory, "floor"), exist_ok=True)
+        path = os.path.join(directory, "floor", "floor.dat")
+        write_pabopto(path, floor["theta_deg"], grid(2.5, 87.5), floor["value"])
+        files.append(path)
+    p2b = [os.path.join(binpath, "pabopto2bsdf"), *queries.get("pabopto2bsdf", [])]
+    run([*p2b, *files], sir)
+    run([*ttree, sir], xml)
 
 
 def xy_of_uv(u, v):
@@ -76,11 +149,13 @@ def xy_of_uv(u, v):
 
 
 def read_sir(path):
-    """Header colorimetry and, per incidence, the lobes of pabopto2bsdf's interpolant."""
+    """Header colorimetry and BSDF minimum and, per incidence, the lobes of pabopto2bsdf's
+    interpolant."""
     data = open(path, "rb").read()
     end = data.index(b"\n\n") + 2
     header = data[:end].decode(errors="replace")
     colorimetry = re.search(r"COLORIMETRY=(\S+)", header)
+    bsdf_min = re.search(r"BSDFMIN=(\S+)", header)
     pos = end
 
     def getint(n):
@@ -126,7 +201,11 @@ def read_sir(path):
                 "xy": [total[0] / s, total[1] / s] if s > 0 else None,
             }
         )
-    return (colorimetry.group(1) if colorimetry else None), nodes
+    return (
+        (colorimetry.group(1) if colorimetry else None),
+        (float(bsdf_min.group(1)) if bsdf_min else None),
+        nodes,
+    )
 
 
 def tree_xy(path):
@@ -143,11 +222,59 @@ def tree_xy(path):
     return xy_of_uv(statistics.median(leaves["CIE-u"]), statistics.median(leaves["CIE-v"]))
 
 
-colorimetry, lobes = read_sir(sir)
+def vec(theta, phi):
+    t, p = math.radians(theta), math.radians(phi)
+    return (math.sin(t) * math.cos(p), math.sin(t) * math.sin(p), math.cos(t))
+
+
+def render(pairs):
+    """The BSDF that rtrace renders for each pair: a plane of the BSDF material (up vector +y,
+    the frame of the files' #upphi 90) at z = 0 under a distant source of radiance R and
+    half-angle 0.25 degrees toward the light, one ray from the viewer, direct light only (-ab 0,
+    and -ss 0: no specular sample rays, which would take a share of the BSDF's weight) and one
+    sample of the source (-dj 0, -ds 0). Its radiance is f R omega cos(theta_light),
+    omega the source's solid angle, whence f. rtrace gives RGB; the tree is photometric (Y),
+    so every pair is grey and Y is any channel (the mean is taken)."""
+    if not pairs:
+        return []
+    radiance, half_angle = 1000.0, 0.25
+    omega = 2.0 * math.pi * (1.0 - math.cos(math.radians(half_angle)))
+    scene_dir = os.path.join(directory, "render")
+    os.makedirs(scene_dir, exist_ok=True)
+    out = []
+    for theta_l, phi_l, theta_v, phi_v in pairs:
+        s = vec(theta_l, phi_l)
+        scene = os.path.join(scene_dir, "scene.rad")
+        with open(scene, "w") as f:
+            f.write(f"void light bright 0 0 3 {radiance} {radiance} {radiance}\n")
+            f.write(f"bright source sun 0 0 4 {s[0]} {s[1]} {s[2]} {2 * half_angle}\n")
+            f.write(f"void BSDF mat 6 0 {os.path.abspath(xml)} 0 1 0 . 0 0\n")
+            f.write("mat polygon floor 0 0 12 -100 -100 0 100 -100 0 100 100 0 -100 100 0\n")
+        octree = os.path.join(scene_dir, "scene.oct")
+        run([os.path.join(binpath, "oconv"), scene], octree)
+        v = vec(theta_v, phi_v)
+        ray = f"{10 * v[0]} {10 * v[1]} {10 * v[2]} {-v[0]} {-v[1]} {-v[2]}\n"
+        options = ["-h", "-ab", "0", "-ss", "0", "-dj", "0", "-ds", "0", "-ov"]
+        done = subprocess.run(
+            [os.path.join(binpath, "rtrace"), *options, octree],
+            input=ray.encode(),
+            capture_output=True,
+            env=env,
+        )
+        if done.returncode != 0:
+            sys.stderr.write(done.stderr.decode(errors="replace"))
+            sys.exit(f"rtrace failed with status {done.returncode}")
+        rgb = [float(x) for x in done.stdout.split()[:3]]
+        out.append(statistics.mean(rgb) / (radiance * omega * math.cos(math.radians(theta_l))))
+    return out
+
+
+colorimetry, bsdf_min, lobes = read_sir(sir) if sir else (None, None, [])
 sd = rbsdf.load_file(os.path.abspath(xml))
 values, query_xy = [], []
 for theta_l, phi_l, theta_v, phi_v in queries["pairs"]:
-    xyz = rbsdf.query(sd, theta_l, phi_l, theta_v, phi_v)
+    # The viewer first, the light second: the order of Radiance's renderer (see the top).
+    xyz = rbsdf.query(sd, theta_v, phi_v, theta_l, phi_l)
     values.append(float(xyz[1]))
     s = float(sum(xyz))
     query_xy.append([float(xyz[0]) / s, float(xyz[1]) / s] if s > 0 else None)
@@ -158,10 +285,12 @@ print(
         {
             "pyradiance": importlib.metadata.version("pyradiance"),
             "colorimetry": colorimetry,
+            "bsdf_min": bsdf_min,
             "lobes": lobes,
             "tree_xy": tree_xy(xml),
             "y": values,
             "query_xy": query_xy,
+            "rendered": render(queries.get("render", [])),
             "dhr": dhr,
         }
     )

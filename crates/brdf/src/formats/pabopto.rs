@@ -17,7 +17,10 @@
 //! Z` for a colour table. Angles are in degrees (theta from the normal, phi counter-clockwise
 //! from +x), values are BSDFs in 1/sr. The incidence direction points toward the light; both
 //! directions lie on the +z side, which `pabopto2bsdf` (without `-t`) stores as the reflection
-//! of the side the surface normal faces ("Reflection Back" in the XML).
+//! of the side the surface normal faces ("Reflection Back" in the XML). Radiance's renderer
+//! takes the files' incidence for the direction toward the viewer (it traces from the eye), so
+//! a table that is not reciprocal renders as its transpose (measured with `rtrace`;
+//! docs/brdf-tables.md).
 //!
 //! **Frame.** `pabopto2bsdf` adds `90° - upphi` to every azimuth (it turns the file's "up"
 //! azimuth into its +Y); `#upphi 90` leaves the azimuths as they are, so gonio's x and y are
@@ -46,7 +49,10 @@
 //! angle, the same set for every incidence, each direction once. A table with a narrow
 //! specular peak (see [`spacing_deg`]) is sampled every [`PEAKED_SPACING_DEG`] instead, on
 //! rings that leave the pole out ([`directions`]). docs/brdf-tables.md gives what Radiance
-//! makes of it.
+//! makes of it, and why `pabopto2bsdf -g 6` should read the files: Radiance's interpolant
+//! diverges toward the horizon of its outgoing directions (lights near grazing in a render,
+//! up to 34% high with `bsdf2ttree`'s defaults), whatever the samples; leaving out those within
+//! 6° of the horizon brings it to 13%.
 
 use crate::error::{BrdfError, Result};
 use crate::gbrdf::write_atomic;
@@ -100,7 +106,8 @@ pub fn incidence_azimuths_deg(table: &BrdfTable) -> Vec<f64> {
 /// peak: the directional-hemispherical reflectance of an m = 0.067 Beckmann lobe (the
 /// ray-method lobe of a 201 nm epoxy surface) comes back up to 3.6% high at 0–45° from 2°
 /// samples, within 1.4% from 1° ones. Smooth tables keep 2°: Radiance's interpolant of a
-/// Lambert table ripples by 1.6% with them, by 3.5–7% with 1° ones (docs/brdf-tables.md).
+/// Lambert table ripples by 1.6% with them, by 3.5–7% with 1° ones, both with the help of
+/// Radiance's BSDF minimum, which sits 1.5% below a constant table (docs/brdf-tables.md).
 pub const PEAK_RATIO: f64 = 1.25;
 
 /// Write one file per incidence angle (phi_i = 0, and for anisotropic tables every

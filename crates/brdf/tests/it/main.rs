@@ -28,6 +28,7 @@ mod mitsuba;
 mod models;
 mod quadrature;
 mod radiance;
+mod radiance_grazing;
 mod sampler;
 mod sampling;
 mod spec;
