@@ -1,5 +1,6 @@
-//! The layered walk ([`Walk`]: next-event estimation with multiple importance sampling, Russian
-//! roulette, tabulated flake optics) against a brute-force photon simulation of the same model,
+//! The layered walks ([`Walk`]: from wo and from the light, joined by several strategies under
+//! multiple importance sampling, Russian roulette, tabulated flake optics) against a
+//! brute-force photon simulation of the same model,
 //! written here from `docs/coatings.md` ("The general system") and the physics, not from the
 //! walk's code: photons enter through the top, bounce between the flake layer and the top's
 //! underside (total internal reflection included) and are counted when they escape into small
