@@ -106,7 +106,7 @@ pub fn run(cmd: CoatingCommand) -> Result<()> {
 }
 
 /// Random walks per table cell unless told otherwise (`compute --samples`; the pictures' tables).
-pub(crate) const TABLE_WALKS: usize = 32;
+pub(crate) const TABLE_WALKS: usize = gonio_coating::system::TABLE_WALKS;
 
 /// The bands of a coating's tables and readings unless told otherwise, as `--bands` takes them.
 const DEFAULT_BANDS: &str = "400:700:10";

@@ -222,6 +222,15 @@ impl Tilts {
     }
 }
 
+/// Where `mu` falls on a table of `len` equal steps of μ from 0 to 1: the step below it and
+/// the weight of the one above (linear interpolation).
+fn step(len: usize, mu: f64) -> (usize, f64) {
+    let last = len - 1;
+    let x = mu.clamp(0.0, 1.0) * last as f64;
+    let i = (x as usize).min(last - 1);
+    (i, x - i as f64)
+}
+
 /// A flake's reflectance R and transmittance T against the cosine μ of the local angle, on
 /// `STEPS` equal steps of μ (linear interpolation: the curves are smooth in μ, and the
 /// tabulation agrees with the direct formulas to 1e-4 from μ = 0.05, tested), and the same
@@ -238,10 +247,7 @@ impl FlakeOptics {
     const STEPS: usize = 1025;
 
     fn lookup(table: &[f64], mu: f64) -> f64 {
-        let last = table.len() - 1;
-        let x = mu.clamp(0.0, 1.0) * last as f64;
-        let i = (x as usize).min(last - 1);
-        let t = x - i as f64;
+        let (i, t) = step(table.len(), mu);
         table[i] + t * (table[i + 1] - table[i])
     }
 
@@ -307,6 +313,12 @@ pub struct FlakeLayer {
     rho: Vec<f64>,
     /// `ρ / (π (1 − ρ c R̄))` per band.
     diffuse: Vec<f64>,
+    /// The flake's R at each step of the local cosine, the bands side by side (one row per
+    /// step), and `a(w) = 1 − c + c T̃(w)` at each step of cos θ: the tables of `optics`
+    /// arranged so that [`FlakeLayer::f`] finds every band's values at one place (the
+    /// evaluation of the layer, band by band through `optics`, was half of a table's time).
+    reflectance_rows: Vec<f64>,
+    through_rows: Vec<f64>,
 }
 
 impl FlakeLayer {
@@ -321,6 +333,8 @@ impl FlakeLayer {
             optics: Vec::new(),
             rho,
             diffuse,
+            reflectance_rows: Vec::new(),
+            through_rows: Vec::new(),
         }
     }
 
@@ -333,7 +347,16 @@ impl FlakeLayer {
             .map(|(r, o)| r / (PI * (1.0 - r * c * o.diffuse_reflectance())))
             .collect();
         let tilts = Tilts::new(flakes.orientation());
+        let rows = |steps: usize, value: &dyn Fn(&FlakeOptics, usize) -> f64| -> Vec<f64> {
+            (0..steps)
+                .flat_map(|i| optics.iter().map(move |o| value(o, i)))
+                .collect()
+        };
+        let reflectance_rows = rows(FlakeOptics::STEPS, &|o, i| o.r[i]);
+        let through_rows = rows(Tilts::STEPS, &|o, i| 1.0 - c + c * o.t_tilted[i]);
         let mut layer = FlakeLayer {
+            reflectance_rows,
+            through_rows,
             coverage: c,
             orientation: Some(flakes.orientation()),
             share: Vec::new(),
@@ -360,7 +383,13 @@ impl FlakeLayer {
         if self.orientation.is_none() {
             return 1.0;
         }
-        1.0 - self.coverage + self.coverage * self.optics[b].tilted_transmittance(w.z)
+        let nb = self.bands();
+        let (i, t) = step(Tilts::STEPS, w.z);
+        let (lo, hi) = (
+            self.through_rows[i * nb + b],
+            self.through_rows[(i + 1) * nb + b],
+        );
+        lo + t * (hi - lo)
     }
 
     /// The probability of sampling the flakes' lobe rather than the diffuse one from `wo`
@@ -395,29 +424,61 @@ impl FlakeLayer {
 
     /// The BRDF for light from `wi` to `wo` (both above the layer) into `out`, one per band.
     pub fn f(&self, wo: DVec3, wi: DVec3, out: &mut [f64]) {
+        self.f_and_pdfs(wo, wi, out);
+    }
+
+    /// [`FlakeLayer::f`], and the pdfs of [`FlakeLayer::sample`] from `wo` choosing `wi` and
+    /// from `wi` choosing `wo`: the walk's connections need all three, which share the half
+    /// vector and the flakes' distribution there.
+    pub fn f_and_pdfs<'a>(&'a self, wo: DVec3, wi: DVec3, out: &mut [f64]) -> (f64, f64) {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             out.fill(0.0);
-            return;
+            return (0.0, 0.0);
         }
-        let lobe = match self.orientation {
-            Some(m) => {
-                let h = (wo + wi).normalize();
-                let area = |w: DVec3| FlakeOptics::lookup(&self.projected, w.z);
-                (
-                    self.coverage * m.d(h) / (4.0 * area(wo) * area(wi)),
-                    wo.dot(h),
-                )
-            }
-            None => (0.0, 1.0),
+        let Some(m) = self.orientation else {
+            out.copy_from_slice(&self.diffuse);
+            return (wi.z / PI, wo.z / PI);
         };
-        for (b, o) in out.iter_mut().enumerate() {
-            let flake = if lobe.0 > 0.0 {
-                lobe.0 * self.optics[b].reflectance(lobe.1)
+        let h = (wo + wi).normalize();
+        let d = m.d(h);
+        let (share_o, share_i) = (self.flake_share(wo), self.flake_share(wi));
+        // Sampling a normal by D(h) cos θh and reflecting about it: the density of the
+        // direction is D(h) cos θh / (4 w·h), the same either way (w·h is the same for both).
+        let lobe_pdf = d * h.z / (4.0 * wo.dot(h));
+        let pdfs = (
+            (1.0 - share_o) * wi.z / PI + share_o * lobe_pdf,
+            (1.0 - share_i) * wo.z / PI + share_i * lobe_pdf,
+        );
+        let area = |w: DVec3| FlakeOptics::lookup(&self.projected, w.z);
+        let lobe = self.coverage * d / (4.0 * area(wo) * area(wi));
+        let nb = self.bands();
+        let row = |rows: &'a [f64], mu: f64| {
+            let (i, t) = step(rows.len() / nb, mu);
+            (
+                &rows[i * nb..(i + 1) * nb],
+                &rows[(i + 1) * nb..(i + 2) * nb],
+                t,
+            )
+        };
+        let (r0, r1, tr) = row(&self.reflectance_rows, wo.dot(h));
+        let (i0, i1, ti) = row(&self.through_rows, wi.z);
+        let (o0, o1, to) = row(&self.through_rows, wo.z);
+        for b in 0..nb {
+            let flake = if lobe > 0.0 {
+                lobe * (r0[b] + tr * (r1[b] - r0[b]))
             } else {
                 0.0
             };
-            *o = flake + self.through(b, wi) * self.through(b, wo) * self.diffuse[b];
+            let through_i = i0[b] + ti * (i1[b] - i0[b]);
+            let through_o = o0[b] + to * (o1[b] - o0[b]);
+            out[b] = flake + through_i * through_o * self.diffuse[b];
         }
+        pdfs
+    }
+
+    /// The rms slope of the flakes' normals (`tan σ`), `None` for a bare base.
+    pub fn slope(&self) -> Option<f64> {
+        self.orientation.map(|m| m.alpha_x)
     }
 
     /// The pdf of [`FlakeLayer::sample`] from `wo` choosing `wi`.
@@ -438,8 +499,8 @@ impl FlakeLayer {
 
     /// Sample `wi` from `wo`: a flake normal by its distribution and the mirror direction about
     /// it, or a cosine-distributed direction; the BRDF per band goes to `f`, the pdf is
-    /// returned with the direction.
-    pub fn sample(&self, wo: DVec3, uc: f64, u: DVec2, f: &mut [f64]) -> Option<(DVec3, f64)> {
+    /// returned with the direction, and the pdf of sampling `wo` from `wi`.
+    pub fn sample(&self, wo: DVec3, uc: f64, u: DVec2, f: &mut [f64]) -> Option<(DVec3, f64, f64)> {
         if wo.z <= 0.0 {
             return None;
         }
@@ -458,11 +519,7 @@ impl FlakeLayer {
         if wi.z <= 0.0 {
             return None;
         }
-        let pdf = self.pdf(wo, wi);
-        if pdf <= 0.0 {
-            return None;
-        }
-        self.f(wo, wi, f);
-        Some((wi, pdf))
+        let (pdf, back) = self.f_and_pdfs(wo, wi, f);
+        (pdf > 0.0).then_some((wi, pdf, back))
     }
 }

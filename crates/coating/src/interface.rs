@@ -111,6 +111,9 @@ struct Compensation {
     /// `La` and `Lb` on equal steps of μ from 0 to 1.
     above: Vec<f64>,
     below: Vec<f64>,
+    /// How the lobes into each side are sampled.
+    into_above: LobeSampler,
+    into_below: LobeSampler,
     k_aa: f64,
     k_ab: f64,
     k_ba: f64,
@@ -208,6 +211,8 @@ impl Compensation {
             )
         };
         Compensation {
+            into_above: LobeSampler::new(&above),
+            into_below: LobeSampler::new(&below),
             above,
             below,
             k_aa: if a > 0.0 { k_aa } else { 0.0 },
@@ -224,6 +229,15 @@ impl Compensation {
             Transport::Importance => (wo, wi),
         };
         self.k(from, to) * self.loss(from) * self.loss(to)
+    }
+
+    /// The sampler of the lobes into the side of `w`.
+    fn into(&self, w: DVec3) -> &LobeSampler {
+        if w.z > 0.0 {
+            &self.into_above
+        } else {
+            &self.into_below
+        }
     }
 
     /// The probability of sampling the lobes from `wo`, and the share of it on `wo`'s side.
@@ -245,6 +259,73 @@ impl Compensation {
             }
         };
         (self.loss(wo).min(0.5), same)
+    }
+}
+
+/// The directions the lobes into one side are drawn from: the lobes go as `L(μ)` (times μ for
+/// the projected solid angle), so μ is drawn with the density `L(μ) 2μ / Ā`, piecewise constant
+/// over the steps of the loss table (each step's probability exact by 2-point Gauss-Legendre
+/// quadrature, L being linear on it). The weights `f |cos θ| / pdf` then stay within a factor
+/// of about 2 of their mean. Drawing cos θ/π instead let the lobes' growth towards grazing
+/// angles into the weights: for α = 0.03 a light entering the coat at a grazing angle weighed
+/// up to 14, and at 45° illumination and 65° view one walk in 10⁵ carried 1 400 times the
+/// mean. A side that loses nothing (Ā = 0) is never sampled by weight; it keeps cos θ/π.
+#[derive(Clone, Debug, PartialEq)]
+struct LobeSampler {
+    /// The cumulative probability at the table's steps of μ, or `None` for cos θ/π.
+    cdf: Option<Vec<f64>>,
+}
+
+impl LobeSampler {
+    fn new(loss: &[f64]) -> Self {
+        let steps = loss.len() - 1;
+        let h = 1.0 / steps as f64;
+        let nodes = [0.5 - 0.5 / 3f64.sqrt(), 0.5 + 0.5 / 3f64.sqrt()];
+        let mut cdf = vec![0.0; steps + 1];
+        for i in 0..steps {
+            let bin: f64 = nodes
+                .iter()
+                .map(|t| {
+                    let mu = (i as f64 + t) * h;
+                    (loss[i] + t * (loss[i + 1] - loss[i])) * 2.0 * mu * 0.5 * h
+                })
+                .sum();
+            cdf[i + 1] = cdf[i] + bin;
+        }
+        let total = cdf[steps];
+        if total <= 0.0 {
+            return LobeSampler { cdf: None };
+        }
+        cdf.iter_mut().for_each(|c| *c /= total);
+        LobeSampler { cdf: Some(cdf) }
+    }
+
+    /// A direction's cosine and azimuth from `u`.
+    fn sample(&self, u: DVec2) -> (f64, f64) {
+        let phi = 2.0 * PI * u.y;
+        let Some(cdf) = &self.cdf else {
+            return ((1.0 - u.x).max(0.0).sqrt(), phi);
+        };
+        let steps = cdf.len() - 1;
+        let i = (cdf.partition_point(|&c| c <= u.x).max(1) - 1).min(steps - 1);
+        let width = cdf[i + 1] - cdf[i];
+        let t = if width > 0.0 {
+            ((u.x - cdf[i]) / width).clamp(0.0, 1.0)
+        } else {
+            0.5
+        };
+        ((i as f64 + t) / steps as f64, phi)
+    }
+
+    /// The density per steradian of a direction of cosine `mu` (of either sign).
+    fn pdf(&self, mu: f64) -> f64 {
+        let mu = mu.abs();
+        let Some(cdf) = &self.cdf else {
+            return mu / PI;
+        };
+        let steps = cdf.len() - 1;
+        let i = ((mu * steps as f64) as usize).min(steps - 1);
+        (cdf[i + 1] - cdf[i]) * steps as f64 / (2.0 * PI)
     }
 }
 
@@ -369,7 +450,7 @@ impl Interface {
         }
         let (p_ms, same) = c.sampling(wo, lobes);
         let side = if wi.z * wo.z > 0.0 { same } else { 1.0 - same };
-        (1.0 - p_ms) * self.pdf_single(wo, wi, lobes) + p_ms * side * wi.z.abs() / PI
+        (1.0 - p_ms) * self.pdf_single(wo, wi, lobes) + p_ms * side * c.into(wi).pdf(wi.z)
     }
 
     /// The density of the visible-normal sampler of the single-scattering lobes.
@@ -415,14 +496,11 @@ impl Interface {
         };
         let (p_ms, same) = c.sampling(wo, lobes);
         let wi = if uc < p_ms {
-            // A cosine-distributed direction on the side chosen.
+            // A direction on the side chosen, drawn from the lobes' shape there.
             let side = if uc / p_ms < same { 1.0 } else { -1.0 } * wo.z.signum();
-            let (r, phi) = (u.x.sqrt(), 2.0 * PI * u.y);
-            DVec3::new(
-                r * phi.cos(),
-                r * phi.sin(),
-                side * (1.0 - u.x).max(0.0).sqrt(),
-            )
+            let (mu, phi) = c.into(DVec3::Z * side).sample(u);
+            let r = (1.0 - mu * mu).max(0.0).sqrt();
+            DVec3::new(r * phi.cos(), r * phi.sin(), side * mu)
         } else {
             let uc = (uc - p_ms) / (1.0 - p_ms);
             let wm = m.sample_visible(upper(wo), u);
@@ -641,6 +719,57 @@ mod tests {
                 "{theta}: {} vs {loss}",
                 c.loss(wo)
             );
+        }
+    }
+
+    /// The lobes' sampler draws μ with the density it reports: over 400 000 draws, the count
+    /// in each of 20 bins of μ within 4 binomial standard deviations of the density's integral
+    /// over the bin (midpoint rule on 6 400 steps of μ, a multiple of the table's 64, so exact
+    /// for the piecewise-constant density); the density integrates to 1 over the
+    /// hemisphere; the weight `L(μ) μ / (π Ā pdf)` of every draw stays below 3.5 (measured
+    /// 3.0 at α = 0.03, in the step where L rises fastest; cos θ/π sampling gave up to 14
+    /// near grazing).
+    #[test]
+    fn lobes_are_sampled_by_their_shape() {
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(17);
+        for alpha in [0.03, 0.3] {
+            let s = Interface::new(1.5, Some(Microfacet::ggx(alpha)));
+            let c = s.compensation.as_ref().unwrap();
+            for (table, sampler) in [(&c.above, &c.into_above), (&c.below, &c.into_below)] {
+                let mean = gauss_legendre_on(64, 0.0, 1.0)
+                    .into_iter()
+                    .map(|(mu, w)| w * Compensation::lookup(table, mu) * 2.0 * mu)
+                    .sum::<f64>();
+                let density = |mu: f64| sampler.pdf(mu) * 2.0 * PI;
+                let integral = |a: f64, b: f64| {
+                    let n = (6400.0 * (b - a)).round() as usize;
+                    let h = (b - a) / n as f64;
+                    (0..n)
+                        .map(|k| density(a + (k as f64 + 0.5) * h) * h)
+                        .sum::<f64>()
+                };
+                assert!((integral(0.0, 1.0) - 1.0).abs() < 1e-9);
+                let (n, bins) = (400_000, 20);
+                let mut counts = vec![0usize; bins];
+                let mut hi = 0.0f64;
+                for _ in 0..n {
+                    let (mu, _) = sampler.sample(DVec2::new(rng.random(), rng.random()));
+                    counts[((mu * bins as f64) as usize).min(bins - 1)] += 1;
+                    let weight =
+                        Compensation::lookup(table, mu) * mu / (PI * mean) / sampler.pdf(mu);
+                    hi = hi.max(weight);
+                }
+                for (k, &count) in counts.iter().enumerate() {
+                    let p = integral(k as f64 / bins as f64, (k + 1) as f64 / bins as f64);
+                    let expected = p * n as f64;
+                    let sd = (n as f64 * p * (1.0 - p)).sqrt();
+                    assert!(
+                        (count as f64 - expected).abs() < 4.0 * sd + 1.0,
+                        "α {alpha} bin {k}: {count} vs {expected:.0} ± {sd:.0}"
+                    );
+                }
+                assert!(hi < 3.5, "α {alpha}: weights up to {hi}");
+            }
         }
     }
 

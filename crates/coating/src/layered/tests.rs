@@ -9,6 +9,7 @@
 use super::*;
 use crate::clear_coat::{Base, ClearCoatOverBase, Coat, Dispersion};
 use crate::flakes::{FlakePigment, Flakes, aluminium};
+use glam::DVec2;
 use gonio_brdf::microfacet::Microfacet;
 use gonio_color::Spectrum;
 use rand::{RngExt, SeedableRng};

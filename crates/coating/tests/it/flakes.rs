@@ -1,5 +1,5 @@
-//! Metal and interference flakes: the tabulation against its formulas, the white furnace,
-//! reciprocity, impossible flakes refused.
+//! Metal and interference flakes: the tabulation against its formulas, the layer's BRDF
+//! against its definition, the white furnace, reciprocity, impossible flakes refused.
 
 use glam::{DVec2, DVec3};
 use gonio_brdf::fresnel::polarised;
@@ -69,7 +69,7 @@ fn white_furnace() {
         let (mut sampled, mut uniform) = ([0.0; 3], [0.0; 3]);
         for _ in 0..n {
             let u = DVec2::new(rng.random(), rng.random());
-            if let Some((wi, pdf)) = layer.sample(wo, rng.random(), u, &mut f) {
+            if let Some((wi, pdf, _)) = layer.sample(wo, rng.random(), u, &mut f) {
                 for b in 0..3 {
                     sampled[b] += f[b] * wi.z / pdf;
                 }
@@ -104,6 +104,49 @@ fn reciprocal() {
     layer.f(a, b, &mut x);
     layer.f(b, a, &mut y);
     assert!((x[0] / y[0] - 1.0).abs() < 1e-12 && x[0] > 0.0);
+}
+
+/// The layer's BRDF is its definition from the flakes' optics, band by band (the layer keeps
+/// the bands' tables side by side for speed): `c R(wo·h) D(h) / (4 N(wo) N(wi))` with
+/// `N(w) = cos θ` within 40° of the normal for a 12° spread (every flake faces w), plus
+/// `a(wi) a(wo) ρ / (π (1 − ρ c R̄))`, `a(w) = 1 − c + c T̃(w)`; and the pdfs the walk takes
+/// with it are the layer's own pdf either way, the sampler's second pdf that of the way back.
+#[test]
+fn layer_brdf_is_its_definition() {
+    let p = pearl(120.0);
+    let wl = [420.0, 550.0, 680.0];
+    let rho = [0.3, 0.5, 0.7];
+    let optics: Vec<FlakeOptics> = wl.iter().map(|&w| p.optics(1.5, w).unwrap()).collect();
+    let layer = FlakeLayer::new(&p, optics.clone(), rho.to_vec());
+    let m = p.orientation();
+    let c = p.coverage;
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
+    let dir = |rng: &mut rand_pcg::Pcg64| {
+        let t = rng.random::<f64>() * 40f64.to_radians();
+        let f = rng.random::<f64>() * 2.0 * PI;
+        DVec3::new(t.sin() * f.cos(), t.sin() * f.sin(), t.cos())
+    };
+    let mut out = [0.0; 3];
+    for _ in 0..200 {
+        let (wo, wi) = (dir(&mut rng), dir(&mut rng));
+        let (to, back) = layer.f_and_pdfs(wo, wi, &mut out);
+        let h = (wo + wi).normalize();
+        for b in 0..3 {
+            let o = &optics[b];
+            let through = |w: DVec3| 1.0 - c + c * o.tilted_transmittance(w.z);
+            let want = c * o.reflectance(wo.dot(h)) * m.d(h) / (4.0 * wo.z * wi.z)
+                + through(wi) * through(wo) * rho[b]
+                    / (PI * (1.0 - rho[b] * c * o.diffuse_reflectance()));
+            assert!((out[b] / want - 1.0).abs() < 1e-4, "{} vs {want}", out[b]);
+        }
+        assert!((to / layer.pdf(wo, wi) - 1.0).abs() < 1e-12);
+        assert!((back / layer.pdf(wi, wo) - 1.0).abs() < 1e-12);
+        let u = DVec2::new(rng.random(), rng.random());
+        if let Some((w, pdf, back)) = layer.sample(wo, rng.random(), u, &mut out) {
+            assert!((pdf / layer.pdf(wo, w) - 1.0).abs() < 1e-12);
+            assert!((back / layer.pdf(w, wo) - 1.0).abs() < 1e-12);
+        }
+    }
 }
 
 #[test]

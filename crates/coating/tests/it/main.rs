@@ -1,7 +1,8 @@
 //! Integration tests of gonio-coating against independent implementations: the thin-film
 //! stacks against the transfer-matrix method of the `tmm` package (PyPI, S. J. Byrnes), metal
-//! flakes under a smooth coat against NIST's SCATMECH (PyPI `pySCATMECH`); and the clear coat, flakes, Kubelka-Munk
-//! layers, thin films and the coating system through the public API.
+//! flakes under a smooth coat against NIST's SCATMECH (PyPI `pySCATMECH`), the layered walk
+//! against a brute-force photon simulation of its model written in the test; and the clear
+//! coat, flakes, Kubelka-Munk layers, thin films and the coating system through the public API.
 //!
 //! Every test that the public API can express lives here; the library keeps as unit tests only
 //! those that reach private items. A library's unit-test binary compiles again, optimised, every
@@ -16,3 +17,4 @@ mod scatmech_oracle;
 mod system;
 mod thin_film;
 mod tmm_oracle;
+mod walk_brute_force;

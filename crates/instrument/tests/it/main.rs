@@ -9,6 +9,7 @@
 //! crate (one link instead of one per file); each module is one subject.
 
 mod coating_study;
+mod coating_tables;
 mod compare;
 mod curves;
 mod gloss;
