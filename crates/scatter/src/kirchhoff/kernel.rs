@@ -150,17 +150,24 @@ fn facet(cells: &RowCells, p: &RowParams, c: usize, linear: f64) -> Complex64 {
     Complex64::new(amplitude * co, amplitude * s)
 }
 
+/// Cells outside the spot (window `w` = 0) at both ends of a row contribute nothing: their terms
+/// in `out` are set to zero, and the range `start..end` of the cells between them is returned.
 #[inline(always)]
-fn fill_row_generic(cells: &RowCells, p: &RowParams, out: &mut [Complex64]) {
+fn zero_outside_the_spot(w: &[f64], out: &mut [Complex64]) -> (usize, usize) {
     let n = out.len();
-    // Cells outside the spot (w = 0) at both ends of the row contribute nothing.
-    let start = cells.w[..n].iter().position(|&w| w > 0.0).unwrap_or(n);
-    let end = cells.w[..n]
+    let start = w[..n].iter().position(|&w| w > 0.0).unwrap_or(n);
+    let end = w[..n]
         .iter()
         .rposition(|&w| w > 0.0)
         .map_or(start, |i| i + 1);
     out[..start].fill(Complex64::default());
     out[end..].fill(Complex64::default());
+    (start, end)
+}
+
+#[inline(always)]
+fn fill_row_generic(cells: &RowCells, p: &RowParams, out: &mut [Complex64]) {
+    let (start, end) = zero_outside_the_spot(cells.w, out);
     // Blocks of four facets written as fixed-size arrays, which the compiler maps onto vector
     // registers; the linear phase advances by a constant per block instead of converting each
     // index to a float (which SSE2 and AVX2 cannot do packed).
@@ -221,14 +228,7 @@ fn fill_row_sampled_avx2(h: &[f64], w: &[f64], vz: f64, area: f64, out: &mut [Co
 
 #[inline(always)]
 fn fill_row_sampled_generic(h: &[f64], w: &[f64], vz: f64, area: f64, out: &mut [Complex64]) {
-    let n = out.len();
-    let start = w[..n].iter().position(|&w| w > 0.0).unwrap_or(n);
-    let end = w[..n]
-        .iter()
-        .rposition(|&w| w > 0.0)
-        .map_or(start, |i| i + 1);
-    out[..start].fill(Complex64::default());
-    out[end..].fill(Complex64::default());
+    let (start, end) = zero_outside_the_spot(w, out);
     // Blocks of four, as in `fill_row_generic`, for the vector registers.
     let body = start + (end - start) / 4 * 4;
     for ((o, h), w) in out[start..body]
