@@ -1,7 +1,6 @@
 //! `gonio brdf`: tabulated BRDFs: summary, import, export, plots, tabulating an analytic model and
 //! fitting a model to a table. The work is done by the gonio-brdf crate.
 
-use crate::plot::{self, LinePlot, Series};
 use crate::progress::spinner;
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
@@ -15,6 +14,7 @@ use gonio_brdf::table::colour::{self, ColourSpace};
 use gonio_brdf::table::coords::turn_about_z;
 use gonio_brdf::table::{BrdfTable, Provenance, Resolution};
 use gonio_color::{Illuminant, Observer};
+use gonio_plot::{self as plot, LinePlot, Series};
 use gonio_scatter::geometry::{incidence_direction, inplane_direction};
 use std::path::{Path, PathBuf};
 

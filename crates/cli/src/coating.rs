@@ -6,10 +6,11 @@
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
 use gonio_coating::description;
-use gonio_coating::layered::Scratch;
-use gonio_coating::system::{Coating, Evaluator, Method};
-use gonio_instrument::multiangle::{self, E2194, Geometry, MultiangleReading, Settings};
-use std::io::Write;
+use gonio_coating::system::{Coating, Method, default_bands};
+use gonio_instrument::coating_study_output;
+use gonio_instrument::coating_summary::summarise;
+use gonio_instrument::multiangle::{self, E2194, Geometry};
+use gonio_render::panel;
 use std::path::{Path, PathBuf};
 
 #[derive(Subcommand)]
@@ -106,15 +107,11 @@ pub fn run(cmd: CoatingCommand) -> Result<()> {
 }
 
 /// Random walks per table cell unless told otherwise (`compute --samples`; the pictures' tables).
-pub(crate) const TABLE_WALKS: usize = gonio_coating::system::TABLE_WALKS;
+const TABLE_WALKS: usize = gonio_coating::system::TABLE_WALKS;
 
-/// The bands of a coating's tables and readings unless told otherwise, as `--bands` takes them.
+/// The bands of a coating's tables and readings unless told otherwise, as `--bands` takes them
+/// ([`gonio_coating::system::default_bands`]).
 const DEFAULT_BANDS: &str = "400:700:10";
-
-/// The 31 bands 400, 410, ..., 700 nm.
-pub(crate) fn default_bands() -> Vec<f64> {
-    bands(DEFAULT_BANDS).expect("the default bands are valid")
-}
 
 /// The bands of `--bands first:last:step`.
 fn bands(spec: &str) -> Result<Vec<f64>> {
@@ -179,64 +176,34 @@ fn compute(a: ComputeArgs) -> Result<()> {
     Ok(())
 }
 
-/// The coating's multi-angle reading at `geometries` (a smooth top's mirror reflection is 15°
-/// or more away from every standard geometry), D65/10°, with `samples` walks per geometry.
-pub fn multiangle_reading(
-    evaluator: &Evaluator,
-    wavelengths: &[f64],
-    geometries: &[Geometry],
-    samples: usize,
-) -> Result<MultiangleReading> {
-    let body = |wo: glam::DVec3, wi: glam::DVec3, out: &mut [f64]| {
-        evaluator.eval(wo, wi, samples, 1, &mut Scratch::default(), out);
-    };
-    Ok(multiangle::read(
-        &body,
-        wavelengths,
-        geometries,
-        &Settings::default(),
-    )?)
-}
-
 fn info(a: InfoArgs) -> Result<()> {
     let wavelengths = default_bands();
     let coating = read(&a.coating, &wavelengths)?;
-    let evaluator = coating.evaluator(&wavelengths)?;
-    let band = |nm: f64| {
-        wavelengths
+    let s = summarise(&coating, &wavelengths, a.samples)
+        .with_context(|| a.coating.display().to_string())?;
+    let index = |nm: f64| {
+        s.coat_index
             .iter()
-            .position(|&w| w == nm)
-            .expect("400, 450, ..., 700 nm are among the 10 nm bands")
+            .find(|(w, _)| *w == nm)
+            .map_or(f64::NAN, |(_, n)| *n)
     };
-    let index = |nm: f64| coating.coat.index.at(nm);
-    let rho = wavelengths
-        .iter()
-        .map(|&w| coating.base.reflectance(w))
-        .collect::<gonio_coating::Result<Vec<_>>>()?;
-    let at550 = band(550.0);
-    let gloss_angles = [20.0f64, 60.0, 85.0];
-    let specular: Vec<f64> = gloss_angles
-        .iter()
-        .map(|d| evaluator.mirror(d.to_radians().cos())[at550])
-        .collect();
-    let albedo_angles = [0.0f64, 45.0, 75.0];
-    let albedo: Vec<f64> = albedo_angles
-        .iter()
-        .map(|d| evaluator.albedo(d.to_radians().cos(), 16 * a.samples)[at550])
-        .collect();
-    let reading = multiangle_reading(&evaluator, &wavelengths, &E2194, a.samples)?;
     if a.json {
+        let pairs = |v: &[(f64, f64)], x: &str, y: &str| {
+            v.iter()
+                .map(|(a, b)| serde_json::json!({ x: a, y: b }))
+                .collect::<Vec<_>>()
+        };
         let json = serde_json::json!({
             "file": a.coating.display().to_string(),
             "coat_index": { "400": index(400.0), "550": index(550.0), "700": index(700.0) },
-            "base_reflectance": wavelengths.iter().zip(&rho).map(|(w, r)| serde_json::json!({"nm": w, "reflectance": r})).collect::<Vec<_>>(),
-            "specular": gloss_angles.iter().zip(&specular).map(|(d, r)| serde_json::json!({"theta_deg": d, "reflectance": r})).collect::<Vec<_>>(),
-            "albedo": albedo_angles.iter().zip(&albedo).map(|(d, r)| serde_json::json!({"theta_i_deg": d, "albedo": r})).collect::<Vec<_>>(),
-            "multiangle": reading.geometries.iter().map(|g| serde_json::json!({
+            "base_reflectance": pairs(&s.base_reflectance, "nm", "reflectance"),
+            "specular": pairs(&s.specular, "theta_deg", "reflectance"),
+            "albedo": pairs(&s.albedo, "theta_i_deg", "albedo"),
+            "multiangle": s.multiangle.geometries.iter().map(|g| serde_json::json!({
                 "name": g.geometry.to_string(), "L": g.lab.l, "a": g.lab.a, "b": g.lab.b,
                 "C": g.lab.chroma(), "h_deg": g.lab.hue_deg(),
             })).collect::<Vec<_>>(),
-            "flop_index": reading.flop_index(),
+            "flop_index": s.multiangle.flop_index(),
         });
         println!("{}", serde_json::to_string_pretty(&json)?);
         return Ok(());
@@ -249,14 +216,17 @@ fn info(a: InfoArgs) -> Result<()> {
         index(700.0),
         coating.coat.thickness_um
     );
-    let rho: Vec<String> = [400.0, 450.0, 500.0, 550.0, 600.0, 650.0, 700.0]
+    let rho: Vec<String> = s
+        .base_reflectance
         .iter()
-        .map(|&w| format!("{:.3}", rho[band(w)]))
+        .filter(|(w, _)| (w - 400.0) % 50.0 == 0.0)
+        .map(|(_, r)| format!("{r:.3}"))
         .collect();
     println!(
         "base reflectance at 400, 450, ..., 700 nm: {}",
         rho.join(" ")
     );
+    let specular: Vec<f64> = s.specular.iter().map(|p| p.1).collect();
     match coating.roughness {
         None => println!(
             "mirror reflectance of the coat (550 nm) at 20 / 60 / 85°: {:.4} / {:.4} / {:.4}",
@@ -280,6 +250,7 @@ fn info(a: InfoArgs) -> Result<()> {
             f.tilt_deg
         );
     }
+    let albedo: Vec<f64> = s.albedo.iter().map(|p| p.1).collect();
     println!(
         "directional-hemispherical reflectance (550 nm) at 0 / 45 / 75°: {:.4} / {:.4} / {:.4}",
         albedo[0], albedo[1], albedo[2]
@@ -289,7 +260,7 @@ fn info(a: InfoArgs) -> Result<()> {
         "{:>9} {:>8} {:>8} {:>8} {:>8}",
         "geometry", "L*", "a*", "b*", "C*ab"
     );
-    for g in &reading.geometries {
+    for g in &s.multiangle.geometries {
         println!(
             "{:>9} {:>8.2} {:>8.2} {:>8.2} {:>8.2}",
             g.geometry.to_string(),
@@ -299,7 +270,7 @@ fn info(a: InfoArgs) -> Result<()> {
             g.lab.chroma()
         );
     }
-    if let Some(fi) = reading.flop_index() {
+    if let Some(fi) = s.multiangle.flop_index() {
         println!("flop index: {fi:.2}");
     }
     Ok(())
@@ -331,62 +302,20 @@ fn study(a: StudyArgs) -> Result<()> {
     )
     .with_context(|| a.coating.display().to_string())?;
     let label = constituent.label();
-    let json = serde_json::json!({
-        "file": a.coating.display().to_string(),
-        "vary": a.vary,
-        "label": label,
-        "rows": rows.iter().map(|r| serde_json::json!({
-            "value": r.value,
-            "gu20": r.gloss.gu20, "gu60": r.gloss.gu60, "gu85": r.gloss.gu85,
-            "haze": r.gloss.haze, "haze_20_log": r.gloss.haze_20_log, "doi": r.gloss.doi,
-            "flop_index": r.multiangle.flop_index(),
-            "multiangle": r.multiangle.geometries.iter().map(|g| serde_json::json!({
-                "name": g.geometry.to_string(), "L": g.lab.l, "a": g.lab.a, "b": g.lab.b,
-                "C": g.lab.chroma(), "h_deg": g.lab.hue_deg(),
-            })).collect::<Vec<_>>(),
-        })).collect::<Vec<_>>(),
-    });
+    let file = a.coating.display().to_string();
+    let json = coating_study_output::json(&file, &a.vary, &label, &rows);
     if let Some(dir) = &a.output {
-        std::fs::create_dir_all(dir).with_context(|| dir.display().to_string())?;
-        let mut csv = String::from("value,gu20,gu60,gu85,haze,haze_20_log,doi,flop_index");
-        for g in geometries {
-            csv.push_str(&format!(",L_{g},a_{g},b_{g}"));
-        }
-        csv.push('\n');
-        for r in &rows {
-            csv.push_str(&format!(
-                "{},{},{},{},{},{},{},{}",
-                r.value,
-                r.gloss.gu20,
-                r.gloss.gu60,
-                r.gloss.gu85,
-                r.gloss.haze,
-                r.gloss.haze_20_log,
-                r.gloss.doi,
-                r.multiangle
-                    .flop_index()
-                    .map_or(String::new(), |f| f.to_string())
-            ));
-            for g in &r.multiangle.geometries {
-                csv.push_str(&format!(",{},{},{}", g.lab.l, g.lab.a, g.lab.b));
-            }
-            csv.push('\n');
-        }
-        crate::output::write_atomic(&dir.join("study.csv"), |w| Ok(w.write_all(csv.as_bytes())?))?;
-        let text = serde_json::to_string_pretty(&json)?;
-        crate::output::write_atomic(&dir.join("study.json"), |w| {
-            Ok(w.write_all(text.as_bytes())?)
-        })?;
-        plot_study(dir, &label, &rows)?;
+        coating_study_output::write(dir, &json, &rows, &label, geometries)
+            .with_context(|| dir.display().to_string())?;
         if !a.no_pictures {
             let source = a.coating.display().to_string();
             for r in &rows {
                 let variant = constituent.apply(&coating, r.value)?;
                 let name = format!("panel-{}", r.value);
-                let panel = crate::panel::table(&variant, &source, dir, &name)
+                let panel = panel::table(&variant, &source, dir, &name)
                     .with_context(|| format!("{source}: the picture at {label} {}", r.value))?;
-                let scene = crate::panel::scene(dir, &name, &[panel])?;
-                let (png, stats) = crate::panel::render(&scene)?;
+                let scene = panel::scene(dir, &name, &[panel])?;
+                let (png, stats) = panel::render(&scene)?;
                 eprintln!(
                     "{}: {label} {} ({:.0} s to render)",
                     png.display(),
@@ -436,70 +365,13 @@ fn study(a: StudyArgs) -> Result<()> {
     Ok(())
 }
 
-/// The study's plots: gloss (20/60/85°) and DOI against the varied constituent, and L* at each
-/// multi-angle geometry against it.
-fn plot_study(
-    dir: &Path,
-    label: &str,
-    rows: &[gonio_instrument::coating_study::StudyRow],
-) -> Result<()> {
-    use crate::plot::{self, LinePlot, Series};
-    let gloss: Vec<Series> = [("20°", 0), ("60°", 1), ("85°", 2), ("DOI", 3)]
-        .into_iter()
-        .map(|(name, i)| Series {
-            label: if i == 3 {
-                "DOI".into()
-            } else {
-                format!("gloss {name}")
-            },
-            points: rows
-                .iter()
-                .map(|r| {
-                    (
-                        r.value,
-                        [r.gloss.gu20, r.gloss.gu60, r.gloss.gu85, r.gloss.doi][i],
-                    )
-                })
-                .collect(),
-            colour: plot::palette(i),
-            markers: false,
-        })
-        .collect();
-    plot::line_plot_png(
-        &dir.join("gloss.png"),
-        (900, 600),
-        &LinePlot {
-            title: &format!("Gloss (ISO 2813, GU) and DOI (ASTM E430) against {label}"),
-            x_label: label,
-            y_label: "GU / DOI",
-            log_y: false,
-        },
-        &gloss,
-    )?;
-    let lightness: Vec<Series> = rows[0]
-        .multiangle
-        .geometries
-        .iter()
-        .enumerate()
-        .map(|(k, g)| Series {
-            label: g.geometry.to_string(),
-            points: rows
-                .iter()
-                .map(|r| (r.value, r.multiangle.geometries[k].lab.l))
-                .collect(),
-            colour: plot::palette(k),
-            markers: false,
-        })
-        .collect();
-    plot::line_plot_png(
-        &dir.join("lightness.png"),
-        (900, 600),
-        &LinePlot {
-            title: &format!("Multi-angle lightness L* (D65/10°) against {label}"),
-            x_label: label,
-            y_label: "L*",
-            log_y: false,
-        },
-        &lightness,
-    )
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `--bands`' default, as the help shows it, is the libraries' default bands.
+    #[test]
+    fn default_bands_option_is_the_libraries_default() {
+        assert_eq!(bands(DEFAULT_BANDS).unwrap(), default_bands());
+    }
 }

@@ -1,11 +1,11 @@
 //! `gonio compare`: measured against computed in-plane curves, per incidence: RMS difference of
 //! log reflectance, peak position, height and FWHM of both, and a plot on a log axis.
 
-use crate::plot::{self, LinePlot, Series};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use gonio_instrument::compare::{Comparison, compare};
 use gonio_instrument::curves::read_csv;
+use gonio_plot::{self as plot, LinePlot, Series};
 use gonio_scatter::InplaneCurve;
 use gonio_scatter::geometry::{STARR_APERTURE_DEG, cone_solid_angle};
 use std::path::{Path, PathBuf};
@@ -130,7 +130,7 @@ pub fn plot_pairs(
         y_label: "reflectance per detector",
         log_y: true,
     };
-    plot::line_plot_png(path, (1000, 650), &spec, &series)
+    Ok(plot::line_plot_png(path, (1000, 650), &spec, &series)?)
 }
 
 /// The comparisons as a table, curve `a` (called `left`) on the left, `b` on the right.

@@ -4,11 +4,11 @@
 //! asks the same); the curves of all methods are written to one CSV (and optionally plotted and
 //! printed as JSON).
 
-use crate::plot::{self, LinePlot, Series};
 use anyhow::{Context, Result, bail, ensure};
 use clap::{Args, ValueEnum};
 use gonio_brdf::Ior;
 use gonio_instrument::inplane::{self, InplaneRequest};
+use gonio_plot::{self as plot, LinePlot, Series};
 use gonio_scatter::InplaneCurve;
 use gonio_scatter::analytic::AnalyticModel;
 use gonio_scatter::geometry::{STARR_APERTURE_DEG, STARR_INCIDENCES_DEG};
@@ -327,7 +327,7 @@ pub fn plot_curves(path: &Path, curves: &[InplaneCurve]) -> Result<()> {
         y_label: "BRDF (1/sr)",
         log_y: true,
     };
-    plot::line_plot_png(path, (900, 600), &plot, &series)
+    Ok(plot::line_plot_png(path, (900, 600), &plot, &series)?)
 }
 
 fn curves_json(

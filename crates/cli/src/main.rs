@@ -12,8 +12,6 @@ mod inplane;
 mod isotropy;
 mod multiangle;
 mod output;
-mod panel;
-mod plot;
 mod progress;
 mod render;
 mod report;

@@ -4,12 +4,12 @@
 //! Results go to a directory as CSV, JSON and PNG.
 
 use crate::output::write_atomic;
-use crate::plot::{self, LinePlot, Series};
 use anyhow::{Context, Result, ensure};
 use clap::Args;
 use gonio_instrument::GlossReport;
 use gonio_instrument::curves::write_csv;
 use gonio_instrument::study::{self, PeakRow, Sample, SampleResult, StudyConfig};
+use gonio_plot::{self as plot, LinePlot, Series};
 use gonio_scatter::InplaneCurve;
 use gonio_surface::synth::GaussianSurface;
 use std::io::Write;
@@ -266,7 +266,7 @@ fn plot_sample(path: &Path, r: &SampleResult, config: &StudyConfig) -> Result<()
         y_label: "BRDF (1/sr)",
         log_y: true,
     };
-    plot::line_plot_png(path, (900, 600), &spec, &series)
+    Ok(plot::line_plot_png(path, (900, 600), &spec, &series)?)
 }
 
 fn plot_peaks(
@@ -319,13 +319,13 @@ fn plot_peaks(
         },
         log_y: true,
     };
-    plot::line_plot_png_x(
+    Ok(plot::line_plot_png_x(
         path,
         (900, 600),
         &spec,
         &sample_axis(peaks_marks(peaks)),
         &series,
-    )
+    )?)
 }
 
 /// Points in order of Sq, so that a line joins the samples from smooth to rough whatever the
@@ -384,7 +384,13 @@ fn plot_gloss(path: &Path, results: &[SampleResult]) -> Result<()> {
         .iter()
         .map(|r| (r.statistics.sq * 1e9, r.label.clone()))
         .collect();
-    plot::line_plot_png_x(path, (900, 600), &spec, &sample_axis(marks), &series)
+    Ok(plot::line_plot_png_x(
+        path,
+        (900, 600),
+        &spec,
+        &sample_axis(marks),
+        &series,
+    )?)
 }
 
 fn write_gloss_csv(path: &Path, results: &[SampleResult]) -> Result<()> {

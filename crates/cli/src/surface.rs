@@ -2,10 +2,10 @@
 //! Lengths on the command line are in the unit their flag names (`--sq-nm`, `--dx-um`); files
 //! and JSON hold SI metres.
 
-use crate::plot::{self, Raster};
 use crate::units::length;
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
+use gonio_plot::{self as plot, Raster};
 use gonio_surface::profile_stats::profile_statistics;
 use gonio_surface::stats::{self, Statistics};
 use gonio_surface::synth::{Acf, GaussianSurface};
@@ -596,5 +596,5 @@ pub fn plot_height_map(map: &HeightMap, name: &str, output: &Path) -> Result<()>
     // plus room for the colour bar.
     let aspect = (map.nx() as f64 * map.dx()) / (map.ny() as f64 * map.dy());
     let width = (690.0 * aspect).clamp(360.0, 1400.0) as u32 + 190;
-    plot::raster_png(output, (width, 760), &raster)
+    Ok(plot::raster_png(output, (width, 760), &raster)?)
 }

@@ -25,6 +25,12 @@ use rand_pcg::Pcg64Mcg;
 /// the direct reading (docs/coatings.md, "Noise").
 pub const TABLE_WALKS: usize = 32;
 
+/// The bands of a coating's tables and readings unless told otherwise: 400, 410, ..., 700 nm
+/// (31 bands, the CIE tables' 10 nm step over the visible).
+pub fn default_bands() -> Vec<f64> {
+    (0..31).map(|i| 400.0 + 10.0 * i as f64).collect()
+}
+
 /// A coating system.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Coating {

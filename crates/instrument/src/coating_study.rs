@@ -243,6 +243,23 @@ impl Specimen for CoatingSpecimen {
     }
 }
 
+/// The multi-angle reading (D65/10°) of the coating `evaluator` evaluates, at `geometries`, with
+/// `walks` walks per geometry (a rough top or flakes). Every reading draws the same streams
+/// (seed 1), so that two formulations' readings differ by their optics, not by their noise. A
+/// smooth top's mirror reflection is 15° or more away from every standard geometry and is not
+/// in the reading.
+pub fn multiangle_reading(
+    evaluator: &Evaluator,
+    wavelengths_nm: &[f64],
+    geometries: &[Geometry],
+    walks: usize,
+) -> Result<MultiangleReading> {
+    let brdf = |wo: DVec3, wi: DVec3, out: &mut [f64]| {
+        evaluator.eval(wo, wi, walks, 1, &mut Scratch::default(), out);
+    };
+    multiangle::read(&brdf, wavelengths_nm, geometries, &Settings::default())
+}
+
 /// What the instruments read on one variant.
 #[derive(Clone, Debug)]
 pub struct StudyRow {
@@ -276,11 +293,7 @@ pub fn run(
             variant.check(wavelengths_nm)?;
             let gloss = gloss::measure(&CoatingSpecimen::new(&variant, 555.0, gloss_walks)?)?;
             let evaluator = variant.evaluator(wavelengths_nm)?;
-            let brdf = |wo: DVec3, wi: DVec3, out: &mut [f64]| {
-                evaluator.eval(wo, wi, walks, 1, &mut Scratch::default(), out);
-            };
-            let multiangle =
-                multiangle::read(&brdf, wavelengths_nm, geometries, &Settings::default())?;
+            let multiangle = multiangle_reading(&evaluator, wavelengths_nm, geometries, walks)?;
             Ok(StudyRow {
                 value,
                 gloss,

@@ -23,6 +23,9 @@ pub enum InstrumentError {
     /// A surface operation failed.
     #[error(transparent)]
     Surface(#[from] gonio_surface::SurfaceError),
+    /// A plot could not be drawn or written.
+    #[error(transparent)]
+    Plot(#[from] gonio_plot::PlotError),
     /// A coating could not be computed.
     #[error(transparent)]
     Coating(#[from] gonio_coating::CoatingError),

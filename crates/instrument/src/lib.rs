@@ -6,6 +6,8 @@
 //! `multiangle`), and the validity warnings of a virtual reading (`validity`).
 
 pub mod coating_study;
+pub mod coating_study_output;
+pub mod coating_summary;
 pub mod compare;
 pub mod curves;
 pub mod error;

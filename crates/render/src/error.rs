@@ -18,6 +18,9 @@ pub enum RenderError {
     /// A BRDF could not be built or loaded (the error names the file).
     #[error(transparent)]
     Brdf(#[from] gonio_brdf::BrdfError),
+    /// A coating's table could not be computed.
+    #[error(transparent)]
+    Coating(#[from] gonio_coating::CoatingError),
     /// An image could not be read or written.
     #[error("{path}: {problem}")]
     Image { path: PathBuf, problem: String },

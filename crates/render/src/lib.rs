@@ -24,6 +24,7 @@ pub mod image;
 pub mod integrator;
 pub mod light;
 pub mod material;
+pub mod panel;
 mod path;
 pub mod scene;
 pub mod settings;

@@ -18,7 +18,7 @@ fn f2(v: f64) -> String {
 }
 
 pub(super) fn coatings_section(dir: &Path, pictures: bool) -> Result<Section> {
-    let wl = crate::coating::default_bands();
+    let wl = gonio_coating::system::default_bands();
     let settings = Settings::default();
     let toml = Path::new(EXAMPLES).join("coatings/red_solid.toml");
     let stack = description::read(&toml, &wl)?
@@ -198,11 +198,16 @@ fn read_coating(
     wl: &[f64],
     geometries: &[Geometry],
 ) -> Result<MultiangleReading> {
-    crate::coating::multiangle_reading(&coating.evaluator(wl)?, wl, geometries, WALKS)
+    Ok(gonio_instrument::coating_study::multiangle_reading(
+        &coating.evaluator(wl)?,
+        wl,
+        geometries,
+        WALKS,
+    )?)
 }
 
 /// `coatings` (each a coating and the name of its description) side by side on curved panels
-/// in the dark studio ([`crate::panel`]): the picture `dir/NAME.png`, its caption `what`, and
+/// in the dark studio ([`gonio_render::panel`]): the picture `dir/NAME.png`, its caption `what`, and
 /// the commands that make it again.
 fn panel_picture(
     dir: &Path,
@@ -215,19 +220,19 @@ fn panel_picture(
     let mut commands: Vec<String> = study.into_iter().map(String::from).collect();
     for (i, (coating, source)) in coatings.iter().enumerate() {
         let table = format!("{name}-{}", i + 1);
-        panels.push(crate::panel::table(coating, source, dir, &table)?);
+        panels.push(gonio_render::panel::table(coating, source, dir, &table)?);
         // A variant of a description (the silver's spreads) has no file of its own to compute
         // from; its table is beside the scene all the same.
         if coatings.iter().filter(|(_, s)| s == source).count() == 1 {
-            let res = crate::panel::resolution(coating);
+            let res = gonio_render::panel::resolution(coating);
             commands.push(format!(
                 "gonio coating compute {source} -o {table}.gbrdf --resolution {},{},{}",
                 res.theta_h, res.theta_d, res.phi_d
             ));
         }
     }
-    let scene = crate::panel::scene(dir, name, &panels)?;
-    let (png, stats) = crate::panel::render(&scene)?;
+    let scene = gonio_render::panel::scene(dir, name, &panels)?;
+    let (png, stats) = gonio_render::panel::render(&scene)?;
     commands.push(format!("gonio render {name}.toml --spectral -o {name}.png"));
     Ok(vec![
         Block::Image {
@@ -238,7 +243,7 @@ fn panel_picture(
                  exactly for a smooth coat over a diffuse base, whose mirror the renderer adds); \
                  rendered spectrally (four hero wavelengths per path, D65), 16 samples per \
                  pixel, {:.2e} rays in {:.0} s, denoised (docs/render.md)",
-                crate::panel::WALKS,
+                gonio_render::panel::WALKS,
                 stats.rays as f64,
                 stats.seconds
             ),

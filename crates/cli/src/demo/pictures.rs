@@ -1,9 +1,9 @@
 //! The demo report's pictures: the example scenes rendered by the path tracer, and the
 //! metallic paint rendered spectrally and compared with the tristimulus shortcut.
 
-use crate::plot::Raster;
 use crate::report::{Block, Section};
 use anyhow::{Context, Result};
+use gonio_plot::Raster;
 use gonio_render::difference::{SeededComparison, Spread};
 use gonio_render::{ColourMode, Image, RenderOptions, RenderStats, Scene, render_picture};
 use std::path::{Path, PathBuf};
@@ -118,11 +118,11 @@ fn delta_e_map(
         scale_bar: None,
     };
     let shown_height = shown_width * height / width.max(1);
-    crate::plot::raster_png(
+    Ok(gonio_plot::raster_png(
         path,
         (shown_width as u32 + 190, shown_height as u32 + 90),
         &raster,
-    )
+    )?)
 }
 
 /// ", denoised" for a denoised picture, else nothing.

@@ -1,6 +1,7 @@
 //! Pictures of coatings on a curved, bonnet-like panel in a studio: the coating's spectral table
 //! (computed for the picture), a scene beside it that `gonio render` runs as written, and the
-//! rendered PNG. Several coatings sit side by side on identical panels, seen from one camera,
+//! rendered PNG. The `gonio` command (`coating study`, the demo), the Python package and the lab
+//! all draw their panels through this module. Several coatings sit side by side on identical panels, seen from one camera,
 //! so that a picture compares them at the same angles: the bright reflection of the softbox
 //! near the specular direction, the flop colour where the panel turns away.
 //!
@@ -10,10 +11,10 @@
 //! one behind the panels that they mirror toward the camera, one behind the camera lighting
 //! them from the viewer's side, far from the specular direction.
 
-use anyhow::{Context, Result};
+use crate::error::{RenderError, Result};
+use crate::{ColourMode, Display, Image, RenderOptions, RenderStats, Scene, render_picture};
 use gonio_brdf::table::Resolution;
-use gonio_coating::system::Coating;
-use gonio_render::{ColourMode, RenderOptions, RenderStats, Scene, render_picture};
+use gonio_coating::system::{Coating, default_bands};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -40,7 +41,7 @@ fn studio(theta_deg: f64, phi_deg: f64) -> f64 {
 /// Write the studio as an equirectangular map (256 × 128, Radiance RGBE) at `path`.
 fn write_studio(path: &Path) -> Result<()> {
     let (w, h) = (256, 128);
-    let mut image = gonio_render::Image::new(w, h);
+    let mut image = Image::new(w, h);
     for j in 0..h {
         let theta = 180.0 * (j as f64 + 0.5) / h as f64;
         for i in 0..w {
@@ -48,12 +49,11 @@ fn write_studio(path: &Path) -> Result<()> {
             image.pixels[j * w + i] = [studio(theta, phi) as f32; 3];
         }
     }
-    image.write(path, gonio_render::Display::default())?;
-    Ok(())
+    image.write(path, Display::default())
 }
 
 /// Random walks per table cell of a picture's table (`gonio coating compute`'s default).
-pub const WALKS: usize = crate::coating::TABLE_WALKS;
+pub const WALKS: usize = gonio_coating::system::TABLE_WALKS;
 
 /// One coating on a panel: the name of its table file (beside the scene), and the index of its
 /// smooth top, whose mirror reflection the renderer adds (`None` for a rough top, whose
@@ -78,7 +78,7 @@ pub fn resolution(coating: &Coating) -> Resolution {
 /// Compute `coating`'s table for a picture into `dir/NAME.gbrdf` (from the description
 /// `source`), returning the panel that shows it.
 pub fn table(coating: &Coating, source: &str, dir: &Path, name: &str) -> Result<Panel> {
-    let bands = crate::coating::default_bands();
+    let bands = default_bands();
     let method = coating.method(WALKS);
     let table = coating.table(
         resolution(coating),
@@ -108,7 +108,7 @@ impl Panel {
 /// Write the scene `dir/NAME.toml` with `panels` side by side (left to right), the panel mesh
 /// and the studio beside it. Returns the scene's path.
 pub fn scene(dir: &Path, name: &str, panels: &[Panel]) -> Result<PathBuf> {
-    crate::output::write_atomic(&dir.join("panel.obj"), |w| Ok(w.write_all(PANEL_OBJ)?))?;
+    write_file(&dir.join("panel.obj"), PANEL_OBJ)?;
     write_studio(&dir.join("dark_studio.hdr"))?;
     let k = panels.len() as f64;
     // Panels 2.4 m wide with 0.3 m between them, in a picture 280 px high and as wide as the
@@ -152,15 +152,24 @@ pub fn scene(dir: &Path, name: &str, panels: &[Panel]) -> Result<PathBuf> {
          scale = 1.0\n",
     );
     let path = dir.join(format!("{name}.toml"));
-    crate::output::write_atomic(&path, |w| Ok(w.write_all(text.as_bytes())?))?;
+    write_file(&path, text.as_bytes())?;
     Ok(path)
+}
+
+/// Write `bytes` to `path` atomically ([`gonio_io::write_atomic`]).
+fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
+    let io = |error| RenderError::Io {
+        path: path.to_path_buf(),
+        error,
+    };
+    gonio_io::write_atomic(path, |w| w.write_all(bytes), std::convert::identity).map_err(io)
 }
 
 /// Render the scene at `scene` into the PNG beside it (same name), spectrally (the tables are
 /// spectral; colour formed under D65 by the CIE 1931 observer). Returns the PNG and the
 /// render's figures.
 pub fn render(scene: &Path) -> Result<(PathBuf, RenderStats)> {
-    let loaded = Scene::from_file(scene).with_context(|| scene.display().to_string())?;
+    let loaded = Scene::from_file(scene)?;
     let options = RenderOptions {
         colour: ColourMode::Spectral,
         ..Default::default()

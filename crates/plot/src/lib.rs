@@ -1,12 +1,39 @@
-//! Plot helpers shared by the commands: an embedded font, line plots on linear or log axes, and
-//! PNG output written atomically (temporary file, then rename).
+//! gonio-plot: the plots every front end draws (the `gonio` command, the Python package, the
+//! report): an embedded font, line plots on linear or log axes with the legend beside the data,
+//! false-colour rasters with a colour bar, and PNG output written atomically (temporary file,
+//! then rename; [`gonio_io::write_atomic`]).
 
-use anyhow::{Context, Result};
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
 use std::path::Path;
 use std::sync::Once;
+
+/// What went wrong drawing or writing a plot.
+#[derive(Debug, thiserror::Error)]
+pub enum PlotError {
+    /// Nothing finite (or positive, on a logarithmic axis) to draw, or data of the wrong shape.
+    #[error("{0}")]
+    Data(String),
+    /// The drawing backend failed.
+    #[error("drawing the plot: {0}")]
+    Draw(String),
+    /// The file could not be written.
+    #[error("{}: cannot write: {error}", path.display())]
+    Write {
+        path: std::path::PathBuf,
+        error: String,
+    },
+}
+
+impl<E: std::error::Error + Send + Sync> From<DrawingAreaErrorKind<E>> for PlotError {
+    fn from(e: DrawingAreaErrorKind<E>) -> Self {
+        PlotError::Draw(e.to_string())
+    }
+}
+
+/// The plot functions' result.
+pub type Result<T> = std::result::Result<T, PlotError>;
 
 static FONT: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
 
@@ -124,7 +151,12 @@ where
         .iter()
         .flat_map(|s| s.points.iter().copied().filter(usable))
         .collect();
-    anyhow::ensure!(!all.is_empty(), "nothing to plot in '{}'", plot.title);
+    if all.is_empty() {
+        return Err(PlotError::Data(format!(
+            "nothing to plot in '{}'",
+            plot.title
+        )));
+    }
     let (mut x0, mut x1) = min_max(all.iter().map(|p| p.0));
     let (mut y0, mut y1) = min_max(all.iter().map(|p| p.1));
     if x_axis.log {
@@ -354,16 +386,27 @@ pub fn render_png(
         draw(&root)?;
         root.present()?;
     }
-    let img =
-        image::RgbImage::from_raw(size.0, size.1, buf).context("plot buffer has the wrong size")?;
+    let img = image::RgbImage::from_raw(size.0, size.1, buf)
+        .ok_or_else(|| PlotError::Draw("the plot buffer has the wrong size".into()))?;
     save_image_atomic(path, &image::DynamicImage::ImageRgb8(img))
 }
 
-/// Write an image (format from the extension) atomically ([`crate::output::write_atomic`]).
+/// Write an image (format from the extension) atomically ([`gonio_io::write_atomic`]).
 pub fn save_image_atomic(path: &Path, img: &image::DynamicImage) -> Result<()> {
+    let write_error = |error: String| PlotError::Write {
+        path: path.to_path_buf(),
+        error,
+    };
     let format = image::ImageFormat::from_path(path)
-        .with_context(|| format!("{}: unknown image extension (use .png)", path.display()))?;
-    crate::output::write_atomic(path, |w| Ok(img.write_to(w, format)?))
+        .map_err(|_| write_error("unknown image extension (use .png)".into()))?;
+    gonio_io::write_atomic(
+        path,
+        |w| {
+            img.write_to(w, format)
+                .map_err(|e| write_error(e.to_string()))
+        },
+        |e| write_error(e.to_string()),
+    )
 }
 
 /// A false-colour image of a grid of values (heights, BRDF maps, ...) with a colour bar.
@@ -397,15 +440,17 @@ pub fn nice_number(x: f64) -> f64 {
 
 /// Draw `raster` (viridis colours) into a PNG of `size` pixels at `path`.
 pub fn raster_png(path: &Path, size: (u32, u32), raster: &Raster) -> Result<()> {
-    anyhow::ensure!(
-        raster.values.len() == raster.width * raster.height
-            && raster.width > 0
-            && raster.height > 0,
-        "raster of {} values is not {} × {}",
-        raster.values.len(),
-        raster.width,
-        raster.height
-    );
+    if raster.values.len() != raster.width * raster.height
+        || raster.width == 0
+        || raster.height == 0
+    {
+        return Err(PlotError::Data(format!(
+            "raster of {} values is not {} × {}",
+            raster.values.len(),
+            raster.width,
+            raster.height
+        )));
+    }
     render_png(path, size, |root| draw_raster(root, raster))
 }
 
@@ -496,4 +541,68 @@ fn draw_raster(root: &DrawingArea<BitMapBackend, Shift>, r: &Raster) -> Result<(
         ("sans-serif", 13).into_font(),
     ))?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn series(points: Vec<(f64, f64)>) -> Series {
+        Series {
+            label: "a curve".into(),
+            points,
+            colour: palette(0),
+            markers: false,
+        }
+    }
+
+    const SPEC: LinePlot = LinePlot {
+        title: "t",
+        x_label: "x",
+        y_label: "y",
+        log_y: true,
+    };
+
+    /// A line plot is a PNG of the requested size with the curve drawn in its colour.
+    #[test]
+    fn line_plot_draws_the_curve() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("curve.png");
+        let points = (1..50).map(|i| (i as f64, (i as f64).powi(2))).collect();
+        line_plot_png(&path, (400, 300), &SPEC, &[series(points)]).unwrap();
+        let image = image::open(&path).unwrap().to_rgb8();
+        assert_eq!(image.dimensions(), (400, 300));
+        let blue = image.pixels().filter(|p| p.0 == [31, 119, 180]).count();
+        assert!(blue > 100, "{blue} pixels of the curve's colour");
+    }
+
+    /// Nothing plottable (only non-positive values on a log axis) is an error naming the plot,
+    /// and an unwritable path is an error naming the file; neither leaves a file behind.
+    #[test]
+    fn bad_plots_are_errors_naming_what_is_wrong() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("empty.png");
+        let err = line_plot_png(&path, (400, 300), &SPEC, &[series(vec![(1.0, -1.0)])])
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("nothing to plot in 't'"), "{err}");
+        assert!(!path.exists());
+        let missing = dir.path().join("no/such/dir/p.png");
+        let err = line_plot_png(&missing, (400, 300), &SPEC, &[series(vec![(1.0, 1.0)])])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("p.png") && err.contains("cannot write"),
+            "{err}"
+        );
+        let err = line_plot_png(
+            &dir.path().join("p.xyz"),
+            (400, 300),
+            &SPEC,
+            &[series(vec![(1.0, 1.0)])],
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(err.contains("unknown image extension"), "{err}");
+    }
 }
