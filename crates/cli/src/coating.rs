@@ -188,23 +188,11 @@ fn info(a: InfoArgs) -> Result<()> {
             .map_or(f64::NAN, |(_, n)| *n)
     };
     if a.json {
-        let pairs = |v: &[(f64, f64)], x: &str, y: &str| {
-            v.iter()
-                .map(|(a, b)| serde_json::json!({ x: a, y: b }))
-                .collect::<Vec<_>>()
-        };
-        let json = serde_json::json!({
-            "file": a.coating.display().to_string(),
-            "coat_index": { "400": index(400.0), "550": index(550.0), "700": index(700.0) },
-            "base_reflectance": pairs(&s.base_reflectance, "nm", "reflectance"),
-            "specular": pairs(&s.specular, "theta_deg", "reflectance"),
-            "albedo": pairs(&s.albedo, "theta_i_deg", "albedo"),
-            "multiangle": s.multiangle.geometries.iter().map(|g| serde_json::json!({
-                "name": g.geometry.to_string(), "L": g.lab.l, "a": g.lab.a, "b": g.lab.b,
-                "C": g.lab.chroma(), "h_deg": g.lab.hue_deg(),
-            })).collect::<Vec<_>>(),
-            "flop_index": s.multiangle.flop_index(),
-        });
+        let mut json = serde_json::json!({ "file": a.coating.display().to_string() });
+        if let (Some(out), serde_json::Value::Object(fields)) = (json.as_object_mut(), s.to_json())
+        {
+            out.extend(fields);
+        }
         println!("{}", serde_json::to_string_pretty(&json)?);
         return Ok(());
     }

@@ -289,8 +289,9 @@ fn flakes(f: FlakeFields) -> Result<Flakes> {
     })
 }
 
-/// Parse the text of a coating description, with maps relative to `folder`.
-fn parse_in(text: &str, folder: &Path, wavelengths_nm: &[f64]) -> Result<Coating> {
+/// Parse the text of a coating description, with the files it names (a top's height map)
+/// relative to `folder`.
+pub fn parse_in(text: &str, folder: &Path, wavelengths_nm: &[f64]) -> Result<Coating> {
     let file: File = toml::from_str(text).map_err(|e| CoatingError::Invalid(e.to_string()))?;
     let roughness = file
         .top

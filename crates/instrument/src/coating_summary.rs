@@ -34,6 +34,36 @@ pub struct CoatingSummary {
     pub multiangle: MultiangleReading,
 }
 
+impl CoatingSummary {
+    /// The summary as JSON, as `gonio coating info --json` prints it (without the file's name):
+    /// `coat_index` {"400", "550", "700"}, `base_reflectance` [{nm, reflectance}], `specular`
+    /// [{theta_deg, reflectance}], `albedo` [{theta_i_deg, albedo}], `multiangle` [{name, L, a,
+    /// b, C, h_deg}] and `flop_index`.
+    pub fn to_json(&self) -> serde_json::Value {
+        let pairs = |v: &[(f64, f64)], x: &str, y: &str| {
+            v.iter()
+                .map(|(a, b)| serde_json::json!({ x: a, y: b }))
+                .collect::<Vec<_>>()
+        };
+        let index: serde_json::Map<String, serde_json::Value> = self
+            .coat_index
+            .iter()
+            .map(|(w, n)| (format!("{w}"), serde_json::json!(n)))
+            .collect();
+        serde_json::json!({
+            "coat_index": index,
+            "base_reflectance": pairs(&self.base_reflectance, "nm", "reflectance"),
+            "specular": pairs(&self.specular, "theta_deg", "reflectance"),
+            "albedo": pairs(&self.albedo, "theta_i_deg", "albedo"),
+            "multiangle": self.multiangle.geometries.iter().map(|g| serde_json::json!({
+                "name": g.geometry.to_string(), "L": g.lab.l, "a": g.lab.a, "b": g.lab.b,
+                "C": g.lab.chroma(), "h_deg": g.lab.hue_deg(),
+            })).collect::<Vec<_>>(),
+            "flop_index": self.multiangle.flop_index(),
+        })
+    }
+}
+
 /// The summary of `coating` over `wavelengths_nm` (which must hold [`SUMMARY_NM`]), with `walks`
 /// random walks per multi-angle geometry and 16 × `walks` outgoing directions per albedo (a
 /// rough top or flakes; a smooth coat over a diffuse base is exact).

@@ -16,6 +16,7 @@ pub mod inplane;
 pub mod isotropy;
 pub mod meter;
 pub mod multiangle;
+pub mod multiangle_target;
 pub mod specimens;
 pub mod study;
 pub mod validity;

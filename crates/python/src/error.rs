@@ -89,6 +89,12 @@ impl From<gonio_render::RenderError> for Error {
     }
 }
 
+impl From<gonio_coating::CoatingError> for Error {
+    fn from(e: gonio_coating::CoatingError) -> Error {
+        invalid(e.to_string())
+    }
+}
+
 impl From<gonio_color::ColorError> for Error {
     fn from(e: gonio_color::ColorError) -> Error {
         invalid(e.to_string())

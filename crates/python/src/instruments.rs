@@ -9,7 +9,7 @@ use gonio_brdf::Ior;
 use gonio_color::{Illuminant, Observer};
 use gonio_instrument::inplane::{self, InplaneRequest, Method};
 use gonio_instrument::meter::{self, MapMethod};
-use gonio_instrument::multiangle::{self, Geometry, GeometryReading, Settings};
+use gonio_instrument::multiangle::{self, Geometry, GeometryReading, MultiangleReading, Settings};
 use gonio_io::Progress;
 use gonio_scatter::analytic::AnalyticModel;
 use gonio_scatter::ray::RayOptions;
@@ -201,6 +201,21 @@ pub fn multiangle_columns<'py>(
     };
     let table = table.table.clone();
     let reading = py.detach(move || multiangle::read_table(&table, &geometries, &settings))?;
+    reading_columns(py, &reading)
+}
+
+/// A multi-angle reading as [`multiangle_columns`] returns it: the columns, the reflectance
+/// factors (geometries × wavelengths), the wavelengths and the flop index.
+#[allow(clippy::type_complexity)]
+pub fn reading_columns<'py>(
+    py: Python<'py>,
+    reading: &MultiangleReading,
+) -> Result<(
+    Bound<'py, PyDict>,
+    Bound<'py, numpy::PyArray2<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Option<f64>,
+)> {
     let columns = PyDict::new(py);
     let g = &reading.geometries;
     let column = |f: &dyn Fn(&GeometryReading) -> f64| -> Bound<'py, PyArray1<f64>> {

@@ -5,6 +5,7 @@
 //! computations release the GIL (`Python::detach`) and run on rayon's threads, so that Python
 //! threads and Dask workers compute in parallel.
 
+mod coating;
 mod color;
 mod error;
 mod instruments;
@@ -35,5 +36,7 @@ fn _gonio(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(table::compute_table, m)?)?;
     m.add_function(wrap_pyfunction!(render::render_scene, m)?)?;
     m.add_function(wrap_pyfunction!(color::xyz, m)?)?;
+    m.add_class::<coating::Coating>()?;
+    m.add_function(wrap_pyfunction!(coating::read_coating, m)?)?;
     Ok(())
 }

@@ -26,7 +26,7 @@ pub struct Table {
 }
 
 impl Table {
-    fn new(table: BrdfTable) -> Table {
+    pub(crate) fn new(table: BrdfTable) -> Table {
         Table {
             table: Arc::new(table),
         }

@@ -169,15 +169,22 @@ fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
 /// spectral; colour formed under D65 by the CIE 1931 observer). Returns the PNG and the
 /// render's figures.
 pub fn render(scene: &Path) -> Result<(PathBuf, RenderStats)> {
+    let (image, display, stats) = render_image(scene)?;
+    let png = scene.with_extension("png");
+    image.write(&png, display)?;
+    Ok((png, stats))
+}
+
+/// Render the scene at `scene` as [`render`] does, returning the picture (linear sRGB), the
+/// scene's display settings (exposure, tone curve) and the render's figures.
+pub fn render_image(scene: &Path) -> Result<(Image, Display, RenderStats)> {
     let loaded = Scene::from_file(scene)?;
     let options = RenderOptions {
         colour: ColourMode::Spectral,
         ..Default::default()
     };
     let (image, estimate) = render_picture(&loaded, &options)?;
-    let png = scene.with_extension("png");
-    image.write(&png, loaded.display)?;
-    Ok((png, estimate.stats))
+    Ok((image, loaded.display, estimate.stats))
 }
 
 #[cfg(test)]

@@ -1,0 +1,146 @@
+"""Coatings from their constituents: a clear coat (smooth or rough) over a diffuse or
+Kubelka-Munk base, with or without effect flakes (``docs/coatings.md``). The same calls as the
+``gonio coating`` commands, so the same numbers.
+
+Read a formulation with :func:`read` (a TOML file, or a dict of the same tables), then ask for
+its :func:`info`, its spectral table (:func:`compute`), its multi-angle colour
+(:func:`multiangle`, a DataFrame), a formulation study (:func:`study`, a DataFrame) or its
+picture on the curved panel (:func:`panel_picture`, a numpy RGB array).
+
+Units: wavelengths in nm, angles in degrees, reflectances as fractions (0-1), CIELAB under D65
+for the 10° observer; the walks' counts are per evaluation (per geometry, per table cell).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+import pandas as pd
+
+from . import _gonio
+from ._gonio import Coating, Table
+
+__all__ = [
+    "Coating",
+    "read",
+    "info",
+    "compute",
+    "multiangle",
+    "study",
+    "panel_picture",
+    "TABLE_RESOLUTION",
+    "DEFAULT_BANDS_NM",
+]
+
+#: The nodes (theta_h, theta_d, phi_d) of ``gonio coating compute``'s table.
+TABLE_RESOLUTION = (90, 90, 48)
+#: The bands of a coating's tables and readings: 400, 410, ..., 700 nm.
+DEFAULT_BANDS_NM = tuple(400.0 + 10.0 * i for i in range(31))
+#: Random walks per table cell (``gonio coating compute --samples``' default).
+TABLE_WALKS = 32
+
+
+def read(
+    description: str | os.PathLike | Mapping[str, Any], base_dir: str | os.PathLike = "."
+) -> Coating:
+    """A formulation: the path of a TOML description (``examples/coatings/*.toml``), or a dict
+    of the same tables, e.g. ``{"coat": {"index": 1.5, "thickness_um": 40}, "base": {"kind":
+    "diffuse", "reflectance": 0.3}}``; file names in a dict (a top's height map) start in
+    ``base_dir``. A :class:`Coating` is returned as it is."""
+    if isinstance(description, Coating):
+        return description
+    if isinstance(description, (str, os.PathLike)):
+        return _gonio.read_coating(os.fspath(description), None, False, os.fspath(base_dir))
+    if isinstance(description, Mapping):
+        return _gonio.read_coating(None, json.dumps(dict(description)), True, os.fspath(base_dir))
+    raise TypeError(f"a coating: give a path or a dict, not {type(description).__name__}")
+
+
+def info(coating: Coating | str | os.PathLike | Mapping[str, Any], samples: int = 4096) -> dict:
+    """What ``gonio coating info --json`` prints (without ``file``): ``coat_index`` at 400, 550
+    and 700 nm, ``base_reflectance`` per band, ``specular`` (the coat's mirror reflectance at
+    20/60/85° and 550 nm; 0 for a rough top), ``albedo`` (directional-hemispherical
+    reflectance at 0/45/75°, 550 nm), ``multiangle`` (E2194, D65/10°: ``name``, ``L``, ``a``,
+    ``b``, ``C``, ``h_deg``) and ``flop_index``. ``samples``: walks per geometry for a rough top
+    or flakes (the albedo uses 16 times as many directions)."""
+    return json.loads(read(coating).info_json(int(samples)))
+
+
+def compute(
+    coating: Coating | str | os.PathLike | Mapping[str, Any],
+    resolution: Sequence[int] = TABLE_RESOLUTION,
+    bands_nm: Sequence[float] = DEFAULT_BANDS_NM,
+    samples: int = TABLE_WALKS,
+) -> Table:
+    """The coating's spectral :class:`gonio.Table`, as ``gonio coating compute`` makes it: one
+    channel per band (nm), ``samples`` random walks per cell for a rough top or flakes (a smooth
+    coat over a diffuse base is exact). A smooth top's mirror reflection (a delta) is not in the
+    table; a rough top's is."""
+    return read(coating).compute(
+        [int(n) for n in resolution], [float(b) for b in bands_nm], int(samples)
+    )
+
+
+def _reading_frame(columns, factors, wavelengths, flop) -> pd.DataFrame:
+    df = pd.DataFrame(columns)
+    for i, wl in enumerate(wavelengths):
+        df[f"R_{wl:g}nm"] = factors[:, i]
+    df.attrs["flop_index"] = flop
+    return df
+
+
+def multiangle(
+    coating: Coating | str | os.PathLike | Mapping[str, Any],
+    standard: str = "e2194",
+    samples: int = 4096,
+) -> pd.DataFrame:
+    """The multi-angle reading (D65/10°) of the coating at ``standard``'s geometries
+    (``"e2194"`` or ``"e2539"``), its BRDF evaluated where the instrument looks (no table),
+    ``samples`` walks per geometry. The columns of :func:`gonio.multiangle`; Alman's flop index
+    in ``df.attrs["flop_index"]``."""
+    return _reading_frame(*read(coating).multiangle_columns(standard, int(samples)))
+
+
+def study(
+    coating: Coating | str | os.PathLike | Mapping[str, Any],
+    vary: str,
+    values: Sequence[float],
+    standard: str = "e2194",
+    samples: int = 8192,
+) -> pd.DataFrame:
+    """A formulation study (``gonio coating study --json``): ``vary`` one constituent
+    (``roughness``: the top's α, 0 smooth; ``tilt``: the flakes' rms tilt, °; ``coverage``;
+    ``tio2``: interference flakes' TiO2, nm; ``thickness``: the coat's, µm; or
+    ``concentration:NAME``) over ``values``; one row per value: ``value``, ``gu20``, ``gu60``,
+    ``gu85`` (ISO 2813 gloss units), ``haze``, ``haze_20_log``, ``doi`` (ASTM E430),
+    ``flop_index``, and ``L_G``, ``a_G``, ``b_G`` for each geometry G of ``standard``. The
+    constituent's label (with its unit) is in ``df.attrs["label"]``."""
+    result = json.loads(
+        read(coating).study_json(vary, [float(v) for v in values], standard, int(samples))
+    )
+    rows = []
+    for r in result["rows"]:
+        row = {k: r[k] for k in ("value", "gu20", "gu60", "gu85", "haze", "haze_20_log", "doi")}
+        row["flop_index"] = np.nan if r["flop_index"] is None else r["flop_index"]
+        for g in r["multiangle"]:
+            for c in ("L", "a", "b"):
+                row[f"{c}_{g['name']}"] = g[c]
+        rows.append(row)
+    df = pd.DataFrame(rows)
+    df.attrs["label"] = result["label"]
+    return df
+
+
+def panel_picture(
+    coating: Coating | str | os.PathLike | Mapping[str, Any], linear: bool = False
+) -> np.ndarray:
+    """The coating on a curved, bonnet-like panel in the dark studio, as ``gonio coating
+    study`` draws it: its table computed for the picture (45 × 45 × 24 nodes, 32 walks per
+    cell), rendered spectrally (D65), 16 samples per pixel, denoised. A (height, width, 3) uint8
+    sRGB array (the picture the PNG holds), or with ``linear`` the float32 linear sRGB
+    radiance. A few seconds to a minute on two cores."""
+    srgb, radiance, _seconds = read(coating).panel_picture()
+    return radiance if linear else srgb

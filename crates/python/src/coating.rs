@@ -1,0 +1,210 @@
+//! Coatings for Python: `gonio.coating.Coating`, a formulation (a TOML description as
+//! `docs/coatings.md` gives it, read from a file or built from a dict), and what the `gonio
+//! coating` commands compute from it: its summary (`info`), its spectral table (`compute`), its
+//! multi-angle reading, a formulation study, and its picture on the curved panel. Each is one
+//! call into `gonio-coating`, `gonio-instrument` or `gonio-render`, the calls the CLI makes, so
+//! that Python gives the CLI's numbers.
+
+use crate::error::{Result, invalid};
+use crate::instruments::reading_columns;
+use crate::table::Table;
+use gonio_brdf::table::Resolution;
+use gonio_coating::description;
+use gonio_coating::system::{self, default_bands};
+use gonio_instrument::coating_study::{self, Constituent};
+use gonio_instrument::coating_study_output;
+use gonio_instrument::coating_summary::summarise;
+use gonio_instrument::multiangle::Geometry;
+use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::PathBuf;
+
+/// A coating's formulation, read over the default bands (400–700 nm in 10 nm steps).
+#[pyclass(name = "Coating", module = "gonio._gonio", frozen)]
+pub struct Coating {
+    pub coating: system::Coating,
+    /// Where it came from: the file, or "dict".
+    #[pyo3(get)]
+    pub source: String,
+}
+
+/// Read the coating description `path` (TOML), or parse `text` (TOML, or JSON of the same
+/// structure when `json` is true; relative file names in it start in `base_dir`).
+#[pyfunction]
+#[pyo3(signature = (path, text, json, base_dir))]
+pub fn read_coating(
+    path: Option<PathBuf>,
+    text: Option<String>,
+    json: bool,
+    base_dir: PathBuf,
+) -> Result<Coating> {
+    let wavelengths = default_bands();
+    match (path, text) {
+        (Some(path), None) => Ok(Coating {
+            coating: description::read(&path, &wavelengths)?,
+            source: path.display().to_string(),
+        }),
+        (None, Some(text)) => {
+            let toml = if json {
+                let value: serde_json::Value =
+                    serde_json::from_str(&text).map_err(|e| invalid(format!("coating: {e}")))?;
+                toml::to_string(&value).map_err(|e| {
+                    invalid(format!(
+                        "coating: {e} (give a dict of tables as docs/coatings.md describes, \
+                         without None values)"
+                    ))
+                })?
+            } else {
+                text
+            };
+            Ok(Coating {
+                coating: description::parse_in(&toml, &base_dir, &wavelengths)?,
+                source: "dict".into(),
+            })
+        }
+        _ => Err(invalid("give a coating file or a description")),
+    }
+}
+
+/// The geometries of `standard` ("e2194" or "e2539").
+fn standard(name: &str) -> Result<&'static [Geometry]> {
+    use gonio_instrument::multiangle::{E2194, E2539};
+    match name.to_ascii_lowercase().as_str() {
+        "e2194" => Ok(&E2194),
+        "e2539" => Ok(&E2539),
+        other => Err(invalid(format!(
+            "standard {other:?}: use \"e2194\" or \"e2539\""
+        ))),
+    }
+}
+
+#[pymethods]
+impl Coating {
+    /// The summary `gonio coating info --json` prints, as JSON text: coat index, base
+    /// reflectance, the coat's mirror reflectance at 20/60/85°, the directional-hemispherical
+    /// reflectance at 0/45/75° (550 nm), the E2194 colour and the flop index; `samples` walks
+    /// per geometry (a rough top or flakes).
+    #[pyo3(signature = (samples))]
+    fn info_json(&self, py: Python<'_>, samples: usize) -> Result<String> {
+        let coating = self.coating.clone();
+        let summary = py.detach(move || summarise(&coating, &default_bands(), samples))?;
+        Ok(summary.to_json().to_string())
+    }
+
+    /// The coating's spectral table as `gonio coating compute` makes it: `resolution` (theta_h,
+    /// theta_d, phi_d) nodes, `bands` in nm, `samples` walks per cell.
+    #[pyo3(signature = (resolution, bands, samples))]
+    fn compute(
+        &self,
+        py: Python<'_>,
+        resolution: Vec<usize>,
+        bands: Vec<f64>,
+        samples: usize,
+    ) -> Result<Table> {
+        let [th, td, pd] = resolution[..] else {
+            return Err(invalid(
+                "resolution: give (theta_h, theta_d, phi_d), e.g. (90, 90, 48)",
+            ));
+        };
+        let coating = self.coating.clone();
+        let source = self.source.clone();
+        let table = py.detach(move || {
+            let method = coating.method(samples);
+            coating.table(
+                Resolution::isotropic(th, td, pd),
+                &bands,
+                samples,
+                coating.provenance(source, method),
+            )
+        })?;
+        Ok(Table::new(table))
+    }
+
+    /// The multi-angle reading (D65/10°) at `standard`'s geometries, evaluated where the
+    /// instrument looks (no table), `samples` walks per geometry: the columns, reflectance
+    /// factors, wavelengths and flop index of `multiangle_columns`.
+    #[pyo3(signature = (standard, samples))]
+    #[allow(clippy::type_complexity)]
+    fn multiangle_columns<'py>(
+        &self,
+        py: Python<'py>,
+        standard: &str,
+        samples: usize,
+    ) -> Result<(
+        Bound<'py, PyDict>,
+        Bound<'py, PyArray2<f64>>,
+        Bound<'py, PyArray1<f64>>,
+        Option<f64>,
+    )> {
+        let geometries = self::standard(standard)?;
+        let coating = self.coating.clone();
+        let reading = py.detach(move || {
+            let wl = default_bands();
+            coating_study::multiangle_reading(&coating.evaluator(&wl)?, &wl, geometries, samples)
+        })?;
+        reading_columns(py, &reading)
+    }
+
+    /// A formulation study as JSON text (`gonio coating study --json`): `vary` (roughness, tilt,
+    /// coverage, tio2, thickness or concentration:NAME) at `values`, the multi-angle reading at
+    /// `standard`'s geometries with `samples` walks each, the gloss meter with a sixty-fourth.
+    #[pyo3(signature = (vary, values, standard, samples))]
+    fn study_json(
+        &self,
+        py: Python<'_>,
+        vary: &str,
+        values: Vec<f64>,
+        standard: &str,
+        samples: usize,
+    ) -> Result<String> {
+        let constituent = Constituent::parse(vary)?;
+        let geometries = self::standard(standard)?;
+        let coating = self.coating.clone();
+        let rows = {
+            let constituent = constituent.clone();
+            let values = values.clone();
+            py.detach(move || {
+                coating_study::run(
+                    &coating,
+                    &constituent,
+                    &values,
+                    geometries,
+                    &default_bands(),
+                    samples,
+                    (samples / 64).max(1),
+                )
+            })?
+        };
+        Ok(coating_study_output::json(&self.source, vary, &constituent.label(), &rows).to_string())
+    }
+
+    /// The coating on the curved panel in the dark studio, as `gonio coating study` draws it
+    /// (its table computed for the picture, rendered spectrally): the (height, width, 3) uint8
+    /// sRGB picture the PNG holds (the scene's exposure and filmic tone curve applied), the
+    /// (height, width, 3) float32 linear sRGB radiance, and the render's seconds.
+    #[pyo3(signature = ())]
+    #[allow(clippy::type_complexity)]
+    fn panel_picture<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> Result<(Bound<'py, PyArray3<u8>>, Bound<'py, PyArray3<f32>>, f64)> {
+        let coating = self.coating.clone();
+        let source = self.source.clone();
+        let (image, display, stats) = py.detach(move || {
+            let dir = tempfile::tempdir()
+                .map_err(|e| invalid(format!("a temporary folder for the scene: {e}")))?;
+            let panel = gonio_render::panel::table(&coating, &source, dir.path(), "panel")?;
+            let scene = gonio_render::panel::scene(dir.path(), "panel", &[panel])?;
+            Ok::<_, crate::error::Error>(gonio_render::panel::render_image(&scene)?)
+        })?;
+        let (h, w) = (image.height, image.width);
+        let srgb = PyArray1::from_vec(py, image.to_srgb8(display)).reshape([h, w, 3])?;
+        let flat: Vec<f32> = image.pixels.into_iter().flatten().collect();
+        Ok((
+            srgb,
+            PyArray1::from_vec(py, flat).reshape([h, w, 3])?,
+            stats.seconds,
+        ))
+    }
+}

@@ -1,0 +1,84 @@
+"""Coatings from Python give the command line's numbers: the summary, the multi-angle reading,
+a formulation study and the table, for a file and for the same formulation given as a dict; the
+panel picture is a picture of the panel; bad formulations are errors that say what is wrong."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import tomllib
+
+import numpy as np
+import pytest
+
+import gonio
+from conftest import ROOT
+
+EXAMPLES = ROOT / "examples" / "coatings"
+
+
+def cli_json(gonio_cli, *args) -> dict:
+    out = subprocess.run([gonio_cli, *map(str, args)], check=True, capture_output=True, text=True)
+    return json.loads(out.stdout)
+
+
+def test_info_and_study_equal_the_cli(gonio_cli):
+    path = EXAMPLES / "red_rough.toml"
+    cli = cli_json(gonio_cli, "coating", "info", path, "--samples", "256", "--json")
+    py = gonio.coating.info(path, samples=256)
+    assert py == {k: v for k, v in cli.items() if k != "file"}
+    # The same formulation as a dict (the file's tables) reads the same, exactly.
+    with open(path, "rb") as f:
+        as_dict = tomllib.load(f)
+    assert gonio.coating.info(as_dict, samples=256) == py
+    df = gonio.coating.multiangle(path, samples=256)
+    assert list(df["geometry"]) == list(gonio.E2194)
+    assert [m["L"] for m in cli["multiangle"]] == list(df["L"])
+    assert df.attrs["flop_index"] == cli["flop_index"]
+
+    cli_study = cli_json(gonio_cli, "coating", "study", path, "--vary", "thickness",
+                         "--values", "20,60", "--samples", "128", "--json")
+    study = gonio.coating.study(path, "thickness", [20, 60], samples=128)
+    assert list(study["value"]) == [20.0, 60.0]
+    assert study.attrs["label"] == cli_study["label"]
+    for row, r in zip(cli_study["rows"], study.itertuples()):
+        assert row["gu60"] == r.gu60 and row["doi"] == r.doi
+        assert row["multiangle"][0]["L"] == getattr(r, "L_45as15")
+
+
+def test_table_equals_the_cli(gonio_cli, tmp_path):
+    path = EXAMPLES / "red_solid.toml"
+    out = tmp_path / "red.gbrdf"
+    subprocess.run([gonio_cli, "coating", "compute", path, "-o", out, "--resolution", "8,8,4"],
+                   check=True, capture_output=True)
+    cli = gonio.brdf.open(out)
+    py = gonio.coating.compute(path, resolution=(8, 8, 4))
+    assert py.resolution == cli.resolution == [8, 8, 4]
+    wi = np.array([[0.3, 0.0, np.sqrt(1 - 0.09)]])
+    wo = np.array([[-0.5, 0.1, np.sqrt(1 - 0.26)]])
+    np.testing.assert_array_equal(py.eval(wi, wo), cli.eval(wi, wo))
+
+
+def test_panel_picture_shows_the_panel():
+    red = {"coat": {"index": 1.5, "thickness_um": 40},
+           "base": {"kind": "diffuse", "reflectance": {"nm": [400, 550, 600, 700],
+                                                       "values": [0.05, 0.05, 0.6, 0.7]}}}
+    srgb = gonio.coating.panel_picture(red)
+    assert srgb.dtype == np.uint8 and srgb.shape[2] == 3 and srgb.shape[0] == 280
+    # The panel is red: where the picture is bright, red dominates green and blue (the softbox's
+    # mirror on the smooth coat is white, so compare the mean over the picture's lit pixels).
+    lit = srgb.reshape(-1, 3)[srgb.reshape(-1, 3).max(axis=1) > 60].astype(float)
+    assert len(lit) > 1000
+    r, g, b = lit.mean(axis=0)
+    assert r > 1.3 * g and r > 1.3 * b, (r, g, b)
+
+
+def test_bad_formulations_say_what_is_wrong():
+    with pytest.raises(ValueError, match="index"):
+        gonio.coating.read({"coat": {"thickness_um": 40}, "base": {"kind": "diffuse", "reflectance": 0.3}})
+    with pytest.raises(ValueError, match="vary one of"):
+        gonio.coating.study(EXAMPLES / "red_solid.toml", "gloss", [1.0], samples=16)
+    with pytest.raises(ValueError, match="e2194"):
+        gonio.coating.multiangle(EXAMPLES / "red_solid.toml", standard="e9999")
+    with pytest.raises(TypeError):
+        gonio.coating.read(42)
