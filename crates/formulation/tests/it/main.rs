@@ -1,0 +1,8 @@
+//! Integration tests of gonio-formulation: the sensitivity estimators against analytic indices
+//! (Ishigami's function, linear models), against SALib on the same points and outputs (oracle),
+//! and the coating's sensitivity against what its physics says. One test binary per crate; each
+//! module is one subject.
+
+mod oracle;
+mod salib;
+mod sensitivity;
