@@ -168,7 +168,7 @@ fn mean(values: impl ExactSizeIterator<Item = f64>) -> f64 {
 }
 
 /// The standard deviation of `values` with `n − 1` in the denominator.
-fn sample_std(values: &[f64]) -> f64 {
+pub(crate) fn sample_std(values: &[f64]) -> f64 {
     let m = mean(values.iter().copied());
     let ss: f64 = values.iter().map(|v| (v - m) * (v - m)).sum();
     (ss / (values.len() as f64 - 1.0)).sqrt()
