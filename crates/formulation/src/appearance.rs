@@ -113,8 +113,8 @@ impl Output {
             Output::Haze => "haze".into(),
             Output::Doi => "DOI".into(),
             Output::L(g) => format!("L* at {g}"),
-            Output::A(g) => format!("a* at {g}"),
-            Output::B(g) => format!("b* at {g}"),
+            Output::A(g) => format!("CIELAB a* at {g}"),
+            Output::B(g) => format!("CIELAB b* at {g}"),
             Output::Flop => "the flop index".into(),
             Output::De00 => "ΔE00 from the base formulation".into(),
         }

@@ -152,6 +152,18 @@ where
     )
 }
 
+/// Refuse outputs that are not all finite, naming the first such value.
+fn check_finite(outputs: &Array2<f64>) -> Result<()> {
+    if let Some(((row, column), v)) = outputs.indexed_iter().find(|(_, v)| !v.is_finite()) {
+        return Err(invalid(format!(
+            "output {} of row {} is {v}: the outputs must be finite",
+            column + 1,
+            row + 1
+        )));
+    }
+    Ok(())
+}
+
 /// `count` bootstrap resamples of `n` rows (indices drawn uniformly with replacement), from a
 /// PCG-64 stream seeded by `seed`: the same seed gives the same resamples.
 fn resamples(n: usize, count: usize, seed: u64) -> Vec<Vec<usize>> {

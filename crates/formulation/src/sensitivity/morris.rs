@@ -22,7 +22,7 @@
 //! interval by bootstrap (r effects resampled with replacement, [`super::RESAMPLES`] times,
 //! seeded; `± Z95 · s*` as in [`super::sobol`]).
 
-use super::{Problem, RESAMPLES, Z95, invalid, mean, resamples, sample_std};
+use super::{Problem, RESAMPLES, Z95, check_finite, invalid, mean, resamples, sample_std};
 use crate::error::Result;
 use ndarray::Array2;
 use rand::seq::SliceRandom;
@@ -40,7 +40,7 @@ pub fn delta(levels: usize) -> f64 {
 /// Refuse a number of levels that is odd or below 2 (the design needs `p` even so that every
 /// step of Δ lands on the grid with equal probability from each level; SALib warns).
 fn check_levels(levels: usize) -> Result<()> {
-    if levels < 2 || levels % 2 != 0 {
+    if levels < 2 || !levels.is_multiple_of(2) {
         return Err(invalid(format!(
             "{levels} Morris levels: an even number, 2 or more (4 is usual)"
         )));
@@ -121,12 +121,13 @@ pub fn analyze(
             outputs.nrows()
         )));
     }
-    if rows == 0 || rows % (d + 1) != 0 || rows / (d + 1) < 2 {
+    if rows == 0 || !rows.is_multiple_of(d + 1) || rows / (d + 1) < 2 {
         return Err(invalid(format!(
             "{rows} points: a Morris design of {d} inputs has r (d + 1) = r × {} rows, r ≥ 2",
             d + 1
         )));
     }
+    check_finite(outputs)?;
     let r = rows / (d + 1);
     // For each trajectory and input: the rows (up, down) between which the input moved.
     let mut moves = vec![vec![(0, 0); d]; r];

@@ -33,7 +33,7 @@
 //! draws, which over-states the error of a scrambled Sobol design (randomised quasi-Monte Carlo
 //! converges faster than N^(−1/2) for smooth outputs): the intervals are conservative.
 
-use super::{Problem, RESAMPLES, Z95, invalid, mean, resamples, sample_std};
+use super::{Problem, RESAMPLES, Z95, check_finite, invalid, mean, resamples, sample_std};
 use crate::error::Result;
 use ndarray::Array2;
 
@@ -95,13 +95,14 @@ pub struct SobolIndices {
 pub fn analyze(problem: &Problem, outputs: &Array2<f64>, seed: u64) -> Result<Vec<SobolIndices>> {
     let d = problem.dimension();
     let rows = outputs.nrows();
-    if rows == 0 || rows % (d + 2) != 0 {
+    if rows == 0 || !rows.is_multiple_of(d + 2) {
         return Err(invalid(format!(
             "{rows} rows of outputs: a Sobol design of {d} inputs has a multiple of d + 2 = {} \
              rows (N base points × (d + 2))",
             d + 2
         )));
     }
+    check_finite(outputs)?;
     let n = rows / (d + 2);
     if n < 2 {
         return Err(invalid("a Sobol design needs at least two base points"));
@@ -125,7 +126,7 @@ pub fn analyze(problem: &Problem, outputs: &Array2<f64>, seed: u64) -> Result<Ve
                 st_conf: vec![0.0; d],
                 variance,
             };
-            if !(variance > 0.0) {
+            if variance == 0.0 {
                 return indices;
             }
             for i in 0..d {

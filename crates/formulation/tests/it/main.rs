@@ -3,6 +3,7 @@
 //! and the coating's sensitivity against what its physics says. One test binary per crate; each
 //! module is one subject.
 
+mod coating_sensitivity;
 mod oracle;
 mod salib;
 mod sensitivity;
