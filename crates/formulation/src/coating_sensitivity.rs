@@ -28,6 +28,7 @@ use gonio_coating::system::Coating;
 use gonio_instrument::coating_study::{self, Constituent, Reading};
 use gonio_instrument::multiangle::{E2194, Geometry};
 use ndarray::Array2;
+use rayon::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -126,7 +127,8 @@ pub struct Settings {
     pub walks: usize,
     /// Walks per quadrature point of the gloss meter.
     pub gloss_walks: usize,
-    /// The seed of the design and of the bootstrap resamples.
+    /// The seed of the design (the Sobol sequence's scramble takes its low 32 bits) and of the
+    /// bootstrap resamples; the readings always use seed 0 (common random numbers).
     pub seed: u64,
     /// Readings of the base formulation with other seeds, whose spread is the noise.
     pub noise_repeats: usize,
@@ -279,15 +281,13 @@ pub fn run(
     let noise = if settings.noise_repeats == 0 {
         vec![0.0; outputs.len()]
     } else {
-        let seeds: Vec<u64> = (1..=settings.noise_repeats as u64).collect();
-        let repeats = sensitivity::evaluate(
-            &Array2::from_shape_fn((seeds.len(), 1), |(k, _)| seeds[k] as f64),
-            outputs.len(),
-            |s| values_of(&read(base, s[0] as u64)?),
-        )?;
+        let repeats = (1..=settings.noise_repeats as u64)
+            .into_par_iter()
+            .map(|seed| values_of(&read(base, seed)?))
+            .collect::<Result<Vec<_>>>()?;
         (0..outputs.len())
             .map(|k| {
-                let mut all = repeats.column(k).to_vec();
+                let mut all: Vec<f64> = repeats.iter().map(|r| r[k]).collect();
                 all.push(base_values[k]);
                 sensitivity::sample_std(&all)
             })
