@@ -154,6 +154,8 @@ pub struct CoatingSpecimen {
     mirror_index: Option<f64>,
     walks: usize,
     order: usize,
+    /// Mixed into every quadrature point's stream (0: the study's streams).
+    seed: u64,
 }
 
 impl CoatingSpecimen {
@@ -170,7 +172,14 @@ impl CoatingSpecimen {
                 .then(|| coating.coat.index.at(wavelength_nm)),
             walks,
             order: 6,
+            seed: 0,
         })
+    }
+
+    /// The same specimen with its walks drawn from the streams `seed` (0 is [`CoatingSpecimen::new`]'s):
+    /// another seed gives an independent estimate of the same reading.
+    pub fn with_seed(self, seed: u64) -> Self {
+        CoatingSpecimen { seed, ..self }
     }
 }
 
@@ -228,7 +237,9 @@ impl Specimen for CoatingSpecimen {
         for (k, (v, window)) in into.iter_mut().zip(windows).enumerate() {
             for (j, (wo, dw)) in window.quadrature(self.order).into_iter().enumerate() {
                 if wo.z > 0.0 {
-                    let seed = (k * 4096 + j) as u64 ^ wi.x.to_bits().rotate_left(7);
+                    let seed = (k * 4096 + j) as u64
+                        ^ wi.x.to_bits().rotate_left(7)
+                        ^ self.seed.wrapping_mul(GOLDEN);
                     self.evaluator
                         .eval_body(wo, wi, self.walks, seed, &mut scratch, &mut value);
                     *v += value[0] * wo.z * dw;
@@ -243,21 +254,60 @@ impl Specimen for CoatingSpecimen {
     }
 }
 
+/// Spreads a stream offset over all 64 bits (2⁶⁴/φ, odd), so that seeds 1, 2, 3 … select
+/// unrelated streams.
+const GOLDEN: u64 = 0x9e37_79b9_7f4a_7c15;
+
 /// The multi-angle reading (D65/10°) of the coating `evaluator` evaluates, at `geometries`, with
-/// `walks` walks per geometry (a rough top or flakes). Every reading draws the same streams
-/// (seed 1), so that two formulations' readings differ by their optics, not by their noise. A
-/// smooth top's mirror reflection is 15° or more away from every standard geometry and is not
-/// in the reading.
+/// `walks` walks per geometry (a rough top or flakes), from the streams of `seed` (see
+/// [`read_coating`]: seed 0 is every study's and summary's, so that two formulations' readings
+/// differ by their optics, not by their noise). A smooth top's mirror reflection is 15° or more
+/// away from every standard geometry and is not in the reading.
 pub fn multiangle_reading(
     evaluator: &Evaluator,
     wavelengths_nm: &[f64],
     geometries: &[Geometry],
     walks: usize,
+    seed: u64,
 ) -> Result<MultiangleReading> {
+    let stream = 1 ^ seed.wrapping_mul(GOLDEN);
     let brdf = |wo: DVec3, wi: DVec3, out: &mut [f64]| {
-        evaluator.eval(wo, wi, walks, 1, &mut Scratch::default(), out);
+        evaluator.eval(wo, wi, walks, stream, &mut Scratch::default(), out);
     };
     multiangle::read(&brdf, wavelengths_nm, geometries, &Settings::default())
+}
+
+/// What the instruments read on one coating.
+#[derive(Clone, Debug)]
+pub struct Reading {
+    pub gloss: GlossReport,
+    pub multiangle: MultiangleReading,
+}
+
+/// Read `coating` as a study reads each variant: gloss, haze and DOI ([`gloss::measure`] on a
+/// [`CoatingSpecimen`], `gloss_walks` walks per quadrature point) and the multi-angle colour at
+/// `geometries` (`walks` per geometry), over `wavelengths_nm`.
+///
+/// Common random numbers: every call with the same `seed` draws the same random numbers (each
+/// estimate's streams are seeded by its geometry or quadrature point and by `seed`, never by the
+/// coating, the order of the calls or the thread), so that two readings of nearby coatings
+/// differ by what the coatings change, not by independent noise. Seed 0 is the study's
+/// ([`run`]); another seed gives an independent reading of the same coating, whose spread is the
+/// reading's noise.
+pub fn read_coating(
+    coating: &Coating,
+    geometries: &[Geometry],
+    wavelengths_nm: &[f64],
+    walks: usize,
+    gloss_walks: usize,
+    seed: u64,
+) -> Result<Reading> {
+    coating.check(wavelengths_nm)?;
+    let gloss =
+        gloss::measure(&CoatingSpecimen::new(coating, 555.0, gloss_walks)?.with_seed(seed))?;
+    let evaluator = coating.evaluator(wavelengths_nm)?;
+    let multiangle = multiangle_reading(&evaluator, wavelengths_nm, geometries, walks, seed)?;
+    Ok(Reading { gloss, multiangle })
 }
 
 /// What the instruments read on one variant.
@@ -290,10 +340,8 @@ pub fn run(
         .par_iter()
         .map(|&value| {
             let variant = constituent.apply(coating, value)?;
-            variant.check(wavelengths_nm)?;
-            let gloss = gloss::measure(&CoatingSpecimen::new(&variant, 555.0, gloss_walks)?)?;
-            let evaluator = variant.evaluator(wavelengths_nm)?;
-            let multiangle = multiangle_reading(&evaluator, wavelengths_nm, geometries, walks)?;
+            let Reading { gloss, multiangle } =
+                read_coating(&variant, geometries, wavelengths_nm, walks, gloss_walks, 0)?;
             Ok(StudyRow {
                 value,
                 gloss,

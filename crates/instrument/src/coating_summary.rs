@@ -100,7 +100,7 @@ pub fn summarise(
             .iter()
             .map(|&d| (d, evaluator.albedo(cos(d), 16 * walks)[at]))
             .collect(),
-        multiangle: multiangle_reading(&evaluator, wavelengths_nm, &E2194, walks)?,
+        multiangle: multiangle_reading(&evaluator, wavelengths_nm, &E2194, walks, 0)?,
     })
 }
 

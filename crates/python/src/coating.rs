@@ -141,7 +141,7 @@ impl Coating {
         let coating = self.coating.clone();
         let reading = py.detach(move || {
             let wl = default_bands();
-            coating_study::multiangle_reading(&coating.evaluator(&wl)?, &wl, geometries, samples)
+            coating_study::multiangle_reading(&coating.evaluator(&wl)?, &wl, geometries, samples, 0)
         })?;
         reading_columns(py, &reading)
     }

@@ -203,6 +203,7 @@ fn read_coating(
         wl,
         geometries,
         WALKS,
+        0,
     )?)
 }
 

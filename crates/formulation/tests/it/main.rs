@@ -1,0 +1,9 @@
+//! Integration tests of gonio-formulation: the sensitivity estimators against analytic indices
+//! (Ishigami's function, linear models), against SALib on the same points and outputs (oracle),
+//! and the coating's sensitivity against what its physics says. One test binary per crate; each
+//! module is one subject.
+
+mod coating_sensitivity;
+mod oracle;
+mod salib;
+mod sensitivity;

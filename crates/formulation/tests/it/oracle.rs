@@ -1,0 +1,46 @@
+//! Running a Python oracle: a script reads a JSON file and writes JSON on stdout. A missing
+//! interpreter or package skips the test, saying why, unless `GONIO_REQUIRE_ORACLES=1` (set by
+//! `.ci/run`) demands it, in which case the test fails.
+
+use std::process::Command;
+
+/// The oracle is missing: fail when `GONIO_REQUIRE_ORACLES=1` demands it, else say why.
+fn missing(why: &str) {
+    assert!(
+        std::env::var("GONIO_REQUIRE_ORACLES").as_deref() != Ok("1"),
+        "GONIO_REQUIRE_ORACLES=1 but {why}"
+    );
+    eprintln!("skipping the oracle check: {why}");
+}
+
+/// Write `input` to a temporary file, run `script` with its path as the first argument and
+/// parse its stdout; `None` (after [`missing`]) when python3 or the `module` it imports
+/// (installed as the PyPI package `package`) is not there.
+pub fn run<T: serde::de::DeserializeOwned>(
+    script: &str,
+    module: &str,
+    package: &str,
+    input: &serde_json::Value,
+) -> Option<T> {
+    let file = tempfile::NamedTempFile::new().unwrap();
+    std::fs::write(file.path(), serde_json::to_vec(input).unwrap()).unwrap();
+    let Ok(out) = Command::new("python3")
+        .args(["-c", script])
+        .arg(file.path())
+        .output()
+    else {
+        missing("python3 cannot be started");
+        return None;
+    };
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    if !out.status.success() {
+        if stderr.contains(&format!("No module named '{module}'")) {
+            missing(&format!(
+                "the Python package {package} is not installed (pip install {package})"
+            ));
+            return None;
+        }
+        panic!("{package} failed: {stderr}");
+    }
+    Some(serde_json::from_slice(&out.stdout).unwrap())
+}
