@@ -26,6 +26,56 @@ pub enum CoatingCommand {
     /// A formulation study: the coating's gloss, haze, DOI and multi-angle colour against one
     /// constituent at a time (`--vary roughness --values 0.01,0.05,0.1`), with plots.
     Study(StudyArgs),
+    /// Which constituents drive which reading: variance-based global sensitivity (Sobol
+    /// first-order and total indices) or Morris screening of gloss, haze, DOI, multi-angle
+    /// colour, flop and ΔE00 against constituents varied within bounds (`--vary
+    /// tilt=4:20,roughness=0.01:0.1`; docs/formulation.md).
+    Sensitivity(SensitivityArgs),
+}
+
+#[derive(Args)]
+pub struct SensitivityArgs {
+    /// The base formulation (TOML; examples/coatings/).
+    coating: PathBuf,
+    /// The constituents and their bounds, NAME=LO:HI comma-separated; NAME as `coating study
+    /// --vary` takes it: roughness (the top's α), tilt (°), coverage (0–1), tio2 (nm),
+    /// thickness (the coat's, µm), concentration:PIGMENT.
+    #[arg(long)]
+    vary: String,
+    /// The readings to analyse, comma-separated: gu20, gu60, gu85 (ISO 2813 gloss, GU), haze
+    /// (ASTM E430, HU), doi (0–100), flop (Alman's index), dE00 (mean CIEDE2000 from the base
+    /// formulation over the standard's geometries), L@G, a@G, b@G (CIELAB D65/10° at geometry G,
+    /// e.g. L@45as15). Default: all of them at the standard's geometries.
+    #[arg(long)]
+    outputs: Option<String>,
+    /// sobol (variance-based: first-order S1 and total ST indices, 95% bootstrap intervals;
+    /// N (d + 2) readings) or morris (elementary effects μ, μ*, σ; r (d + 1) readings, a
+    /// cheaper screening).
+    #[arg(long, default_value = "sobol")]
+    method: String,
+    /// The sample size: Sobol's base points N (default 32: 160 readings for 3 constituents,
+    /// about a minute of 2 cores on a metallic), or Morris's trajectories r (default 20).
+    #[arg(long)]
+    samples: Option<usize>,
+    /// The multi-angle geometries: e2194 (45° illumination) or e2539 (with 15° illumination).
+    #[arg(long, default_value = "e2194")]
+    standard: String,
+    /// Random walks per multi-angle geometry of each reading (a rough top or flakes); the
+    /// gloss meter takes 8 per quadrature point. Every reading draws the same streams (common
+    /// random numbers), so the differences between readings are the formulation's.
+    #[arg(long, default_value_t = gonio_formulation::coating_sensitivity::Settings::WALKS)]
+    walks: usize,
+    /// An input "matters" for an output in the summary when its total index ST is at least
+    /// this (Sobol), or its μ* at least this share of the largest (Morris).
+    #[arg(long, default_value_t = 0.1)]
+    threshold: f64,
+    /// Folder for sensitivity.csv, summary.txt and one bar chart per output (created if
+    /// missing).
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Print the indices as JSON.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Args)]
@@ -103,6 +153,7 @@ pub fn run(cmd: CoatingCommand) -> Result<()> {
         CoatingCommand::Compute(a) => compute(a),
         CoatingCommand::Info(a) => info(a),
         CoatingCommand::Study(a) => study(a),
+        CoatingCommand::Sensitivity(a) => sensitivity(a),
     }
 }
 
@@ -260,6 +311,112 @@ fn info(a: InfoArgs) -> Result<()> {
     }
     if let Some(fi) = s.multiangle.flop_index() {
         println!("flop index: {fi:.2}");
+    }
+    Ok(())
+}
+
+fn sensitivity(a: SensitivityArgs) -> Result<()> {
+    use gonio_formulation::appearance::Output;
+    use gonio_formulation::coating_sensitivity::{self, Indices, Method, Settings, Varied};
+    let wavelengths = default_bands();
+    let coating = read(&a.coating, &wavelengths)?;
+    let varied = Varied::parse_list(&a.vary).context("--vary")?;
+    let geometries: &[Geometry] = match a.standard.as_str() {
+        "e2194" => &E2194,
+        "e2539" => &multiangle::E2539,
+        other => anyhow::bail!("--standard {other}: e2194 or e2539"),
+    };
+    let outputs = match &a.outputs {
+        Some(list) => Output::parse_list(list).context("--outputs")?,
+        None => Output::all(geometries),
+    };
+    let method = match (a.method.as_str(), a.samples) {
+        ("sobol", None) => Method::default(),
+        ("sobol", Some(base)) => Method::Sobol { base },
+        ("morris", None) => Method::morris(),
+        ("morris", Some(trajectories)) => Method::Morris {
+            trajectories,
+            levels: gonio_formulation::sensitivity::morris::LEVELS,
+        },
+        (other, _) => anyhow::bail!("--method {other}: sobol or morris"),
+    };
+    let settings = Settings {
+        geometries: geometries.to_vec(),
+        walks: a.walks,
+        ..Settings::default()
+    };
+    eprintln!(
+        "{}: {} readings of {} outputs ({} constituents)",
+        a.coating.display(),
+        method.evaluations(varied.len()),
+        outputs.len(),
+        varied.len()
+    );
+    let s = coating_sensitivity::run(&coating, &varied, &outputs, method, &settings)
+        .with_context(|| a.coating.display().to_string())?;
+    if let Some(dir) = &a.output {
+        let written = s.write(dir, a.threshold)?;
+        eprintln!(
+            "wrote {} files (sensitivity.csv, summary.txt, the bar charts) in {}",
+            written.len(),
+            dir.display()
+        );
+    }
+    let names: Vec<&str> = s.problem.inputs().iter().map(|i| i.name.as_str()).collect();
+    if a.json {
+        let rows: Vec<serde_json::Value> = s
+            .outputs
+            .iter()
+            .enumerate()
+            .map(|(k, o)| {
+                let per_input = |v: &[f64]| -> serde_json::Value {
+                    names.iter().zip(v).map(|(n, x)| (n.to_string(), serde_json::json!(x))).collect::<serde_json::Map<_, _>>().into()
+                };
+                let indices = match &s.indices {
+                    Indices::Sobol(i) => serde_json::json!({
+                        "s1": per_input(&i[k].s1), "s1_conf": per_input(&i[k].s1_conf),
+                        "st": per_input(&i[k].st), "st_conf": per_input(&i[k].st_conf),
+                    }),
+                    Indices::Morris { effects, .. } => serde_json::json!({
+                        "mu": per_input(&effects[k].mu), "mu_star": per_input(&effects[k].mu_star),
+                        "sigma": per_input(&effects[k].sigma), "mu_star_conf": per_input(&effects[k].mu_star_conf),
+                    }),
+                };
+                serde_json::json!({
+                    "output": o.name(), "base": s.base[k], "noise": s.noise[k],
+                    "variance": s.variance(k), "indices": indices,
+                })
+            })
+            .collect();
+        let json = serde_json::json!({
+            "file": a.coating.display().to_string(),
+            "method": a.method,
+            "readings": s.points.nrows(),
+            "inputs": varied.iter().map(|v| serde_json::json!({"name": v.name, "lo": v.lo, "hi": v.hi})).collect::<Vec<_>>(),
+            "summary": s.summary(a.threshold),
+            "outputs": rows,
+        });
+        println!("{}", serde_json::to_string_pretty(&json)?);
+        return Ok(());
+    }
+    println!("{}", s.summary(a.threshold));
+    let (index, conf) = match s.indices {
+        Indices::Sobol(_) => ("ST", "95%"),
+        Indices::Morris { .. } => ("mu*", "95%"),
+    };
+    print!("{:>12} {:>10} {:>8}", "output", "base", "noise");
+    for n in &names {
+        print!(" {:>18}", format!("{index} {n}"));
+    }
+    println!("   ({index} ± its {conf} interval)");
+    for (k, o) in s.outputs.iter().enumerate() {
+        print!("{:>12} {:>10.3} {:>8.3}", o.name(), s.base[k], s.noise[k]);
+        let (bars, _) = s.bars(k);
+        for n in &names {
+            let (_, v, c) = bars.iter().find(|b| b.0 == *n).expect("a bar per input");
+            print!(" {:>18}", format!("{v:.3} ± {c:.3}"));
+        }
+        println!();
     }
     Ok(())
 }

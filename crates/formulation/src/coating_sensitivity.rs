@@ -455,15 +455,99 @@ impl Sensitivity {
         Ok(())
     }
 
-    /// [`Sensitivity::write_csv_to`] into the file `path`.
+    /// [`Sensitivity::write_csv_to`] into the file `path`, atomically ([`gonio_io::write_atomic`]:
+    /// the old file or the whole new one, never half a file).
     pub fn write_csv(&self, path: &Path) -> Result<()> {
-        let io = |error| FormulationError::Io {
+        gonio_io::write_atomic(
+            path,
+            |w| self.write_csv_to(w).map_err(std::io::Error::other),
+            std::convert::identity,
+        )
+        .map_err(|error| FormulationError::Io {
             path: path.display().to_string(),
             error,
+        })
+    }
+
+    /// The bars of output `k`: each input's total index ST with its 95% interval (Sobol), or its
+    /// μ* with its interval (Morris), largest first; and what the bars measure.
+    pub fn bars(&self, k: usize) -> (Vec<(String, f64, f64)>, &'static str) {
+        let names = self.problem.inputs().iter().map(|i| i.name.clone());
+        let (mut bars, what): (Vec<(String, f64, f64)>, _) = match &self.indices {
+            Indices::Sobol(s) => (
+                names
+                    .zip(s[k].st.iter().zip(&s[k].st_conf))
+                    .map(|(n, (v, c))| (n, *v, *c))
+                    .collect(),
+                "total Sobol index ST (95% bootstrap interval)",
+            ),
+            Indices::Morris { effects, .. } => (
+                names
+                    .zip(effects[k].mu_star.iter().zip(&effects[k].mu_star_conf))
+                    .map(|(n, (v, c))| (n, *v, *c))
+                    .collect(),
+                "Morris mu* (output units; 95% bootstrap interval)",
+            ),
         };
-        let file = std::fs::File::create(path).map_err(io)?;
-        self.write_csv_to(std::io::BufWriter::new(file))
-            .map_err(|e| io(std::io::Error::other(e)))
+        bars.sort_by(|a, b| b.1.total_cmp(&a.1));
+        (bars, what)
+    }
+
+    /// Write `sensitivity.csv` ([`Sensitivity::write_csv`]), `summary.txt` (the summary in
+    /// words at `threshold`) and one bar chart per output, `sensitivity-NAME.png`, into `dir`
+    /// (created if missing). Returns the files written.
+    pub fn write(&self, dir: &Path, threshold: f64) -> Result<Vec<std::path::PathBuf>> {
+        let io = |path: &Path| {
+            let path = path.display().to_string();
+            move |error| FormulationError::Io { path, error }
+        };
+        std::fs::create_dir_all(dir).map_err(io(dir))?;
+        let csv = dir.join("sensitivity.csv");
+        self.write_csv(&csv)?;
+        let summary = dir.join("summary.txt");
+        let text = self.summary(threshold);
+        gonio_io::write_atomic(
+            &summary,
+            |w| std::io::Write::write_all(w, text.as_bytes()),
+            std::convert::identity,
+        )
+        .map_err(io(&summary))?;
+        let mut written = vec![csv, summary];
+        for (k, output) in self.outputs.iter().enumerate() {
+            let (bars, what) = self.bars(k);
+            let bars: Vec<gonio_plot::Bar> = bars
+                .into_iter()
+                .map(|(label, value, error)| gonio_plot::Bar {
+                    label,
+                    value,
+                    error,
+                })
+                .collect();
+            let name = output.name().replace(['@', '/'], "_");
+            let png = dir.join(format!("sensitivity-{name}.png"));
+            let title = format!("What drives {}", output.words());
+            if let Err(e) = gonio_plot::bar_chart_png(
+                &png,
+                (700, 120 + 50 * bars.len() as u32),
+                &title,
+                what,
+                &bars,
+            ) {
+                match e {
+                    // An output that does not vary over the design has no bars to draw; the
+                    // summary says so.
+                    gonio_plot::PlotError::Data(_) => continue,
+                    other => {
+                        return Err(FormulationError::Invalid(format!(
+                            "{}: {other}",
+                            png.display()
+                        )));
+                    }
+                }
+            }
+            written.push(png);
+        }
+        Ok(written)
     }
 }
 

@@ -409,6 +409,95 @@ pub fn save_image_atomic(path: &Path, img: &image::DynamicImage) -> Result<()> {
     )
 }
 
+/// One bar of a [`bar_chart_png`]: its label, its length and the half-width of its error bar
+/// (0: none).
+pub struct Bar {
+    pub label: String,
+    pub value: f64,
+    pub error: f64,
+}
+
+/// Horizontal bars (a tornado of sensitivity indices), in the order given from the top, each
+/// with its error bar, on an x axis from `min(0, smallest)` to the largest end of a bar or an
+/// error bar, into a PNG of `size` at `path`.
+pub fn bar_chart_png(
+    path: &Path,
+    size: (u32, u32),
+    title: &str,
+    x_label: &str,
+    bars: &[Bar],
+) -> Result<()> {
+    let finite = bars
+        .iter()
+        .filter(|b| b.value.is_finite() && b.error.is_finite());
+    let lo = finite
+        .clone()
+        .map(|b| b.value - b.error)
+        .fold(0.0f64, f64::min);
+    let hi = finite.map(|b| b.value + b.error).fold(0.0f64, f64::max);
+    if bars.is_empty() || hi <= lo {
+        return Err(PlotError::Data(format!("nothing to plot in '{title}'")));
+    }
+    let pad = 0.05 * (hi - lo);
+    let n = bars.len();
+    render_png(path, size, |root| {
+        let area = root.titled(title, ("sans-serif", 20))?;
+        let mut chart = ChartBuilder::on(&area)
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(150)
+            .build_cartesian_2d(
+                (lo - if lo < 0.0 { pad } else { 0.0 })..(hi + pad),
+                0.0..n as f64,
+            )?;
+        chart
+            .configure_mesh()
+            .disable_y_mesh()
+            .y_labels(0)
+            .x_desc(x_label)
+            .axis_desc_style(("sans-serif", 15))
+            .label_style(("sans-serif", 13))
+            .draw()?;
+        for (i, bar) in bars.iter().enumerate() {
+            let top = (n - i) as f64 - 0.15;
+            let bottom = (n - i - 1) as f64 + 0.15;
+            let middle = (top + bottom) / 2.0;
+            if bar.value.is_finite() {
+                chart.draw_series(std::iter::once(Rectangle::new(
+                    [(0.0, bottom), (bar.value, top)],
+                    palette(0).filled(),
+                )))?;
+            }
+            if bar.error > 0.0 && bar.error.is_finite() {
+                let (a, b) = (bar.value - bar.error, bar.value + bar.error);
+                chart.draw_series(std::iter::once(PathElement::new(
+                    vec![(a, middle), (b, middle)],
+                    BLACK.stroke_width(2),
+                )))?;
+                for x in [a, b] {
+                    chart.draw_series(std::iter::once(PathElement::new(
+                        vec![(x, middle - 0.12), (x, middle + 0.12)],
+                        BLACK.stroke_width(2),
+                    )))?;
+                }
+            }
+            // In the backend's pixels, so drawn on the root (the title shifts `area`).
+            let (x, y) = chart.backend_coord(&(lo.min(0.0), middle));
+            root.draw(&Text::new(
+                bar.label.clone(),
+                (x - 8, y),
+                TextStyle::from(("sans-serif", 15).into_font()).pos(
+                    plotters::style::text_anchor::Pos::new(
+                        plotters::style::text_anchor::HPos::Right,
+                        plotters::style::text_anchor::VPos::Center,
+                    ),
+                ),
+            ))?;
+        }
+        Ok(())
+    })
+}
+
 /// A false-colour image of a grid of values (heights, BRDF maps, ...) with a colour bar.
 pub struct Raster<'a> {
     /// Title above the image.
@@ -574,6 +663,33 @@ mod tests {
         assert_eq!(image.dimensions(), (400, 300));
         let blue = image.pixels().filter(|p| p.0 == [31, 119, 180]).count();
         assert!(blue > 100, "{blue} pixels of the curve's colour");
+    }
+
+    /// A bar chart draws each bar in the palette's first colour, longer bars with more of it.
+    #[test]
+    fn bar_chart_draws_bars_in_proportion() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("bars.png");
+        let bars = [("roughness", 0.9), ("tilt", 0.3)].map(|(l, v)| Bar {
+            label: l.into(),
+            value: v,
+            error: 0.05,
+        });
+        bar_chart_png(&path, (600, 300), "ST of 60° gloss", "total index", &bars).unwrap();
+        let image = image::open(&path).unwrap().to_rgb8();
+        let row_count = |y: u32| {
+            (0..image.width())
+                .filter(|&x| image.get_pixel(x, y).0 == [31, 119, 180])
+                .count()
+        };
+        // The two bars' rows: the widest blue run in the upper and the lower half.
+        let widest = |ys: std::ops::Range<u32>| ys.map(row_count).max().unwrap() as f64;
+        let (upper, lower) = (widest(40..170), widest(170..260));
+        assert!(
+            (upper / lower - 3.0).abs() < 0.15,
+            "bars {upper} and {lower} px, not 0.9 : 0.3"
+        );
+        assert!(bar_chart_png(&path, (600, 300), "t", "x", &[]).is_err());
     }
 
     /// Nothing plottable (only non-positive values on a log axis) is an error naming the plot,
