@@ -6,6 +6,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use gonio_brdf::formats::astm;
 use gonio_brdf::table::{Provenance, Resolution};
+use gonio_coating::cell::CellWalks;
 use gonio_coating::description;
 use gonio_coating::kubelka_munk::Coefficients;
 use gonio_coating::thin_film::{Polarisation, interference_flake};
@@ -46,7 +47,7 @@ fn benches(c: &mut Criterion) {
                     .table(
                         Resolution::isotropic(45, 45, 24),
                         black_box(&bands),
-                        32,
+                        CellWalks::fixed(32),
                         Provenance::default(),
                     )
                     .unwrap()
