@@ -97,11 +97,11 @@ impl CellWalks {
     }
 }
 
-/// `base` walks per cell before any are added, at the default target
-/// ([`crate::system::TARGET_DL`]): what `gonio coating compute --samples` gives.
+/// `base` walks in every cell ([`CellWalks::fixed`]): what a number of walks meant before they
+/// were added where the noise is (the pictures' tables still take them so).
 impl From<usize> for CellWalks {
     fn from(base: usize) -> CellWalks {
-        CellWalks::adaptive(base, crate::system::TARGET_DL)
+        CellWalks::fixed(base)
     }
 }
 

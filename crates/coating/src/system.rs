@@ -224,7 +224,7 @@ impl Coating {
 
     /// The coating's BRDF tabulated at `resolution`, one channel per wavelength of
     /// `wavelengths_nm`, by the exact series where it applies and otherwise by random walks,
-    /// `walks` per cell (a number: that many before any are added, at [`TARGET_DL`];
+    /// `walks` per cell (a number: that many in every cell;
     /// [`Evaluator::eval_cell`]: the table is reciprocal to its interpolation and does not depend
     /// on the number of threads). What the walks spent is in the table's provenance
     /// (`walks_per_cell`).

@@ -14,10 +14,12 @@
 //! ```
 //!
 //! `--target-dl 0` gives every cell `--samples` walks. `--cells` studies the cells instead:
-//! for the ten cells of largest noise at `--samples` walks (its standard deviation in L* over
-//! the `--tables` estimates) it prints that noise and how the standard error each estimate
-//! finds from its own walks compares with it (median ratio, and how often it is below half
-//! and below two thirds of it): what the adaptive walks decide on.
+//! for each cell the readings interpolate it prints its noise at `--samples` walks (the
+//! standard deviation of its L* over the `--tables` estimates), how the standard error each
+//! estimate finds from its own walks and from its neighbourhood's compares with it (median
+//! ratio and 5% quantile), the cell's final noise and walks, and the bias of a rule that would
+//! add walks by the cell's own standard error instead (its mean L* less the final mean): what
+//! the adaptive walks decide on.
 
 use gonio_brdf::formats::astm::default_resolution;
 use gonio_brdf::table::{HalfDiff, Provenance, TableBuilder};
@@ -146,6 +148,8 @@ struct Estimate {
     neighbourhood_se: f64,
     /// The L* of all its walks.
     final_l: f64,
+    /// The L* it would have with the walks its own standard error asks for.
+    own_rule_l: f64,
     /// Its walks.
     walks: usize,
 }
@@ -205,11 +209,22 @@ fn cells(
             let count = walks_needed(&w, pooled);
             let mut f = values.clone();
             evaluator.refine_cell(c.wo, c.wi, &w, count, &mut Scratch::default(), &mut f);
+            let mut by_own = values.clone();
+            let own_count = walks_needed(&w, own);
+            evaluator.refine_cell(
+                c.wo,
+                c.wi,
+                &w,
+                own_count,
+                &mut Scratch::default(),
+                &mut by_own,
+            );
             row.push(Estimate {
                 first_l: lightness(&values),
                 own_se: own,
                 neighbourhood_se: pooled,
                 final_l: lightness(&f),
+                own_rule_l: lightness(&by_own),
                 walks: count,
             });
         }
@@ -229,12 +244,13 @@ fn cells(
     println!(
         "{} cells, {} first walks, {tables} estimates each; per cell: the first walks' L* (mean, \
          sd over the estimates), their own standard error and the neighbourhood's over that sd \
-         (median, 5%), the final L* (mean, sd) and the walks (mean)",
+         (median, 5%), the final L* (mean, sd), the walks (mean), and the mean L* the walks its own \
+         standard error asks for would give, less the final mean",
         stencil.len(),
         walks.first()
     );
     println!(
-        "θi    θo    cos    L*first  sd      own 50%  5%     nbhd 50%  5%     L*final  sd     walks"
+        "θi    θo    cos    L*first  sd      own 50%  5%     nbhd 50%  5%     L*final  sd     walks  own rule ΔL*"
     );
     for (row, &i) in rows.iter().zip(stencil) {
         let c = builder.cell(i);
@@ -243,8 +259,9 @@ fn cells(
         let own: Vec<f64> = row.iter().map(|r| r.own_se / s0).collect();
         let nbhd: Vec<f64> = row.iter().map(|r| r.neighbourhood_se / s0).collect();
         let spent = row.iter().map(|r| r.walks as f64).sum::<f64>() / row.len() as f64;
+        let (m2, _) = stats(&row.iter().map(|r| r.own_rule_l).collect::<Vec<_>>());
         println!(
-            "{:>5.1} {:>5.1} {:>6.3} {:>8.2} {:>6.3} {:>7.2} {:>5.2} {:>8.2} {:>5.2} {:>9.2} {:>6.3} {:>6.0}",
+            "{:>5.1} {:>5.1} {:>6.3} {:>8.2} {:>6.3} {:>7.2} {:>5.2} {:>8.2} {:>5.2} {:>9.2} {:>6.3} {:>6.0} {:>+9.3}",
             c.wi.z.acos().to_degrees(),
             c.wo.z.acos().to_degrees(),
             c.wi.dot(c.wo),
@@ -256,7 +273,8 @@ fn cells(
             quantile(nbhd, 0.05),
             m1,
             s1,
-            spent
+            spent,
+            m2 - m1
         );
     }
     Ok(())

@@ -59,7 +59,13 @@ fn table_does_not_depend_on_the_thread_count() {
             .unwrap()
             .install(|| {
                 pearl
-                    .table_cells(res, &wl, 4, Provenance::default(), |_| true)
+                    .table_cells(
+                        res,
+                        &wl,
+                        CellWalks::adaptive(4, TARGET_DL),
+                        Provenance::default(),
+                        |_| true,
+                    )
                     .unwrap()
             })
     };
