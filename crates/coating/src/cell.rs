@@ -10,15 +10,19 @@
 //! walks as its neighbours' standard errors say it needs to bring its own under the target
 //! ([`walks_needed`], [`Evaluator::refine_cell`]). Why the neighbours' and not its own:
 //!
-//! - Heavy tails. On the silver metallic near the specular direction (15as15), half a percent of
-//!   the walks carry almost nothing and 68% of the variance; 32 walks usually miss them and the
-//!   standard error they show is then a fifth of the true one (median over 400 estimates). The
-//!   flank's noise comes from rare bright walks instead. The cell's 26 neighbours (one node either
-//!   way along each angle) have seen 832 walks of nearly the same light between them.
-//! - Bias. A cell that stops adding walks when its own walks look quiet keeps the estimates that
-//!   missed the rare walks: the walks' own stopping rule read the 15as15 cell 0.2 L* high. The
-//!   neighbours' walks are independent of the cell's, so its number of walks is too, and its
-//!   estimate stays unbiased.
+//! - Heavy tails. On the silver metallic near the specular direction (the cells the readings
+//!   at 15as-15 and 15as15 interpolate) the standard error that a cell's 32 walks show is a
+//!   median 0.16–0.64 of its true one (the standard deviation of its L* over 100 independent
+//!   estimates), and under 0.10–0.35 of it in 5% of the estimates: a few rare walks carry much
+//!   of the variance and 32 walks usually miss them. The root mean square over the cell's 124
+//!   neighbours ([`NEIGHBOURHOOD`], 3 968 walks) is a median 0.94–1.8 of it and at least 0.65
+//!   in 95% of the estimates, over all 34 cells of the E2539 readings (the `--cells` study of
+//!   `instrument/examples/table_noise.rs`).
+//! - Bias. A cell that stops adding walks when its own walks look quiet keeps the estimates
+//!   that missed the rare walks: the rule on the cell's own standard error read those
+//!   near-specular cells 0.14–0.22 L* high on average (the same study), the neighbours' rule
+//!   within 0.13 of the first walks' mean (that mean's own noise). The neighbours' walks are independent of the
+//!   cell's, so its number of walks is too, and its estimate stays unbiased.
 //!
 //! Both passes are deterministic per cell, so the table stays the same on any number of threads;
 //! a cell and its reciprocal have reciprocal neighbourhoods of equal estimates, so they take the
@@ -120,10 +124,9 @@ pub fn walks_needed(walks: &CellWalks, se_dl: f64) -> usize {
 }
 
 /// How far a cell's neighbourhood reaches, in nodes along each angle: two nodes either way, 124
-/// neighbours. With one (26 neighbours, 832 first walks between them) the 15as15 cells of the
-/// silver metallic were given walks from a standard error a third of the true one in 5% of the
-/// tables and ended at 0.40–0.50 L* for a target of 1/3; with two (3 968 walks) the 5% quantile
-/// is 0.65–0.70 and they end at 0.30–0.34 (docs/coatings.md, "Noise").
+/// neighbours in an isotropic table away from the grid's ends. With it the 34 cells of the
+/// silver metallic's E2539 readings end at 0.15–0.34 L* (one standard deviation over 100
+/// tables) for a target of 1/3 (module documentation).
 pub const NEIGHBOURHOOD: usize = 2;
 
 /// The cells within `radius` nodes of `index` in `res` along each angle (phi_h only in an
@@ -205,9 +208,9 @@ impl Evaluator {
     /// drawn from the same stream and so correlated), make one sample `c_k = ½ (a_k + b_k)` of
     /// the cell's estimate `c̄`, whose variance is estimated by `s²(c) / n` as for independent
     /// walks. In L*: `π s(c)/√n` times [`lightness_slope`] at the cell's luminance factor. The
-    /// Sobol stratification between walks makes the true error smaller than this as the walks
-    /// grow: on the silver metallic's noisiest cells 0.9–1.2 times it at 32 walks, 0.5–0.7
-    /// times at 512 (docs/coatings.md, "Noise").
+    /// Sobol stratification between walks makes the true error smaller than this, more so as
+    /// the walks grow: an estimate on the safe side (the readings' measured noise is in
+    /// docs/coatings.md, "Noise").
     pub fn eval_cell(
         &self,
         wo: DVec3,

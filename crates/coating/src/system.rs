@@ -25,8 +25,8 @@ use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 /// pictures' tables): half each way ([`crate::cell`]).
 pub const TABLE_WALKS: usize = 32;
 
-/// The standard error of a table cell's L* above which walks are added (doubling, up to
-/// [`CellWalks::MAX_FACTOR`] times [`TABLE_WALKS`]) unless told otherwise
+/// The standard error of a table cell's L* above which walks are added (in batches of
+/// the first walks, up to [`CellWalks::MAX_FACTOR`] times them) unless told otherwise
 /// (`gonio coating compute --target-dl`). A reading interpolates up to eight cells with weights
 /// `w_k` that sum to 1; their estimates are independent, so the reading's variance is
 /// `Σ w_k² σ_k² ≤ max σ_k² Σ w_k² ≤ max σ_k²` (equality on a node): cells within 1/3 L* keep
@@ -79,7 +79,8 @@ impl Spent {
         let mut text = format!("{:.1} on average, {} at most", self.mean(), self.max);
         if self.capped > 0 {
             text.push_str(&format!(
-                " ({:.1}% of the cells at the most and still above the target)",
+                " ({} cells, {:.2}%, at the most and still above the target)",
+                self.capped,
                 100.0 * self.capped as f64 / self.cells.max(1) as f64
             ));
         }

@@ -112,7 +112,8 @@ fn run() -> Result<(), String> {
         path.display(),
         stencil.len(),
         walks.target_dl.map_or(String::new(), |t| format!(
-            ", doubled up to {} while a cell's L* is noisier than {t:.3}",
+            ", more in batches of {} up to {} where a cell's L* is expected noisier than {t:.3}",
+            walks.first(),
             walks.most()
         )),
         walks_sum as f64 / walks_cells as f64,
