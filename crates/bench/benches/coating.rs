@@ -6,7 +6,6 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use gonio_brdf::formats::astm;
 use gonio_brdf::table::{Provenance, Resolution};
-use gonio_coating::cell::CellWalks;
 use gonio_coating::description;
 use gonio_coating::kubelka_munk::Coefficients;
 use gonio_coating::thin_film::{Polarisation, interference_flake};
@@ -47,7 +46,7 @@ fn benches(c: &mut Criterion) {
                     .table(
                         Resolution::isotropic(45, 45, 24),
                         black_box(&bands),
-                        CellWalks::fixed(32),
+                        32,
                         Provenance::default(),
                     )
                     .unwrap()
