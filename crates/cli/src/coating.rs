@@ -5,6 +5,7 @@
 
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
+use gonio_coating::cell::CellWalks;
 use gonio_coating::description;
 use gonio_coating::system::{Coating, Method, default_bands};
 use gonio_instrument::coating_study_output;
@@ -125,10 +126,20 @@ pub struct ComputeArgs {
     /// Wavelengths of the table's channels, nm: first:last:step.
     #[arg(long, default_value = DEFAULT_BANDS)]
     bands: String,
-    /// Random walks per table cell for a rough top or flakes (the smooth coat over a diffuse
-    /// base is computed exactly). The noise falls as 1/sqrt(samples).
+    /// Random walks per table cell for a rough top or flakes, before any are added (the smooth
+    /// coat over a diffuse base is computed exactly). The noise falls as 1/sqrt(walks).
     #[arg(long, default_value_t = TABLE_WALKS)]
     samples: usize,
+    /// Target noise of a table cell, in CIELAB L* units (D65, 10° observer): one standard
+    /// error of the cell's lightness, as the first --samples walks of the cells around it
+    /// (two nodes either way along each angle) show it. A cell whose expected error is above
+    /// the target takes more walks, in multiples of --samples (the error falls as
+    /// 1/sqrt(walks)), at most 16 times --samples. A reading interpolates up to eight cells
+    /// with weights that sum to 1, so cells within 1/3 L* keep a reading within 1/3 L* (1 L*
+    /// is then three standard deviations). 0 or inf: --samples walks in every cell.
+    /// [default: 1/3]
+    #[arg(long, value_name = "L*", default_value_t = TARGET_DL, hide_default_value = true)]
+    target_dl: f64,
     #[command(flatten)]
     colour: crate::brdf::ColourArgs,
 }
@@ -157,8 +168,13 @@ pub fn run(cmd: CoatingCommand) -> Result<()> {
     }
 }
 
-/// Random walks per table cell unless told otherwise (`compute --samples`; the pictures' tables).
+/// Random walks per table cell before any are added, unless told otherwise (`compute
+/// --samples`).
 const TABLE_WALKS: usize = gonio_coating::system::TABLE_WALKS;
+
+/// The standard error of a cell's L* above which walks are added, unless told otherwise
+/// (`compute --target-dl`).
+const TARGET_DL: f64 = gonio_coating::system::TARGET_DL;
 
 /// The bands of a coating's tables and readings unless told otherwise, as `--bands` takes them
 /// ([`gonio_coating::system::default_bands`]).
@@ -190,23 +206,41 @@ fn read(path: &Path, wavelengths: &[f64]) -> Result<Coating> {
 fn compute(a: ComputeArgs) -> Result<()> {
     let wavelengths = bands(&a.bands)?;
     let res = crate::brdf::resolution(&a.resolution)?;
+    anyhow::ensure!(
+        !a.target_dl.is_nan() && a.target_dl >= 0.0,
+        "--target-dl {}: give the target noise in L* units (e.g. 0.33), or 0 or inf for a fixed \
+         number of walks per cell",
+        a.target_dl
+    );
     let coating = read(&a.coating, &wavelengths)?;
-    let method = coating.method(a.samples);
+    let walks = CellWalks::adaptive(a.samples, a.target_dl);
+    let method = coating.method(walks);
     let provenance = coating.provenance(a.coating.display().to_string(), method);
-    let table = coating
-        .table(res, &wavelengths, a.samples, provenance)
+    let (table, spent) = coating
+        .table_cells(res, &wavelengths, walks, provenance, |_| true)
         .with_context(|| a.coating.display().to_string())?;
     let table = a.colour.apply(table, &a.coating)?;
     gonio_brdf::gbrdf::write(&table, &a.output)?;
-    let what = match (method, coating.roughness.is_some()) {
-        (Method::ClosedForm, _) => "body reflection, exact; the mirror reflection is not in the \
-                                    table"
+    let what = match method {
+        Method::ClosedForm => "body reflection, exact; the mirror reflection is not in the \
+                               table"
             .to_string(),
-        (Method::RandomWalk { samples }, false) => {
-            format!("{samples} random walks per cell; the mirror reflection is not in the table")
-        }
-        (Method::RandomWalk { samples }, true) => {
-            format!("{samples} random walks per cell; everything the coating reflects")
+        Method::RandomWalk(walks) => {
+            let added = match walks.target_dl {
+                Some(t) => format!(
+                    "{} random walks per cell and more where a cell's L* would be noisier than \
+                     {t:.2}: {}",
+                    walks.base,
+                    spent.describe()
+                ),
+                None => format!("{} random walks per cell", walks.base),
+            };
+            let reflects = if coating.roughness.is_some() {
+                "everything the coating reflects"
+            } else {
+                "the mirror reflection is not in the table"
+            };
+            format!("{added}; {reflects}")
         }
     };
     let reduced = if a.colour.reduces() {

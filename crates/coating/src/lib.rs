@@ -7,6 +7,7 @@
 //! described in TOML ([`description`]). `docs/coatings.md` says what is modelled and how it is
 //! validated.
 
+pub mod cell;
 pub mod clear_coat;
 pub mod description;
 pub mod error;

@@ -7,6 +7,7 @@
 //! is left out and said so in the provenance); with a rough top it holds everything the coating
 //! reflects.
 
+use crate::cell::{self, CellWalks, luminance_weights};
 use crate::clear_coat::{self, AtWavelength, Base, ClearCoatOverBase, Coat};
 use crate::error::{CoatingError, Result};
 use crate::flakes::{FlakeLayer, Flakes};
@@ -18,11 +19,10 @@ use gonio_brdf::microfacet::Microfacet;
 use gonio_brdf::table::{BrdfTable, Channels, Provenance, Resolution, TableBuilder};
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64Mcg;
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
-/// Random walks per table cell unless told otherwise (`gonio coating compute --samples`, the
-/// pictures' tables). With the walks' bidirectional estimator a table of the silver metallic
-/// read at the ASTM E2194/E2539 geometries is within 0.3–0.7 L* (one standard deviation) of
-/// the direct reading (docs/coatings.md, "Noise").
+/// Random walks per table cell before any are added (`gonio coating compute --samples`, the
+/// pictures' tables): half each way ([`crate::cell`]).
 pub const TABLE_WALKS: usize = 32;
 
 /// The bands of a coating's tables and readings unless told otherwise: 400, 410, ..., 700 nm
@@ -30,6 +30,15 @@ pub const TABLE_WALKS: usize = 32;
 pub fn default_bands() -> Vec<f64> {
     (0..31).map(|i| 400.0 + 10.0 * i as f64).collect()
 }
+
+/// The standard error of a table cell's L* above which walks are added (in batches of
+/// the first walks, up to [`CellWalks::MAX_FACTOR`] times them) unless told otherwise
+/// (`gonio coating compute --target-dl`). A reading interpolates up to eight cells with weights
+/// `w_k` that sum to 1; their estimates are independent, so the reading's variance is
+/// `Σ w_k² σ_k² ≤ max σ_k² Σ w_k² ≤ max σ_k²` (equality on a node): cells within 1/3 L* keep
+/// every reading within 1/3 L* (one standard deviation), so that 1 L* is three (docs/coatings.md,
+/// "Noise").
+pub const TARGET_DL: f64 = 1.0 / 3.0;
 
 /// A coating system.
 #[derive(Clone, Debug, PartialEq)]
@@ -47,8 +56,42 @@ pub struct Coating {
 pub enum Method {
     /// The exact series of a smooth coat over a diffuse base.
     ClosedForm,
-    /// Random walks, this many per table cell.
-    RandomWalk { samples: usize },
+    /// Random walks, so many per table cell.
+    RandomWalk(CellWalks),
+}
+
+/// The walks a table's cells took (those computed, above the horizon).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Spent {
+    /// Cells computed by the walks.
+    pub cells: usize,
+    /// Walks in all.
+    pub walks: u64,
+    /// The most walks one cell took.
+    pub max: usize,
+    /// Cells that stopped at the most walks allowed ([`CellWalks::most`]) with an expected
+    /// standard error still above the target.
+    pub capped: usize,
+}
+
+impl Spent {
+    /// Walks per cell on average.
+    pub fn mean(&self) -> f64 {
+        self.walks as f64 / self.cells.max(1) as f64
+    }
+
+    /// `M on average, N at most`, and the share of the cells left above the target at the cap.
+    pub fn describe(&self) -> String {
+        let mut text = format!("{:.1} on average, {} at most", self.mean(), self.max);
+        if self.capped > 0 {
+            text.push_str(&format!(
+                " ({} cells, {:.2}%, at the most and still above the target)",
+                self.capped,
+                100.0 * self.capped as f64 / self.cells.max(1) as f64
+            ));
+        }
+        text
+    }
 }
 
 impl Coating {
@@ -92,11 +135,11 @@ impl Coating {
         Ok(())
     }
 
-    /// How [`Coating::table`] computes with `samples` walks per cell.
-    pub fn method(&self, samples: usize) -> Method {
+    /// How [`Coating::table`] computes with `walks` per cell.
+    pub fn method(&self, walks: impl Into<CellWalks>) -> Method {
         match self.clear_coat() {
             Some(_) => Method::ClosedForm,
-            None => Method::RandomWalk { samples },
+            None => Method::RandomWalk(walks.into()),
         }
     }
 
@@ -143,24 +186,30 @@ impl Coating {
             .collect()
     }
 
-    /// The provenance of a table made from the description at `source`.
+    /// The provenance of a table made from the description at `source` ([`Coating::table`]
+    /// adds the walks it spent).
     pub fn provenance(&self, source: impl Into<String>, method: Method) -> Provenance {
-        if method == Method::ClosedForm {
+        let Method::RandomWalk(walks) = method else {
             return clear_coat::body_provenance(source);
-        }
+        };
         let mut provenance = Provenance::new(source, "coating:layered-random-walk");
         let mirror = if self.roughness.is_none() {
             "; the smooth top's mirror reflection F(θi) is not in the table"
         } else {
             ""
         };
-        let samples = match method {
-            Method::RandomWalk { samples } => samples,
-            Method::ClosedForm => 0,
+        let count = match walks.target_dl {
+            None => format!("{} walks per cell", walks.base),
+            Some(target) => format!(
+                "{} walks per cell and more (up to {}) where the walks of the cell's \
+                 neighbourhood put its standard error above {target:.3} L*",
+                walks.base,
+                walks.most()
+            ),
         };
         provenance.description = Some(format!(
             "coating system by position-free Monte Carlo layered transport (Guo et al. 2018), \
-             {samples} walks per cell{mirror}"
+             {count}{mirror}"
         ));
         provenance
     }
@@ -181,54 +230,142 @@ impl Coating {
     }
 
     /// The coating's BRDF tabulated at `resolution`, one channel per wavelength of
-    /// `wavelengths_nm`, by the exact series where it applies and otherwise by `samples` random
-    /// walks per cell ([`Evaluator::eval_reciprocal`]: the table is reciprocal to its
-    /// interpolation and does not depend on the number of threads).
+    /// `wavelengths_nm`, by the exact series where it applies and otherwise by random walks,
+    /// `walks` per cell (a number: that many in every cell;
+    /// [`Evaluator::eval_cell`]: the table is reciprocal to its interpolation and does not depend
+    /// on the number of threads). What the walks spent is in the table's provenance
+    /// (`walks_per_cell`).
     pub fn table(
         &self,
         resolution: Resolution,
         wavelengths_nm: &[f64],
-        samples: usize,
+        walks: impl Into<CellWalks>,
         provenance: Provenance,
     ) -> Result<BrdfTable> {
-        self.table_cells(resolution, wavelengths_nm, samples, provenance, |_| true)
+        self.table_cells(resolution, wavelengths_nm, walks, provenance, |_| true)
+            .map(|(table, _)| table)
     }
 
     /// [`Coating::table`] with the walks run only in the cells whose index `keep` accepts (the
     /// others hold 0): what a reading at a few geometries interpolates, each cell as in the
-    /// whole table, without the whole table's cost. The exact series fills every cell.
+    /// whole table, without the whole table's cost. The exact series fills every cell. With
+    /// the walks the cells took.
     pub fn table_cells(
         &self,
         resolution: Resolution,
         wavelengths_nm: &[f64],
-        samples: usize,
-        provenance: Provenance,
+        walks: impl Into<CellWalks>,
+        mut provenance: Provenance,
         keep: impl Fn(usize) -> bool + Sync,
-    ) -> Result<BrdfTable> {
+    ) -> Result<(BrdfTable, Spent)> {
         if let Some(exact) = self.clear_coat() {
             self.check(wavelengths_nm)?;
-            return exact.body_table(resolution, wavelengths_nm, provenance);
+            let table = exact.body_table(resolution, wavelengths_nm, provenance)?;
+            return Ok((table, Spent::default()));
         }
-        if samples == 0 {
+        let walks = walks.into();
+        if walks.base == 0 {
             return Err(CoatingError::Invalid(
                 "samples: at least one random walk per cell is needed".into(),
             ));
         }
         let evaluator = self.evaluator(wavelengths_nm)?;
+        let luminance = luminance_weights(wavelengths_nm)?;
         let channels = Channels::Spectral {
             wavelengths_nm: wavelengths_nm.to_vec(),
         };
         let table_error = |e: gonio_brdf::BrdfError| CoatingError::Invalid(e.to_string());
-        let mut builder = TableBuilder::new(resolution, channels)
-            .map_err(table_error)?
-            .with_provenance(provenance);
-        builder.fill(|cell, out| {
-            if keep(cell.index) {
-                let mut scratch = Scratch::default();
-                evaluator.eval_reciprocal(cell.wo, cell.wi, samples, &mut scratch, out);
+        let mut builder = TableBuilder::new(resolution, channels).map_err(table_error)?;
+        // First pass: the first walks in every cell kept and, when walks are to be added, in
+        // its neighbourhood, each with the standard error it shows (crate::cell).
+        let adaptive = walks.target_dl.is_some();
+        let first_se: Vec<AtomicU64> = (0..resolution.cell_count())
+            .map(|_| AtomicU64::new(f64::NAN.to_bits()))
+            .collect();
+        let kept: Vec<bool> = (0..resolution.cell_count()).map(&keep).collect();
+        let mut wanted = kept.clone();
+        if adaptive && wanted.contains(&false) {
+            for (i, _) in kept.iter().enumerate().filter(|(_, k)| **k) {
+                for n in cell::neighbours(&resolution, i, cell::NEIGHBOURHOOD) {
+                    wanted[n] = true;
+                }
+            }
+        }
+        builder.fill(|c, out| {
+            if wanted[c.index] {
+                let se = evaluator.eval_cell(
+                    c.wo,
+                    c.wi,
+                    &walks,
+                    &luminance,
+                    &mut Scratch::default(),
+                    out,
+                );
+                first_se[c.index].store(se.to_bits(), Ordering::Relaxed);
             }
         });
-        builder.build().map_err(table_error)
+        // Second pass: the cells kept take the walks their neighbourhood asks for.
+        let se_of = |i: usize| {
+            Some(f64::from_bits(first_se[i].load(Ordering::Relaxed))).filter(|s| !s.is_nan())
+        };
+        let [cells, max, capped] = [0; 3].map(AtomicUsize::new);
+        let total = AtomicU64::new(0);
+        builder.refine(|c, out| {
+            if !kept[c.index] {
+                out.fill(0.0);
+                return;
+            }
+            let (count, short) = match walks.target_dl {
+                None => (walks.first(), false),
+                Some(target) => {
+                    let se = cell::neighbourhood_se(&resolution, c.index, se_of)
+                        .or_else(|| se_of(c.index))
+                        .unwrap_or(0.0);
+                    let count = cell::walks_needed(&walks, se);
+                    (
+                        count,
+                        se * (walks.first() as f64 / count as f64).sqrt() > target,
+                    )
+                }
+            };
+            evaluator.refine_cell(c.wo, c.wi, &walks, count, &mut Scratch::default(), out);
+            cells.fetch_add(1, Ordering::Relaxed);
+            total.fetch_add(count as u64, Ordering::Relaxed);
+            max.fetch_max(count, Ordering::Relaxed);
+            capped.fetch_add(usize::from(short), Ordering::Relaxed);
+        });
+        let spent = Spent {
+            cells: cells.into_inner(),
+            walks: total.into_inner(),
+            max: max.into_inner(),
+            capped: capped.into_inner(),
+        };
+        spent.record(&mut provenance, &walks);
+        builder
+            .with_provenance(provenance)
+            .build()
+            .map_err(table_error)
+            .map(|t| (t, spent))
+    }
+}
+
+impl Spent {
+    /// Add what was spent to a table's provenance: `walks_per_cell` (base, target in L*,
+    /// mean, max) and the description's last words.
+    fn record(&self, provenance: &mut Provenance, walks: &CellWalks) {
+        provenance.extra.insert(
+            "walks_per_cell".into(),
+            serde_json::json!({
+                "base": walks.base,
+                "target_dl": walks.target_dl,
+                "mean": self.mean(),
+                "max": self.max,
+                "cells_at_cap_above_target": self.capped,
+            }),
+        );
+        if let Some(d) = provenance.description.as_mut() {
+            d.push_str(&format!("; walks per cell: {}", self.describe()));
+        }
     }
 }
 
@@ -265,33 +402,6 @@ impl Evaluator {
         }
     }
 
-    /// The BRDF estimated so that swapping `wi` and `wo` gives the same value: half of
-    /// `samples` (rounded up) walks each way, `f̂(a, b) = ½ (W(a → b) + W(b → a))`, both drawn
-    /// from a stream seeded by what the pair has in common with its swap and with its turns
-    /// about the normal (the two cosines, sorted, and the angle between the directions). Each
-    /// half is an unbiased estimate of the same reciprocal BRDF, so their mean is too; its
-    /// noise no longer differs between `(wi, wo)` and `(wo, wi)`.
-    pub fn eval_reciprocal(
-        &self,
-        wo: DVec3,
-        wi: DVec3,
-        samples: usize,
-        scratch: &mut Scratch,
-        out: &mut [f64],
-    ) {
-        if let Evaluator::Exact(_) = self {
-            return self.eval(wo, wi, samples, 0, scratch, out);
-        }
-        let half = samples.div_ceil(2);
-        let seed = pair_seed(wo, wi);
-        self.eval(wo, wi, half, seed, scratch, out);
-        let mut back = vec![0.0; out.len()];
-        self.eval(wi, wo, half, seed, scratch, &mut back);
-        for (o, b) in out.iter_mut().zip(&back) {
-            *o = 0.5 * (*o + b);
-        }
-    }
-
     /// [`Evaluator::eval`] without the top interface's own reflection (for a smooth top, the
     /// same: its mirror reflection is never in `eval`).
     pub fn eval_body(
@@ -309,16 +419,14 @@ impl Evaluator {
                     *o = at.brdf(wi.z, wo.z);
                 }
             }
-            Evaluator::Walks(walks) => {
-                let groups = walks.len() as u64;
-                let mut values = Vec::new();
-                for (g, (bands, walk)) in walks.iter().enumerate() {
-                    values.resize(bands.len(), 0.0);
-                    let seed = seed.wrapping_mul(groups).wrapping_add(g as u64);
-                    walk.eval_body(wo, wi, samples, seed, scratch, &mut values);
-                    for (&b, v) in bands.iter().zip(&values) {
-                        out[b] = *v;
-                    }
+            Evaluator::Walks(_) => {
+                out.fill(0.0);
+                if samples == 0 {
+                    return;
+                }
+                self.add_walks(wo, wi, 0..samples, seed, scratch, out, None);
+                for o in out.iter_mut() {
+                    *o /= samples as f64;
                 }
             }
         }
@@ -387,18 +495,4 @@ impl Evaluator {
         }
         total
     }
-}
-
-/// A seed shared by a pair of directions, its swap and its turns about the normal: the two
-/// cosines (sorted) and the cosine between them, each rounded to 1e-9 (so that the table's
-/// cells, which compute their directions separately, agree), mixed by SplitMix64.
-fn pair_seed(a: DVec3, b: DVec3) -> u64 {
-    let q = |x: f64| (x * 1e9).round() as i64 as u64;
-    let (lo, hi) = if a.z <= b.z { (a.z, b.z) } else { (b.z, a.z) };
-    let mix = |mut z: u64| {
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    };
-    mix(mix(mix(q(lo)) ^ q(hi)) ^ q(a.dot(b)))
 }

@@ -39,4 +39,4 @@ pub use tristimulus::{
     Colorimetry, EmissionScale, WeightingFactors, display_matrix, emission_xyz, reflectance_xyz,
     white,
 };
-pub use xyz::{Lab, XyY, Xyz};
+pub use xyz::{Lab, XyY, Xyz, lightness_slope};

@@ -122,6 +122,16 @@ impl Lab {
 /// δ = 6/29: the CIELAB function is cubic above δ³ and linear below.
 const LAB_DELTA: f64 = 6.0 / 29.0;
 
+/// The slope of CIELAB lightness in the relative luminance, dL*/d(Y/Yn) at `t` = Y/Yn: from
+/// L* = 116 f(t) − 16 (CIE 15:2004, section 8.2.1, eq. 8.3), (116/3) t^(−2/3) above t = (6/29)³
+/// (L* 8) and 116/(3 δ²) = 903.3 below, where f is linear (the two meet there). A small error
+/// dY in the luminance is an error of about this times dY/Yn in L*: what the walks of a coating's
+/// table aim their noise at (`gonio_coating::cell`).
+pub fn lightness_slope(t: f64) -> f64 {
+    let knee = LAB_DELTA.powi(3);
+    116.0 / 3.0 / t.max(knee).cbrt().powi(2)
+}
+
 fn lab_f(t: f64) -> f64 {
     if t > LAB_DELTA.powi(3) {
         t.cbrt()
@@ -164,6 +174,25 @@ mod tests {
         let above = lab_f(knee * (1.0 + 1e-12));
         assert!((below - above).abs() < 1e-10);
         assert!((116.0 * lab_f(knee) - 16.0 - 8.0).abs() < 1e-10);
+    }
+
+    /// The slope against central differences of L* (step 1e-6 of t; the error of the
+    /// difference is of order t² f'''/6 · 1e-12, far below the bound) on both branches and at the
+    /// knee, where both sides give 903.3.
+    #[test]
+    fn lightness_slope_is_the_derivative() {
+        let l = |t: f64| Xyz::new(0.0, 100.0 * t, 0.0).to_lab(D65_WHITE).l;
+        for t in [1e-4f64, 3e-3, 0.0088, 0.0089, 0.05, 0.18, 0.5, 1.0, 2.5] {
+            let h = 1e-6 * t.max(1e-3);
+            let numeric = (l(t + h) - l(t - h)) / (2.0 * h);
+            let slope = lightness_slope(t);
+            assert!(
+                (slope / numeric - 1.0).abs() < 1e-4,
+                "t {t}: {slope} against {numeric}"
+            );
+        }
+        let knee = LAB_DELTA.powi(3);
+        assert!((lightness_slope(knee) - 116.0 * 841.0 / 108.0).abs() < 1e-9);
     }
 
     #[test]

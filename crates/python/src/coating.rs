@@ -9,6 +9,7 @@ use crate::error::{Result, invalid};
 use crate::instruments::reading_columns;
 use crate::table::Table;
 use gonio_brdf::table::Resolution;
+use gonio_coating::cell::CellWalks;
 use gonio_coating::description;
 use gonio_coating::system::{self, default_bands};
 use gonio_instrument::coating_study::{self, Constituent};
@@ -93,14 +94,16 @@ impl Coating {
     }
 
     /// The coating's spectral table as `gonio coating compute` makes it: `resolution` (theta_h,
-    /// theta_d, phi_d) nodes, `bands` in nm, `samples` walks per cell.
-    #[pyo3(signature = (resolution, bands, samples))]
+    /// theta_d, phi_d) nodes, `bands` in nm, `samples` walks per cell first, then more where a
+    /// cell's L* is less certain than `target_dl` (0 or infinite: `samples` in every cell).
+    #[pyo3(signature = (resolution, bands, samples, target_dl))]
     fn compute(
         &self,
         py: Python<'_>,
         resolution: Vec<usize>,
         bands: Vec<f64>,
         samples: usize,
+        target_dl: f64,
     ) -> Result<Table> {
         let [th, td, pd] = resolution[..] else {
             return Err(invalid(
@@ -109,12 +112,13 @@ impl Coating {
         };
         let coating = self.coating.clone();
         let source = self.source.clone();
+        let walks = CellWalks::adaptive(samples, target_dl);
         let table = py.detach(move || {
-            let method = coating.method(samples);
+            let method = coating.method(walks);
             coating.table(
                 Resolution::isotropic(th, td, pd),
                 &bands,
-                samples,
+                walks,
                 coating.provenance(source, method),
             )
         })?;

@@ -37,6 +37,8 @@ fn _gonio(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(render::render_scene, m)?)?;
     m.add_function(wrap_pyfunction!(color::xyz, m)?)?;
     m.add_class::<coating::Coating>()?;
+    m.add("TABLE_WALKS", gonio_coating::system::TABLE_WALKS)?;
+    m.add("TARGET_DL", gonio_coating::system::TARGET_DL)?;
     m.add_function(wrap_pyfunction!(coating::read_coating, m)?)?;
     Ok(())
 }

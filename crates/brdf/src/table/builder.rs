@@ -154,6 +154,18 @@ impl TableBuilder {
     /// Fill every cell above the horizon from a function of the cell, in parallel; the function
     /// writes the channel values into its slice. Deterministic whatever the thread count.
     pub fn fill(&mut self, f: impl Fn(&Cell, &mut [f64]) + Sync) {
+        self.visit(false, f);
+    }
+
+    /// [`TableBuilder::fill`] with the slice holding the cell's values so far (an earlier
+    /// fill's): a second pass that refines them.
+    pub fn refine(&mut self, f: impl Fn(&Cell, &mut [f64]) + Sync) {
+        self.visit(true, f);
+    }
+
+    /// Every cell above the horizon through `f`, its slice zeroed or, with `current`, holding
+    /// the cell's values.
+    fn visit(&mut self, current: bool, f: impl Fn(&Cell, &mut [f64]) + Sync) {
         let res = self.res;
         let nc = self.channels.count();
         let trig = &self.trig;
@@ -162,7 +174,13 @@ impl TableBuilder {
             |buf, (i, out)| {
                 let cell = Cell::of_with(&res, i, trig);
                 if cell.is_above_horizon() {
-                    buf.fill(0.0);
+                    if current {
+                        buf.iter_mut()
+                            .zip(out.iter())
+                            .for_each(|(b, o)| *b = f64::from(*o));
+                    } else {
+                        buf.fill(0.0);
+                    }
                     f(&cell, buf);
                     for (o, v) in out.iter_mut().zip(buf.iter()) {
                         *o = *v as f32;

@@ -238,6 +238,28 @@ impl Resolution {
         };
         [ph, th, td, pd]
     }
+
+    /// The 16 corners of a point's interpolation stencil: each node's linear index and its
+    /// weight in the multilinear interpolation, the product of its four one-dimensional
+    /// weights (`1 − t` for the lower node, `t` for the upper). The weights sum to 1; an
+    /// isotropic table's phi_h corners, and any axis on a node, give corners of weight 0.
+    pub fn corners(&self, a: &HalfDiff) -> [(usize, f64); 16] {
+        let s = self.stencil(a);
+        std::array::from_fn(|corner| {
+            let mut w = 1.0;
+            let mut idx = [0usize; 4];
+            for (k, (i0, i1, t)) in s.iter().enumerate() {
+                if corner & (8 >> k) == 0 {
+                    idx[k] = *i0;
+                    w *= 1.0 - t;
+                } else {
+                    idx[k] = *i1;
+                    w *= t;
+                }
+            }
+            (self.cell_index(idx[0], idx[1], idx[2], idx[3]), w)
+        })
+    }
 }
 
 /// Bracketing nodes of a coordinate `x` (in node units) on a grid of `n` nodes, clamped at the

@@ -312,25 +312,13 @@ impl BrdfTable {
     pub fn eval_angles(&self, a: &HalfDiff, out: &mut [f64]) {
         let nc = self.channel_count();
         let data = self.values();
-        let s = self.res.stencil(a);
         out.fill(0.0);
         let mut wsum = 0.0;
-        for corner in 0..16u32 {
-            let mut w = 1.0;
-            let mut idx = [0usize; 4];
-            for (k, (i0, i1, t)) in s.iter().enumerate() {
-                if corner & (8 >> k) == 0 {
-                    idx[k] = *i0;
-                    w *= 1.0 - t;
-                } else {
-                    idx[k] = *i1;
-                    w *= t;
-                }
-            }
+        for (cell, w) in self.res.corners(a) {
             if w == 0.0 {
                 continue;
             }
-            let base = self.res.cell_index(idx[0], idx[1], idx[2], idx[3]) * nc;
+            let base = cell * nc;
             if data[base].is_nan() {
                 continue;
             }

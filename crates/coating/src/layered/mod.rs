@@ -347,11 +347,42 @@ impl Walk {
         scratch: &mut Scratch,
         out: &mut [f64],
     ) {
-        let nb = self.bands();
         out.fill(0.0);
-        if wo.z <= 0.0 || wi.z <= 0.0 || samples == 0 {
+        if samples == 0 {
             return;
         }
+        self.add_walks(wo, wi, 0..samples, seed, max_depth, scratch, out, None);
+        for o in out.iter_mut() {
+            *o /= samples as f64;
+        }
+    }
+
+    /// Walks `walks` (their indices in the estimate's streams) of the estimate of
+    /// [`Walk::eval_body`] seeded `seed`, their contributions added into `sums` (per band, not
+    /// divided by the number of walks). With `tally`, each walk's contributions weighted by
+    /// `tally.0` (one weight per band) are also added into `tally.1[k − walks.start]`: the
+    /// per-walk values from which [`crate::system`] estimates a cell's standard error. Walk `k`
+    /// draws the same numbers whatever range it is run in, so that an estimate of `2n` walks
+    /// run as `0..n` then `n..2n` is the estimate of `0..2n`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn add_walks(
+        &self,
+        wo: DVec3,
+        wi: DVec3,
+        walks: std::ops::Range<usize>,
+        seed: u64,
+        max_depth: usize,
+        scratch: &mut Scratch,
+        sums: &mut [f64],
+        mut tally: Option<(&[f64], &mut [f64])>,
+    ) {
+        let nb = self.bands();
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return;
+        }
+        let out = sums;
+        let weighted = |w: &[f64], out: &[f64]| w.iter().zip(out).map(|(a, b)| a * b).sum::<f64>();
+        let first = walks.start;
         scratch.beta.resize(nb, 0.0);
         scratch.f.resize(nb, 0.0);
         let top = &self.top;
@@ -366,133 +397,137 @@ impl Walk {
         // with it, 0.026–0.064 without, at half the time; docs/coatings.md, "Noise"). Without
         // the light's walk none of its strategies enter the weights.
         let bidirectional = bottom.slope().is_some();
-        for k in 0..samples {
-            // The two walks draw from two streams (one sample each of two sequences).
-            let mut rng = Stream::new(k, seed);
-            let mut light_rng = Stream::new(k, !seed);
-            let (uo, ui) = (rng.next2(), rng.next2());
-            let Some(wos) =
-                top.sample(wo, rng.next(), uo, Transport::Radiance, Lobes::Transmission)
-            else {
-                continue;
-            };
-            let Some(wis) = top.sample(
-                wi,
-                rng.next(),
-                ui,
-                Transport::Importance,
-                Lobes::Transmission,
-            ) else {
-                continue;
-            };
-            let up = -wis.wi;
-            let light_visits = if bidirectional { visits } else { 0 };
-            self.light_walk(wo, &wis, light_visits, kappa, &mut light_rng, scratch, out);
-            let Scratch {
-                beta,
-                f,
-                light,
-                light_beta,
-                ..
-            } = &mut *scratch;
-            beta.fill(wos.weight());
-            let mut w = wos.wi;
-            // The walk's visits of the flake layer so far, and what it keeps of the last. At
-            // the first visit, what the walk has sampled is its way in through the top: the
-            // light's walk joined to wo could have taken that direction from the layer instead
-            // (through a rough top).
-            let mut visit = 0;
-            let mut behind = (rough && bidirectional).then_some(Behind {
-                pdf_walk: kappa * wos.pdf,
-                pdf_top_back: 1.0,
-                sum: 0.0,
-            });
-            // The direction sampled at the last visit, its density and the walk's sum there.
-            let mut sampled = (DVec3::Z, 1.0, 0.0);
-            for depth in 0..max_depth {
-                if depth > 3 && !Self::roulette(beta, &mut rng) {
-                    break;
-                }
-                self.attenuate(beta, w);
-                if depth % 2 == 1 {
-                    // The underside of the top interface sends the walk back down.
-                    let Some(s) = top.sample(
-                        -w,
-                        rng.next(),
-                        rng.next2(),
-                        Transport::Radiance,
-                        Lobes::Reflection,
-                    ) else {
+        for k in walks {
+            let before = tally.as_ref().map_or(0.0, |(w, _)| weighted(w, out));
+            'walk: {
+                // The two walks draw from two streams (one sample each of two sequences).
+                let mut rng = Stream::new(k, seed);
+                let mut light_rng = Stream::new(k, !seed);
+                let (uo, ui) = (rng.next2(), rng.next2());
+                let Some(wos) =
+                    top.sample(wo, rng.next(), uo, Transport::Radiance, Lobes::Transmission)
+                else {
+                    break 'walk;
+                };
+                let Some(wis) = top.sample(
+                    wi,
+                    rng.next(),
+                    ui,
+                    Transport::Importance,
+                    Lobes::Transmission,
+                ) else {
+                    break 'walk;
+                };
+                let up = -wis.wi;
+                let light_visits = if bidirectional { visits } else { 0 };
+                self.light_walk(wo, &wis, light_visits, kappa, &mut light_rng, scratch, out);
+                let Scratch {
+                    beta,
+                    f,
+                    light,
+                    light_beta,
+                    ..
+                } = &mut *scratch;
+                beta.fill(wos.weight());
+                let mut w = wos.wi;
+                // The walk's visits of the flake layer so far, and what it keeps of the last. At
+                // the first visit, what the walk has sampled is its way in through the top: the
+                // light's walk joined to wo could have taken that direction from the layer instead
+                // (through a rough top).
+                let mut visit = 0;
+                let mut behind = (rough && bidirectional).then_some(Behind {
+                    pdf_walk: kappa * wos.pdf,
+                    pdf_top_back: 1.0,
+                    sum: 0.0,
+                });
+                // The direction sampled at the last visit, its density and the walk's sum there.
+                let mut sampled = (DVec3::Z, 1.0, 0.0);
+                for depth in 0..max_depth {
+                    if depth > 3 && !Self::roulette(beta, &mut rng) {
+                        break;
+                    }
+                    self.attenuate(beta, w);
+                    if depth % 2 == 1 {
+                        // The underside of the top interface sends the walk back down.
+                        let Some(s) = top.sample(
+                            -w,
+                            rng.next(),
+                            rng.next2(),
+                            Transport::Radiance,
+                            Lobes::Reflection,
+                        ) else {
+                            break;
+                        };
+                        let (v, pdf, sum) = sampled;
+                        behind = bidirectional.then_some(Behind {
+                            pdf_walk: pdf * s.pdf,
+                            pdf_top_back: self.reflection_pdf(s.wi, -v),
+                            sum,
+                        });
+                        let weight = s.weight();
+                        beta.iter_mut().for_each(|b| *b *= weight);
+                        w = s.wi;
+                        continue;
+                    }
+                    visit += 1;
+                    let a = -w;
+                    // The paths ending here: to wi through the direction sampled from it
+                    // (next-event estimation), and through each of the light's visits that keeps
+                    // the path within the walks' reach.
+                    let (to_up, from_up) = bottom.f_and_pdfs(a, up, f);
+                    let light_side = if rough {
+                        (to_up / (kappa * wis.pdf)).powi(2)
+                    } else {
+                        0.0
+                    };
+                    let mis = 1.0 / (1.0 + Behind::sum_at(behind, from_up) + light_side);
+                    let connect = wis.weight() * mis;
+                    let mu = up.z;
+                    for b in 0..nb {
+                        out[b] += beta[b] * f[b] * self.across(b, mu) * connect;
+                    }
+                    for (l, light_beta) in light
+                        .iter()
+                        .zip(light_beta.chunks_exact(nb))
+                        .take(visits - visit)
+                    {
+                        let (to_light, from_light) = bottom.f_and_pdfs(a, l.v, f);
+                        let light_side =
+                            (to_light * l.pdf_top / l.pdf_light).powi(2) * (1.0 + l.tail);
+                        let mis = 1.0 / (1.0 + Behind::sum_at(behind, from_light) + light_side);
+                        for b in 0..nb {
+                            out[b] += beta[b] * f[b] * light_beta[b] * mis;
+                        }
+                    }
+                    // Sample the flake layer for the walk's next direction.
+                    let uc = rng.next();
+                    let Some((next, pdf, back)) = bottom.sample(a, uc, rng.next2(), f) else {
                         break;
                     };
-                    let (v, pdf, sum) = sampled;
-                    behind = bidirectional.then_some(Behind {
-                        pdf_walk: pdf * s.pdf,
-                        pdf_top_back: self.reflection_pdf(s.wi, -v),
-                        sum,
-                    });
-                    let weight = s.weight();
-                    beta.iter_mut().for_each(|b| *b *= weight);
-                    w = s.wi;
-                    continue;
-                }
-                visit += 1;
-                let a = -w;
-                // The paths ending here: to wi through the direction sampled from it
-                // (next-event estimation), and through each of the light's visits that keeps
-                // the path within the walks' reach.
-                let (to_up, from_up) = bottom.f_and_pdfs(a, up, f);
-                let light_side = if rough {
-                    (to_up / (kappa * wis.pdf)).powi(2)
-                } else {
-                    0.0
-                };
-                let mis = 1.0 / (1.0 + Behind::sum_at(behind, from_up) + light_side);
-                let connect = wis.weight() * mis;
-                let mu = up.z;
-                for b in 0..nb {
-                    out[b] += beta[b] * f[b] * self.across(b, mu) * connect;
-                }
-                for (l, light_beta) in light
-                    .iter()
-                    .zip(light_beta.chunks_exact(nb))
-                    .take(visits - visit)
-                {
-                    let (to_light, from_light) = bottom.f_and_pdfs(a, l.v, f);
-                    let light_side = (to_light * l.pdf_top / l.pdf_light).powi(2) * (1.0 + l.tail);
-                    let mis = 1.0 / (1.0 + Behind::sum_at(behind, from_light) + light_side);
                     for b in 0..nb {
-                        out[b] += beta[b] * f[b] * light_beta[b] * mis;
+                        beta[b] *= f[b] * next.z / pdf;
                     }
-                }
-                // Sample the flake layer for the walk's next direction.
-                let uc = rng.next();
-                let Some((next, pdf, back)) = bottom.sample(a, uc, rng.next2(), f) else {
-                    break;
-                };
-                for b in 0..nb {
-                    beta[b] *= f[b] * next.z / pdf;
-                }
-                w = next;
-                let sum = Behind::sum_at(behind, back);
-                sampled = (next, pdf, sum);
-                if rough {
-                    // Through the sampled direction and the rough top to wi, against the
-                    // strategies that take this last direction from wi's side.
-                    let f_exit = top.f(-w, wi, Transport::Radiance);
-                    if f_exit > 0.0 {
-                        let through_top = kappa * top.pdf(wi, -w, Lobes::Transmission);
-                        let mis = 1.0 / (1.0 + (through_top / pdf).powi(2) * (1.0 + sum));
-                        let mu = w.z.abs();
-                        for b in 0..nb {
-                            out[b] += beta[b] * self.across(b, mu) * f_exit * mis;
+                    w = next;
+                    let sum = Behind::sum_at(behind, back);
+                    sampled = (next, pdf, sum);
+                    if rough {
+                        // Through the sampled direction and the rough top to wi, against the
+                        // strategies that take this last direction from wi's side.
+                        let f_exit = top.f(-w, wi, Transport::Radiance);
+                        if f_exit > 0.0 {
+                            let through_top = kappa * top.pdf(wi, -w, Lobes::Transmission);
+                            let mis = 1.0 / (1.0 + (through_top / pdf).powi(2) * (1.0 + sum));
+                            let mu = w.z.abs();
+                            for b in 0..nb {
+                                out[b] += beta[b] * self.across(b, mu) * f_exit * mis;
+                            }
                         }
                     }
                 }
             }
-        }
-        for o in out.iter_mut() {
-            *o /= samples as f64;
+            if let Some((w, values)) = tally.as_mut() {
+                values[k - first] += weighted(w, out) - before;
+            }
         }
     }
 }

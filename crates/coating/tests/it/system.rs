@@ -3,6 +3,7 @@
 
 use glam::DVec3;
 use gonio_brdf::table::{BrdfTable, Provenance, Resolution};
+use gonio_coating::cell::CellWalks;
 use gonio_coating::description;
 use gonio_coating::system::*;
 use rand::{RngExt, SeedableRng};
@@ -21,12 +22,15 @@ fn example(name: &str, wl: &[f64]) -> Coating {
 fn method_follows_the_system() {
     let wl = [450.0, 550.0, 650.0];
     let red = example("red_solid.toml", &wl);
-    assert_eq!(red.method(8), Method::ClosedForm);
+    assert_eq!(red.method(CellWalks::fixed(8)), Method::ClosedForm);
     let exact = red.clear_coat().unwrap().at(550.0).unwrap();
     let albedo = red.evaluator(&wl).unwrap().albedo(0.8, 1);
     assert!((albedo[1] - exact.specular(0.8) - exact.body_albedo(0.8)).abs() < 1e-15);
     let silver = example("silver_metallic.toml", &wl);
-    assert_eq!(silver.method(8), Method::RandomWalk { samples: 8 });
+    assert_eq!(
+        silver.method(CellWalks::fixed(8)),
+        Method::RandomWalk(CellWalks::fixed(8))
+    );
     assert!(
         silver
             .evaluator(&wl)
@@ -37,7 +41,12 @@ fn method_follows_the_system() {
     );
 }
 
-/// The table is the same, bit for bit, on one thread and on two.
+/// The table is the same, bit for bit, on one thread and on two, with walks added where the
+/// noise is (4 walks per cell before: most cells take more); and each cell equals its
+/// reciprocal cell (the same pair with `wi` and `wo` swapped) to rounding, so both took the
+/// same walks: a cell taken on to twice the walks of its reciprocal would differ from it by
+/// the walks' noise, a relative standard deviation of several percent at these counts, not
+/// 1e-5 (the values are stored as f32, 6e-8, and the two cells' directions are computed apart).
 #[test]
 fn table_does_not_depend_on_the_thread_count() {
     let wl = [450.0, 550.0, 650.0];
@@ -48,11 +57,35 @@ fn table_does_not_depend_on_the_thread_count() {
             .num_threads(threads)
             .build()
             .unwrap()
-            .install(|| pearl.table(res, &wl, 4, Provenance::default()).unwrap())
+            .install(|| {
+                pearl
+                    .table_cells(
+                        res,
+                        &wl,
+                        CellWalks::adaptive(4, TARGET_DL),
+                        Provenance::default(),
+                        |_| true,
+                    )
+                    .unwrap()
+            })
     };
     let bits = |t: &BrdfTable| t.values().iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-    let (one, two) = (on(1), on(2));
+    let ((one, spent), (two, _)) = (on(1), on(2));
     assert!(bits(&one) == bits(&two), "the tables differ");
+    assert!(spent.max > 4, "no walks were added: {spent:?}");
+    let values = one.values();
+    for cell in 0..res.cell_count() {
+        let (a, b) = (
+            values[cell * 3 + 1],
+            values[res.reciprocal_cell(cell) * 3 + 1],
+        );
+        if !a.is_nan() {
+            assert!(
+                (a - b).abs() <= 1e-5 * a.abs().max(1e-3),
+                "cell {cell}: {a} against {b}"
+            );
+        }
+    }
 }
 
 mod slow {
@@ -72,7 +105,7 @@ mod slow {
             .table(
                 Resolution::isotropic(45, 45, 24),
                 &wl,
-                32,
+                CellWalks::fixed(32),
                 Provenance::default(),
             )
             .unwrap();
@@ -133,7 +166,7 @@ fn dispersive_rough_coat_has_a_walk_per_band() {
         .table(
             Resolution::isotropic(6, 6, 4),
             &wl,
-            2,
+            CellWalks::fixed(2),
             Provenance::default(),
         )
         .unwrap();

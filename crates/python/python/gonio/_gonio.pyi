@@ -12,6 +12,10 @@ __version__: str
 COLUMNS: list[str]
 E2194: list[str]
 E2539: list[str]
+#: Random walks per coating table cell before any are added.
+TABLE_WALKS: int
+#: The standard error of a coating table cell's L* above which walks are added.
+TARGET_DL: float
 
 class Surface:
     """A height map: heights in metres on a grid of spacings dx, dy (m), NaN where not measured."""
@@ -115,7 +119,9 @@ class Coating:
     @property
     def source(self) -> str: ...
     def info_json(self, samples: int) -> str: ...
-    def compute(self, resolution: list[int], bands: list[float], samples: int) -> Table: ...
+    def compute(
+        self, resolution: list[int], bands: list[float], samples: int, target_dl: float
+    ) -> Table: ...
     def multiangle_columns(
         self, standard: str, samples: int
     ) -> tuple[dict[str, Any], npt.NDArray[np.float64], npt.NDArray[np.float64], float | None]: ...

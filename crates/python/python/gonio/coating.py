@@ -39,8 +39,10 @@ __all__ = [
 TABLE_RESOLUTION = (90, 90, 48)
 #: The bands of a coating's tables and readings: 400, 410, ..., 700 nm.
 DEFAULT_BANDS_NM = tuple(400.0 + 10.0 * i for i in range(31))
-#: Random walks per table cell (``gonio coating compute --samples``' default).
-TABLE_WALKS = 32
+#: Random walks per table cell before any are added (``gonio coating compute --samples``).
+TABLE_WALKS = _gonio.TABLE_WALKS
+#: The standard error of a cell's L* above which walks are added (``--target-dl``).
+TARGET_DL = _gonio.TARGET_DL
 
 
 def read(
@@ -74,13 +76,15 @@ def compute(
     resolution: Sequence[int] = TABLE_RESOLUTION,
     bands_nm: Sequence[float] = DEFAULT_BANDS_NM,
     samples: int = TABLE_WALKS,
+    target_dl: float = TARGET_DL,
 ) -> Table:
     """The coating's spectral :class:`gonio.Table`, as ``gonio coating compute`` makes it: one
-    channel per band (nm), ``samples`` random walks per cell for a rough top or flakes (a smooth
-    coat over a diffuse base is exact). A smooth top's mirror reflection (a delta) is not in the
-    table; a rough top's is."""
+    channel per band (nm), ``samples`` random walks per cell for a rough top or flakes, then more
+    (up to 16 times) where the cell's L* is less certain than ``target_dl`` (one standard
+    deviation; 0 keeps ``samples`` in every cell). A smooth coat over a diffuse base is exact.
+    A smooth top's mirror reflection (a delta) is not in the table; a rough top's is."""
     return read(coating).compute(
-        [int(n) for n in resolution], [float(b) for b in bands_nm], int(samples)
+        [int(n) for n in resolution], [float(b) for b in bands_nm], int(samples), float(target_dl)
     )
 
 
