@@ -6,7 +6,7 @@
 //! that Python gives the CLI's numbers.
 
 use crate::error::{Result, invalid};
-use crate::instruments::reading_columns;
+use crate::instruments::{ReadingColumns, reading_columns};
 use crate::table::Table;
 use gonio_brdf::table::Resolution;
 use gonio_coating::cell::CellWalks;
@@ -16,9 +16,8 @@ use gonio_instrument::coating_study::{self, Constituent};
 use gonio_instrument::coating_study_output;
 use gonio_instrument::coating_summary::summarise;
 use gonio_instrument::multiangle::Geometry;
-use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
+use numpy::{PyArray1, PyArray3, PyArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 use std::path::PathBuf;
 
 /// A coating's formulation, read over the default bands (400–700 nm in 10 nm steps).
@@ -129,18 +128,12 @@ impl Coating {
     /// instrument looks (no table), `samples` walks per geometry: the columns, reflectance
     /// factors, wavelengths and flop index of `multiangle_columns`.
     #[pyo3(signature = (standard, samples))]
-    #[allow(clippy::type_complexity)]
     fn multiangle_columns<'py>(
         &self,
         py: Python<'py>,
         standard: &str,
         samples: usize,
-    ) -> Result<(
-        Bound<'py, PyDict>,
-        Bound<'py, PyArray2<f64>>,
-        Bound<'py, PyArray1<f64>>,
-        Option<f64>,
-    )> {
+    ) -> Result<ReadingColumns<'py>> {
         let geometries = self::standard(standard)?;
         let coating = self.coating.clone();
         let reading = py.detach(move || {

@@ -182,12 +182,7 @@ pub fn multiangle_columns<'py>(
     aperture_deg: f64,
     illuminant: &str,
     observer_deg: u32,
-) -> Result<(
-    Bound<'py, PyDict>,
-    Bound<'py, numpy::PyArray2<f64>>,
-    Bound<'py, PyArray1<f64>>,
-    Option<f64>,
-)> {
+) -> Result<ReadingColumns<'py>> {
     let geometries = geometries
         .iter()
         .map(|g| Geometry::parse(g))
@@ -204,18 +199,20 @@ pub fn multiangle_columns<'py>(
     reading_columns(py, &reading)
 }
 
-/// A multi-angle reading as [`multiangle_columns`] returns it: the columns, the reflectance
-/// factors (geometries × wavelengths), the wavelengths and the flop index.
-#[allow(clippy::type_complexity)]
-pub fn reading_columns<'py>(
-    py: Python<'py>,
-    reading: &MultiangleReading,
-) -> Result<(
+/// A multi-angle reading for Python: the columns, the reflectance factors (geometries ×
+/// wavelengths), the wavelengths and the flop index.
+pub type ReadingColumns<'py> = (
     Bound<'py, PyDict>,
     Bound<'py, numpy::PyArray2<f64>>,
     Bound<'py, PyArray1<f64>>,
     Option<f64>,
-)> {
+);
+
+/// A multi-angle reading as [`multiangle_columns`] returns it ([`ReadingColumns`]).
+pub fn reading_columns<'py>(
+    py: Python<'py>,
+    reading: &MultiangleReading,
+) -> Result<ReadingColumns<'py>> {
     let columns = PyDict::new(py);
     let g = &reading.geometries;
     let column = |f: &dyn Fn(&GeometryReading) -> f64| -> Bound<'py, PyArray1<f64>> {

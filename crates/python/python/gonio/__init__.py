@@ -201,14 +201,11 @@ def multiangle(
         if standard.lower() not in sets:
             raise ValueError(f"standard {standard!r}: use \"e2194\" or \"e2539\"")
         geometries = sets[standard.lower()]
-    columns, factors, wavelengths, flop = _gonio.multiangle_columns(
-        table, [str(g) for g in geometries], float(aperture_deg), illuminant, int(observer_deg)
+    return coating._reading_frame(
+        *_gonio.multiangle_columns(
+            table, [str(g) for g in geometries], float(aperture_deg), illuminant, int(observer_deg)
+        )
     )
-    df = pd.DataFrame(columns)
-    for i, wl in enumerate(wavelengths):
-        df[f"R_{wl:g}nm"] = factors[:, i]
-    df.attrs["flop_index"] = flop
-    return df
 
 
 def render(

@@ -89,6 +89,8 @@ def compute(
 
 
 def _reading_frame(columns, factors, wavelengths, flop) -> pd.DataFrame:
+    """A multi-angle reading's DataFrame: the columns, then ``R_<nm>nm`` per wavelength, the
+    flop index in ``attrs`` (shared with :func:`gonio.multiangle`)."""
     df = pd.DataFrame(columns)
     for i, wl in enumerate(wavelengths):
         df[f"R_{wl:g}nm"] = factors[:, i]
