@@ -10,7 +10,7 @@ use gonio_coating::description;
 use gonio_coating::system::{Coating, Method, default_bands};
 use gonio_instrument::coating_study_output;
 use gonio_instrument::coating_summary::summarise;
-use gonio_instrument::multiangle::{self, E2194, Geometry};
+use gonio_instrument::multiangle;
 use gonio_render::panel;
 use std::path::{Path, PathBuf};
 
@@ -355,25 +355,12 @@ fn sensitivity(a: SensitivityArgs) -> Result<()> {
     let wavelengths = default_bands();
     let coating = read(&a.coating, &wavelengths)?;
     let varied = Varied::parse_list(&a.vary).context("--vary")?;
-    let geometries: &[Geometry] = match a.standard.as_str() {
-        "e2194" => &E2194,
-        "e2539" => &multiangle::E2539,
-        other => anyhow::bail!("--standard {other}: e2194 or e2539"),
-    };
+    let geometries = multiangle::standard(&a.standard).context("--standard")?;
     let outputs = match &a.outputs {
         Some(list) => Output::parse_list(list).context("--outputs")?,
         None => Output::all(geometries),
     };
-    let method = match (a.method.as_str(), a.samples) {
-        ("sobol", None) => Method::default(),
-        ("sobol", Some(base)) => Method::Sobol { base },
-        ("morris", None) => Method::morris(),
-        ("morris", Some(trajectories)) => Method::Morris {
-            trajectories,
-            levels: gonio_formulation::sensitivity::morris::LEVELS,
-        },
-        (other, _) => anyhow::bail!("--method {other}: sobol or morris"),
-    };
+    let method = Method::parse(&a.method, a.samples).context("--method")?;
     let settings = Settings {
         geometries: geometries.to_vec(),
         walks: a.walks,
@@ -398,38 +385,12 @@ fn sensitivity(a: SensitivityArgs) -> Result<()> {
     }
     let names: Vec<&str> = s.problem.inputs().iter().map(|i| i.name.as_str()).collect();
     if a.json {
-        let rows: Vec<serde_json::Value> = s
-            .outputs
-            .iter()
-            .enumerate()
-            .map(|(k, o)| {
-                let per_input = |v: &[f64]| -> serde_json::Value {
-                    names.iter().zip(v).map(|(n, x)| (n.to_string(), serde_json::json!(x))).collect::<serde_json::Map<_, _>>().into()
-                };
-                let indices = match &s.indices {
-                    Indices::Sobol(i) => serde_json::json!({
-                        "s1": per_input(&i[k].s1), "s1_conf": per_input(&i[k].s1_conf),
-                        "st": per_input(&i[k].st), "st_conf": per_input(&i[k].st_conf),
-                    }),
-                    Indices::Morris { effects, .. } => serde_json::json!({
-                        "mu": per_input(&effects[k].mu), "mu_star": per_input(&effects[k].mu_star),
-                        "sigma": per_input(&effects[k].sigma), "mu_star_conf": per_input(&effects[k].mu_star_conf),
-                    }),
-                };
-                serde_json::json!({
-                    "output": o.name(), "base": s.base[k], "noise": s.noise[k],
-                    "variance": s.variance(k), "indices": indices,
-                })
-            })
-            .collect();
-        let json = serde_json::json!({
-            "file": a.coating.display().to_string(),
-            "method": a.method,
-            "readings": s.points.nrows(),
-            "inputs": varied.iter().map(|v| serde_json::json!({"name": v.name, "lo": v.lo, "hi": v.hi})).collect::<Vec<_>>(),
-            "summary": s.summary(a.threshold),
-            "outputs": rows,
-        });
+        let mut json = serde_json::json!({ "file": a.coating.display().to_string() });
+        if let (Some(out), serde_json::Value::Object(fields)) =
+            (json.as_object_mut(), s.to_json(&varied, a.threshold))
+        {
+            out.extend(fields);
+        }
         println!("{}", serde_json::to_string_pretty(&json)?);
         return Ok(());
     }
@@ -465,11 +426,7 @@ fn study(a: StudyArgs) -> Result<()> {
         (_, true) => anyhow::bail!("--values: give the values of {} to study", a.vary),
         _ => a.values.clone(),
     };
-    let geometries: &[Geometry] = match a.standard.as_str() {
-        "e2194" => &E2194,
-        "e2539" => &multiangle::E2539,
-        other => anyhow::bail!("--standard {other}: e2194 or e2539"),
-    };
+    let geometries = multiangle::standard(&a.standard).context("--standard")?;
     let rows = coating_study::run(
         &coating,
         &constituent,

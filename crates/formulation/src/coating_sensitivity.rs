@@ -29,8 +29,6 @@ use gonio_instrument::coating_study::{self, Constituent, Reading};
 use gonio_instrument::multiangle::{E2194, Geometry};
 use ndarray::Array2;
 use rayon::prelude::*;
-use std::fmt::Write as _;
-use std::path::Path;
 
 /// One varied constituent and its bounds.
 #[derive(Clone, Debug, PartialEq)]
@@ -98,6 +96,31 @@ impl Method {
 }
 
 impl Method {
+    /// `sobol` or `morris` with `samples` base points or trajectories (default
+    /// [`Settings::SOBOL_BASE`], [`Settings::MORRIS_TRAJECTORIES`] on [`morris::LEVELS`]).
+    pub fn parse(name: &str, samples: Option<usize>) -> Result<Self> {
+        match (name.to_ascii_lowercase().as_str(), samples) {
+            ("sobol", None) => Ok(Method::default()),
+            ("sobol", Some(base)) => Ok(Method::Sobol { base }),
+            ("morris", None) => Ok(Method::morris()),
+            ("morris", Some(trajectories)) => Ok(Method::Morris {
+                trajectories,
+                levels: morris::LEVELS,
+            }),
+            _ => Err(FormulationError::Invalid(format!(
+                "method '{name}': sobol (variance-based indices) or morris (screening)"
+            ))),
+        }
+    }
+
+    /// The method's name: `sobol` or `morris`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Method::Sobol { .. } => "sobol",
+            Method::Morris { .. } => "morris",
+        }
+    }
+
     /// Morris with [`Settings::MORRIS_TRAJECTORIES`] trajectories on [`morris::LEVELS`] levels.
     pub fn morris() -> Self {
         Method::Morris {
@@ -194,6 +217,211 @@ pub struct Sensitivity {
     pub noise: Vec<f64>,
 }
 
+/// A sensitivity run taken apart, so that its readings can be spread over many machines (the
+/// Python package's Dask client): the checks and the base formulation's reading
+/// ([`Plan::new`]), the design ([`Plan::design`]), the reading of any rows of it
+/// ([`Plan::read_point`], each row the same whatever reads it and wherever), the noise
+/// ([`Plan::noise`]) and the indices ([`Plan::analyze`]). [`run`] does the four in a row.
+pub struct Plan {
+    base: Coating,
+    varied: Vec<Varied>,
+    outputs: Vec<Output>,
+    method: Method,
+    settings: Settings,
+    problem: Problem,
+    /// The standard's geometries and those the outputs name.
+    geometries: Vec<Geometry>,
+    reference: Reading,
+    base_values: Vec<f64>,
+}
+
+impl Plan {
+    /// Check the run (at least one output, the bounds make valid coatings) and read the base
+    /// formulation.
+    pub fn new(
+        base: &Coating,
+        varied: &[Varied],
+        outputs: &[Output],
+        method: Method,
+        settings: &Settings,
+    ) -> Result<Plan> {
+        if outputs.is_empty() {
+            return Err(FormulationError::Invalid(
+                "a sensitivity needs at least one output".into(),
+            ));
+        }
+        if settings.geometries.is_empty() {
+            return Err(FormulationError::Invalid(
+                "a sensitivity needs the standard's geometries".into(),
+            ));
+        }
+        let problem = Problem::new(
+            varied
+                .iter()
+                .map(|v| Input::new(&v.name, v.lo, v.hi))
+                .collect(),
+        )?;
+        // Every bound must make a valid coating, so that a bad range fails before the readings.
+        for v in varied {
+            for bound in [v.lo, v.hi] {
+                v.constituent
+                    .apply(base, bound)
+                    .and_then(|c| Ok(c.check(&settings.wavelengths_nm)?))
+                    .map_err(|e| {
+                        FormulationError::Invalid(format!("{}={}:{}: {e}", v.name, v.lo, v.hi))
+                    })?;
+            }
+        }
+        let mut geometries = settings.geometries.clone();
+        for g in outputs.iter().flat_map(Output::geometries) {
+            if !geometries.contains(&g) {
+                geometries.push(g);
+            }
+        }
+        let reference = read(base, &geometries, settings, 0)?;
+        let mut plan = Plan {
+            base: base.clone(),
+            varied: varied.to_vec(),
+            outputs: outputs.to_vec(),
+            method,
+            settings: settings.clone(),
+            problem,
+            geometries,
+            reference,
+            base_values: Vec::new(),
+        };
+        plan.base_values = plan.values_of(&plan.reference)?;
+        Ok(plan)
+    }
+
+    /// The outputs' names, in order.
+    pub fn outputs(&self) -> &[Output] {
+        &self.outputs
+    }
+
+    fn read(&self, coating: &Coating, seed: u64) -> Result<Reading> {
+        read(coating, &self.geometries, &self.settings, seed)
+    }
+
+    fn values_of(&self, reading: &Reading) -> Result<Vec<f64>> {
+        self.outputs
+            .iter()
+            .map(|o| {
+                o.value(
+                    reading,
+                    &self.reference.multiangle,
+                    &self.settings.geometries,
+                )
+            })
+            .collect()
+    }
+
+    /// The design: one row per reading, one column per varied constituent (physical units).
+    pub fn design(&self) -> Result<Array2<f64>> {
+        match self.method {
+            Method::Sobol { base } => sobol::sample(&self.problem, base, self.settings.seed as u32),
+            Method::Morris {
+                trajectories,
+                levels,
+            } => morris::sample(&self.problem, trajectories, levels, self.settings.seed),
+        }
+    }
+
+    /// The outputs at the point `x` (one value per varied constituent), read with seed 0.
+    pub fn read_point(&self, x: &[f64]) -> Result<Vec<f64>> {
+        let mut coating = self.base.clone();
+        for (v, &value) in self.varied.iter().zip(x) {
+            coating = v.constituent.apply(&coating, value)?;
+        }
+        self.values_of(&self.read(&coating, 0)?)
+    }
+
+    /// Each output's noise: the standard deviation of the base formulation's readings with seed
+    /// 0 and [`Settings::noise_repeats`] other seeds (0 without repeats).
+    pub fn noise(&self) -> Result<Vec<f64>> {
+        if self.settings.noise_repeats == 0 {
+            return Ok(vec![0.0; self.outputs.len()]);
+        }
+        let repeats = (1..=self.settings.noise_repeats as u64)
+            .into_par_iter()
+            .map(|seed| self.values_of(&self.read(&self.base, seed)?))
+            .collect::<Result<Vec<_>>>()?;
+        Ok((0..self.outputs.len())
+            .map(|k| {
+                let mut all: Vec<f64> = repeats.iter().map(|r| r[k]).collect();
+                all.push(self.base_values[k]);
+                sensitivity::sample_std(&all)
+            })
+            .collect())
+    }
+
+    /// The indices of the readings `values` (one row per row of `points`, which must be
+    /// [`Plan::design`]'s), with each output's `noise`.
+    pub fn analyze(
+        &self,
+        points: Array2<f64>,
+        values: Array2<f64>,
+        noise: Vec<f64>,
+    ) -> Result<Sensitivity> {
+        if points != self.design()? || values.dim() != (points.nrows(), self.outputs.len()) {
+            return Err(FormulationError::Invalid(format!(
+                "the readings are not those of the plan's design: {} × {} values for {} points \
+                 and {} outputs",
+                values.nrows(),
+                values.ncols(),
+                points.nrows(),
+                self.outputs.len()
+            )));
+        }
+        if let Some(bad) = values.iter().find(|v| !v.is_finite()) {
+            return Err(FormulationError::Invalid(format!(
+                "a reading is not a finite number ({bad})"
+            )));
+        }
+        let indices = match self.method {
+            Method::Sobol { .. } => {
+                Indices::Sobol(sobol::analyze(&self.problem, &values, self.settings.seed)?)
+            }
+            Method::Morris { levels, .. } => Indices::Morris {
+                levels,
+                effects: morris::analyze(
+                    &self.problem,
+                    &points,
+                    &values,
+                    levels,
+                    self.settings.seed,
+                )?,
+            },
+        };
+        Ok(Sensitivity {
+            problem: self.problem.clone(),
+            outputs: self.outputs.clone(),
+            points,
+            values,
+            indices,
+            base: self.base_values.clone(),
+            noise,
+        })
+    }
+}
+
+/// `coating` read at `geometries` as `settings` say, from the streams of `seed`.
+fn read(
+    coating: &Coating,
+    geometries: &[Geometry],
+    settings: &Settings,
+    seed: u64,
+) -> Result<Reading> {
+    Ok(coating_study::read_coating(
+        coating,
+        geometries,
+        &settings.wavelengths_nm,
+        settings.walks,
+        settings.gloss_walks,
+        seed,
+    )?)
+}
+
 /// The sensitivity of `outputs` of `base` to the `varied` constituents by `method`, each point
 /// read with `settings` (in parallel; the same result on any number of threads).
 pub fn run(
@@ -203,380 +431,9 @@ pub fn run(
     method: Method,
     settings: &Settings,
 ) -> Result<Sensitivity> {
-    if outputs.is_empty() {
-        return Err(FormulationError::Invalid(
-            "a sensitivity needs at least one output".into(),
-        ));
-    }
-    if settings.geometries.is_empty() {
-        return Err(FormulationError::Invalid(
-            "a sensitivity needs the standard's geometries".into(),
-        ));
-    }
-    let problem = Problem::new(
-        varied
-            .iter()
-            .map(|v| Input::new(&v.name, v.lo, v.hi))
-            .collect(),
-    )?;
-    // Every bound must make a valid coating, so that a bad range fails before the readings.
-    for v in varied {
-        for bound in [v.lo, v.hi] {
-            v.constituent
-                .apply(base, bound)
-                .and_then(|c| Ok(c.check(&settings.wavelengths_nm)?))
-                .map_err(|e| {
-                    FormulationError::Invalid(format!("{}={}:{}: {e}", v.name, v.lo, v.hi))
-                })?;
-        }
-    }
-    let mut geometries = settings.geometries.clone();
-    for g in outputs.iter().flat_map(Output::geometries) {
-        if !geometries.contains(&g) {
-            geometries.push(g);
-        }
-    }
-    let read = |coating: &Coating, seed: u64| -> Result<Reading> {
-        Ok(coating_study::read_coating(
-            coating,
-            &geometries,
-            &settings.wavelengths_nm,
-            settings.walks,
-            settings.gloss_walks,
-            seed,
-        )?)
-    };
-    let reference = read(base, 0)?;
-    let values_of = |reading: &Reading| -> Result<Vec<f64>> {
-        outputs
-            .iter()
-            .map(|o| o.value(reading, &reference.multiangle, &settings.geometries))
-            .collect()
-    };
-    let base_values = values_of(&reference)?;
-    let model = |x: &[f64]| -> Result<Vec<f64>> {
-        let mut coating = base.clone();
-        for (v, &value) in varied.iter().zip(x) {
-            coating = v.constituent.apply(&coating, value)?;
-        }
-        values_of(&read(&coating, 0)?)
-    };
-    let (points, indices, values) = match method {
-        Method::Sobol { base } => {
-            let points = sobol::sample(&problem, base, settings.seed as u32)?;
-            let values = sensitivity::evaluate(&points, outputs.len(), model)?;
-            let indices = Indices::Sobol(sobol::analyze(&problem, &values, settings.seed)?);
-            (points, indices, values)
-        }
-        Method::Morris {
-            trajectories,
-            levels,
-        } => {
-            let points = morris::sample(&problem, trajectories, levels, settings.seed)?;
-            let values = sensitivity::evaluate(&points, outputs.len(), model)?;
-            let effects = morris::analyze(&problem, &points, &values, levels, settings.seed)?;
-            (points, Indices::Morris { levels, effects }, values)
-        }
-    };
-    let noise = if settings.noise_repeats == 0 {
-        vec![0.0; outputs.len()]
-    } else {
-        let repeats = (1..=settings.noise_repeats as u64)
-            .into_par_iter()
-            .map(|seed| values_of(&read(base, seed)?))
-            .collect::<Result<Vec<_>>>()?;
-        (0..outputs.len())
-            .map(|k| {
-                let mut all: Vec<f64> = repeats.iter().map(|r| r[k]).collect();
-                all.push(base_values[k]);
-                sensitivity::sample_std(&all)
-            })
-            .collect()
-    };
-    Ok(Sensitivity {
-        problem,
-        outputs: outputs.to_vec(),
-        points,
-        values,
-        indices,
-        base: base_values,
-        noise,
-    })
-}
-
-impl Sensitivity {
-    /// The variance of output `k` over the design (its units squared, n in the denominator).
-    pub fn variance(&self, k: usize) -> f64 {
-        let column = self.values.column(k);
-        let mean = column.mean().unwrap_or(0.0);
-        column.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / column.len() as f64
-    }
-
-    /// Which inputs drive each output, in words, one line per output: the inputs whose total
-    /// index (Sobol) is at least `threshold`, or whose μ* is at least `threshold` times the
-    /// largest (Morris), strongest first, then those that do not matter. An output that does
-    /// not vary says so, and an output whose noise variance is above a tenth of its variance
-    /// says how much of it is noise. E.g. "60° gloss is driven by roughness (ST 0.93 ± 0.05);
-    /// tilt and coverage do not matter (ST < 0.02)."
-    pub fn summary(&self, threshold: f64) -> String {
-        let names: Vec<&str> = self
-            .problem
-            .inputs()
-            .iter()
-            .map(|i| i.name.as_str())
-            .collect();
-        let mut text = String::new();
-        for (k, output) in self.outputs.iter().enumerate() {
-            let what = capitalise(&output.words());
-            let variance = self.variance(k);
-            if variance == 0.0 {
-                let _ = writeln!(text, "{what} does not vary over these ranges.");
-                continue;
-            }
-            // (input, measure, its half-width) for each input, and how the measure is named.
-            let (label, measure): (&str, Vec<(usize, f64, f64)>) = match &self.indices {
-                Indices::Sobol(s) => (
-                    "ST",
-                    (0..names.len())
-                        .map(|i| (i, s[k].st[i], s[k].st_conf[i]))
-                        .collect(),
-                ),
-                Indices::Morris { effects, .. } => (
-                    "μ*",
-                    (0..names.len())
-                        .map(|i| (i, effects[k].mu_star[i], effects[k].mu_star_conf[i]))
-                        .collect(),
-                ),
-            };
-            let cut = match self.indices {
-                Indices::Sobol(_) => threshold,
-                Indices::Morris { .. } => {
-                    threshold * measure.iter().map(|m| m.1).fold(0.0, f64::max)
-                }
-            };
-            let mut strong: Vec<_> = measure.iter().filter(|m| m.1 >= cut).copied().collect();
-            strong.sort_by(|a, b| b.1.total_cmp(&a.1));
-            let weak: Vec<_> = measure.iter().filter(|m| m.1 < cut).copied().collect();
-            let list = |items: &[(usize, f64, f64)]| {
-                join(
-                    &items
-                        .iter()
-                        .map(|m| names[m.0].to_string())
-                        .collect::<Vec<_>>(),
-                )
-            };
-            let mut sentence = if strong.is_empty() {
-                let top = measure.iter().max_by(|a, b| a.1.total_cmp(&b.1)).copied();
-                let (i, v, _) = top.expect("at least one input");
-                format!(
-                    "{what}: no input reaches {label} {} (the largest, {}, has {label} {})",
-                    figure(cut),
-                    names[i],
-                    figure(v)
-                )
-            } else {
-                format!(
-                    "{what} is driven by {}",
-                    join(
-                        &strong
-                            .iter()
-                            .map(|m| format!(
-                                "{} ({label} {} ± {})",
-                                names[m.0],
-                                figure(m.1),
-                                figure(m.2)
-                            ))
-                            .collect::<Vec<_>>()
-                    )
-                )
-            };
-            if !weak.is_empty() && !strong.is_empty() {
-                let largest = weak.iter().map(|m| m.1).fold(f64::NEG_INFINITY, f64::max);
-                let verb = if weak.len() == 1 { "does" } else { "do" };
-                let _ = write!(
-                    sentence,
-                    "; {} {verb} not matter ({label} ≤ {})",
-                    list(&weak),
-                    figure(largest.max(0.0))
-                );
-            }
-            let noise_share = self.noise[k] * self.noise[k] / variance;
-            if noise_share > 0.1 {
-                let _ = write!(
-                    sentence,
-                    " (its noise, sd {}, is {:.0}% of its variance over the design: read with \
-                     more walks)",
-                    figure(self.noise[k]),
-                    100.0 * noise_share
-                );
-            }
-            let _ = writeln!(text, "{sentence}.");
-        }
-        text
-    }
-
-    /// Write the index table as CSV: one row per output and input, with the output's variance
-    /// over the design, its value on the base formulation and its noise; the Sobol columns
-    /// `s1, s1_conf, st, st_conf` or the Morris ones `mu, mu_star, sigma, mu_star_conf`
-    /// (confidences are 95% half-widths).
-    pub fn write_csv_to<W: std::io::Write>(&self, writer: W) -> csv::Result<()> {
-        let mut w = csv::Writer::from_writer(writer);
-        let method: [&str; 4] = match self.indices {
-            Indices::Sobol(_) => ["s1", "s1_conf", "st", "st_conf"],
-            Indices::Morris { .. } => ["mu", "mu_star", "sigma", "mu_star_conf"],
-        };
-        let mut header = vec!["output", "input", "variance", "base", "noise"];
-        header.extend(method);
-        w.write_record(&header)?;
-        for (k, output) in self.outputs.iter().enumerate() {
-            for (i, input) in self.problem.inputs().iter().enumerate() {
-                let figures = match &self.indices {
-                    Indices::Sobol(s) => {
-                        let s = &s[k];
-                        [s.s1[i], s.s1_conf[i], s.st[i], s.st_conf[i]]
-                    }
-                    Indices::Morris { effects, .. } => {
-                        let e = &effects[k];
-                        [e.mu[i], e.mu_star[i], e.sigma[i], e.mu_star_conf[i]]
-                    }
-                };
-                let mut record = vec![
-                    output.name(),
-                    input.name.clone(),
-                    self.variance(k).to_string(),
-                    self.base[k].to_string(),
-                    self.noise[k].to_string(),
-                ];
-                record.extend(figures.iter().map(f64::to_string));
-                w.write_record(&record)?;
-            }
-        }
-        w.flush()?;
-        Ok(())
-    }
-
-    /// [`Sensitivity::write_csv_to`] into the file `path`, atomically ([`gonio_io::write_atomic`]:
-    /// the old file or the whole new one, never half a file).
-    pub fn write_csv(&self, path: &Path) -> Result<()> {
-        gonio_io::write_atomic(
-            path,
-            |w| self.write_csv_to(w).map_err(std::io::Error::other),
-            std::convert::identity,
-        )
-        .map_err(|error| FormulationError::Io {
-            path: path.display().to_string(),
-            error,
-        })
-    }
-
-    /// The bars of output `k`: each input's total index ST with its 95% interval (Sobol), or its
-    /// μ* with its interval (Morris), largest first; and what the bars measure.
-    pub fn bars(&self, k: usize) -> (Vec<(String, f64, f64)>, &'static str) {
-        let names = self.problem.inputs().iter().map(|i| i.name.clone());
-        let (mut bars, what): (Vec<(String, f64, f64)>, _) = match &self.indices {
-            Indices::Sobol(s) => (
-                names
-                    .zip(s[k].st.iter().zip(&s[k].st_conf))
-                    .map(|(n, (v, c))| (n, *v, *c))
-                    .collect(),
-                "total Sobol index ST (95% bootstrap interval)",
-            ),
-            Indices::Morris { effects, .. } => (
-                names
-                    .zip(effects[k].mu_star.iter().zip(&effects[k].mu_star_conf))
-                    .map(|(n, (v, c))| (n, *v, *c))
-                    .collect(),
-                "Morris mu* (output units; 95% bootstrap interval)",
-            ),
-        };
-        bars.sort_by(|a, b| b.1.total_cmp(&a.1));
-        (bars, what)
-    }
-
-    /// Write `sensitivity.csv` ([`Sensitivity::write_csv`]), `summary.txt` (the summary in
-    /// words at `threshold`) and one bar chart per output, `sensitivity-NAME.png`, into `dir`
-    /// (created if missing). Returns the files written.
-    pub fn write(&self, dir: &Path, threshold: f64) -> Result<Vec<std::path::PathBuf>> {
-        let io = |path: &Path| {
-            let path = path.display().to_string();
-            move |error| FormulationError::Io { path, error }
-        };
-        std::fs::create_dir_all(dir).map_err(io(dir))?;
-        let csv = dir.join("sensitivity.csv");
-        self.write_csv(&csv)?;
-        let summary = dir.join("summary.txt");
-        let text = self.summary(threshold);
-        gonio_io::write_atomic(
-            &summary,
-            |w| std::io::Write::write_all(w, text.as_bytes()),
-            std::convert::identity,
-        )
-        .map_err(io(&summary))?;
-        let mut written = vec![csv, summary];
-        for (k, output) in self.outputs.iter().enumerate() {
-            let (bars, what) = self.bars(k);
-            let bars: Vec<gonio_plot::Bar> = bars
-                .into_iter()
-                .map(|(label, value, error)| gonio_plot::Bar {
-                    label,
-                    value,
-                    error,
-                })
-                .collect();
-            let name = output.name().replace(['@', '/'], "_");
-            let png = dir.join(format!("sensitivity-{name}.png"));
-            let title = format!("What drives {}", output.words());
-            if let Err(e) = gonio_plot::bar_chart_png(
-                &png,
-                (700, 120 + 50 * bars.len() as u32),
-                &title,
-                what,
-                &bars,
-            ) {
-                match e {
-                    // An output that does not vary over the design has no bars to draw; the
-                    // summary says so.
-                    gonio_plot::PlotError::Data(_) => continue,
-                    other => {
-                        return Err(FormulationError::Invalid(format!(
-                            "{}: {other}",
-                            png.display()
-                        )));
-                    }
-                }
-            }
-            written.push(png);
-        }
-        Ok(written)
-    }
-}
-
-/// Two significant figures, with an exponent below 0.001 (one figure: "1e-6").
-fn figure(v: f64) -> String {
-    if v == 0.0 {
-        return "0".into();
-    }
-    if v.abs() < 1e-3 {
-        return format!("{v:.0e}");
-    }
-    let digits = (1 - v.abs().log10().floor() as i32).max(0) as usize;
-    format!("{v:.digits$}")
-}
-
-/// "a", "a and b", "a, b and c".
-fn join(items: &[String]) -> String {
-    match items {
-        [] => String::new(),
-        [one] => one.clone(),
-        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
-    }
-}
-
-/// The sentence's first letter in upper case.
-fn capitalise(s: &str) -> String {
-    let mut chars = s.chars();
-    chars
-        .next()
-        .map(|c| c.to_uppercase().chain(chars).collect())
-        .unwrap_or_default()
+    let plan = Plan::new(base, varied, outputs, method, settings)?;
+    let points = plan.design()?;
+    let values = sensitivity::evaluate(&points, outputs.len(), |x| plan.read_point(x))?;
+    let noise = plan.noise()?;
+    plan.analyze(points, values, noise)
 }

@@ -9,5 +9,6 @@ pub mod appearance;
 pub mod coating_sensitivity;
 pub mod error;
 pub mod sensitivity;
+pub mod sensitivity_report;
 
 pub use error::{FormulationError, Result};

@@ -64,6 +64,17 @@ pub const E2539: [Geometry; 10] = [
     Geometry::new(15.0, 80.0),
 ];
 
+/// The geometries of the standard named `name`: `e2194` or `e2539` (any case).
+pub fn standard(name: &str) -> Result<&'static [Geometry]> {
+    match name.to_ascii_lowercase().as_str() {
+        "e2194" => Ok(&E2194),
+        "e2539" => Ok(&E2539),
+        _ => Err(InstrumentError::Invalid(format!(
+            "standard '{name}': e2194 (45° illumination) or e2539 (with 15° illumination)"
+        ))),
+    }
+}
+
 impl Geometry {
     /// The geometry `illumination_deg`as`aspecular_deg`.
     pub const fn new(illumination_deg: f64, aspecular_deg: f64) -> Self {

@@ -12,11 +12,13 @@ use gonio_brdf::table::Resolution;
 use gonio_coating::cell::CellWalks;
 use gonio_coating::description;
 use gonio_coating::system::{self, default_bands};
+use gonio_formulation::appearance::Output;
+use gonio_formulation::coating_sensitivity::{Method, Plan, Settings, Varied};
+use gonio_formulation::sensitivity;
 use gonio_instrument::coating_study::{self, Constituent};
 use gonio_instrument::coating_study_output;
 use gonio_instrument::coating_summary::summarise;
-use gonio_instrument::multiangle::Geometry;
-use numpy::{PyArray1, PyArray3, PyArrayMethods};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray2};
 use pyo3::prelude::*;
 use std::path::PathBuf;
 
@@ -64,18 +66,6 @@ pub fn read_coating(
             })
         }
         _ => Err(invalid("give a coating file or a description")),
-    }
-}
-
-/// The geometries of `standard` ("e2194" or "e2539").
-fn standard(name: &str) -> Result<&'static [Geometry]> {
-    use gonio_instrument::multiangle::{E2194, E2539};
-    match name.to_ascii_lowercase().as_str() {
-        "e2194" => Ok(&E2194),
-        "e2539" => Ok(&E2539),
-        other => Err(invalid(format!(
-            "standard {other:?}: use \"e2194\" or \"e2539\""
-        ))),
     }
 }
 
@@ -134,7 +124,7 @@ impl Coating {
         standard: &str,
         samples: usize,
     ) -> Result<ReadingColumns<'py>> {
-        let geometries = self::standard(standard)?;
+        let geometries = gonio_instrument::multiangle::standard(standard)?;
         let coating = self.coating.clone();
         let reading = py.detach(move || {
             let wl = default_bands();
@@ -156,7 +146,7 @@ impl Coating {
         samples: usize,
     ) -> Result<String> {
         let constituent = Constituent::parse(vary)?;
-        let geometries = self::standard(standard)?;
+        let geometries = gonio_instrument::multiangle::standard(standard)?;
         let coating = self.coating.clone();
         let rows = {
             let constituent = constituent.clone();
@@ -203,5 +193,100 @@ impl Coating {
             PyArray1::from_vec(py, flat).reshape([h, w, 3])?,
             stats.seconds,
         ))
+    }
+}
+
+/// A coating's sensitivity taken apart (`gonio_formulation::coating_sensitivity::Plan`), so
+/// that Python can read the design's rows anywhere (on Dask workers) and analyse them here:
+/// `design`, `read_points`, `noise`, `analyze`.
+#[pyclass(name = "SensitivityPlan", module = "gonio._gonio", frozen)]
+pub struct SensitivityPlan {
+    plan: Plan,
+    varied: Vec<Varied>,
+}
+
+/// The plan of `coating`'s sensitivity: `vary` (NAME=LO:HI,...), `outputs` (None: all at the
+/// standard's geometries), `method` (sobol or morris) with `samples` base points or
+/// trajectories (None: the defaults), the `standard`'s geometries, `walks` per geometry. Reads
+/// the base formulation (about a second).
+#[pyfunction]
+#[pyo3(signature = (coating, vary, outputs, method, samples, standard, walks))]
+#[allow(clippy::too_many_arguments)]
+pub fn sensitivity_plan(
+    py: Python<'_>,
+    coating: &Coating,
+    vary: &str,
+    outputs: Option<String>,
+    method: &str,
+    samples: Option<usize>,
+    standard: &str,
+    walks: usize,
+) -> Result<SensitivityPlan> {
+    let varied = Varied::parse_list(vary)?;
+    let geometries = gonio_instrument::multiangle::standard(standard)?;
+    let outputs = match outputs {
+        Some(list) => Output::parse_list(&list)?,
+        None => Output::all(geometries),
+    };
+    let method = Method::parse(method, samples)?;
+    let settings = Settings {
+        geometries: geometries.to_vec(),
+        walks,
+        ..Settings::default()
+    };
+    let base = coating.coating.clone();
+    let v = varied.clone();
+    let plan = py.detach(move || Plan::new(&base, &v, &outputs, method, &settings))?;
+    Ok(SensitivityPlan { plan, varied })
+}
+
+#[pymethods]
+impl SensitivityPlan {
+    /// The design: (readings, constituents) in physical units.
+    fn design<'py>(&self, py: Python<'py>) -> Result<Bound<'py, PyArray2<f64>>> {
+        Ok(self.plan.design()?.into_pyarray(py))
+    }
+
+    /// The outputs' names, in the order of the columns of `read_points`.
+    fn output_names(&self) -> Vec<String> {
+        self.plan.outputs().iter().map(Output::name).collect()
+    }
+
+    /// The outputs at each row of `points` (rows, constituents): (rows, outputs), read in
+    /// parallel with the GIL released; a row's values do not depend on the other rows, their
+    /// order or the machine.
+    fn read_points<'py>(
+        &self,
+        py: Python<'py>,
+        points: PyReadonlyArray2<'_, f64>,
+    ) -> Result<Bound<'py, PyArray2<f64>>> {
+        let points = points.as_array().to_owned();
+        let plan = &self.plan;
+        let values = py.detach(|| {
+            sensitivity::evaluate(&points, plan.outputs().len(), |x| plan.read_point(x))
+        })?;
+        Ok(values.into_pyarray(py))
+    }
+
+    /// Each output's noise (one standard deviation over re-readings of the base formulation).
+    fn noise(&self, py: Python<'_>) -> Result<Vec<f64>> {
+        Ok(py.detach(|| self.plan.noise())?)
+    }
+
+    /// The indices of the design's readings `values` (rows of `design()` in order), as JSON
+    /// text of `gonio coating sensitivity --json`'s structure (summary at `threshold`).
+    fn analyze_json(
+        &self,
+        points: PyReadonlyArray2<'_, f64>,
+        values: PyReadonlyArray2<'_, f64>,
+        noise: Vec<f64>,
+        threshold: f64,
+    ) -> Result<String> {
+        let s = self.plan.analyze(
+            points.as_array().to_owned(),
+            values.as_array().to_owned(),
+            noise,
+        )?;
+        Ok(s.to_json(&self.varied, threshold).to_string())
     }
 }

@@ -89,6 +89,17 @@ impl From<gonio_render::RenderError> for Error {
     }
 }
 
+impl From<gonio_formulation::FormulationError> for Error {
+    fn from(e: gonio_formulation::FormulationError) -> Error {
+        use gonio_formulation::FormulationError as E;
+        match e {
+            E::Instrument(i) => i.into(),
+            E::Io { ref error, .. } => os(error.kind(), e.to_string()),
+            other => invalid(other.to_string()),
+        }
+    }
+}
+
 impl From<gonio_coating::CoatingError> for Error {
     fn from(e: gonio_coating::CoatingError) -> Error {
         invalid(e.to_string())

@@ -40,5 +40,7 @@ fn _gonio(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("TABLE_WALKS", gonio_coating::system::TABLE_WALKS)?;
     m.add("TARGET_DL", gonio_coating::system::TARGET_DL)?;
     m.add_function(wrap_pyfunction!(coating::read_coating, m)?)?;
+    m.add_class::<coating::SensitivityPlan>()?;
+    m.add_function(wrap_pyfunction!(coating::sensitivity_plan, m)?)?;
     Ok(())
 }

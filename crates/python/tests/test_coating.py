@@ -9,6 +9,7 @@ import subprocess
 import tomllib
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import gonio
@@ -92,3 +93,25 @@ def test_bad_formulations_say_what_is_wrong():
         gonio.coating.multiangle(EXAMPLES / "red_solid.toml", standard="e9999")
     with pytest.raises(TypeError):
         gonio.coating.read(42)
+
+
+def test_sensitivity_on_dask_equals_serial_and_the_cli(gonio_cli):
+    distributed = pytest.importorskip("distributed")
+    path = EXAMPLES / "red_rough.toml"
+    args = dict(vary={"roughness": (0.05, 0.2), "thickness": (20, 60)},
+                outputs=["gu60", "L@45as15"], method="morris", samples=3, walks=16)
+    serial = gonio.coating.sensitivity(path, **args)
+    assert len(serial.design) == 9 and list(serial.readings.columns) == ["gu60", "L@45as15"]
+    # The clear coat's thickness changes nothing the instruments read: mu* exactly 0.
+    mu_star = serial.indices.set_index(["output", "input"])["mu_star"]
+    assert mu_star[("gu60", "thickness")] == 0.0 and mu_star[("gu60", "roughness")] > 0.1
+    assert "driven by roughness" in serial.summary
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True) as cluster:
+        with distributed.Client(cluster) as client:
+            parallel = gonio.coating.sensitivity(path, client=client, rows_per_task=2, **args)
+    pd.testing.assert_frame_equal(parallel.readings, serial.readings, check_exact=True)
+    pd.testing.assert_frame_equal(parallel.indices, serial.indices, check_exact=True)
+    cli = cli_json(gonio_cli, "coating", "sensitivity", path, "--vary",
+                   "roughness=0.05:0.2,thickness=20:60", "--outputs", "gu60,L@45as15",
+                   "--method", "morris", "--samples", "3", "--walks", "16", "--json")
+    assert {k: v for k, v in cli.items() if k != "file"} == serial.json

@@ -133,3 +133,28 @@ class Coating:
 def read_coating(
     path: str | PathLike[str] | None, text: str | None, json: bool, base_dir: str | PathLike[str]
 ) -> Coating: ...
+
+class SensitivityPlan:
+    """A coating's sensitivity taken apart: design, readings of rows, noise, analysis."""
+
+    def design(self) -> npt.NDArray[np.float64]: ...
+    def output_names(self) -> list[str]: ...
+    def read_points(self, points: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
+    def noise(self) -> list[float]: ...
+    def analyze_json(
+        self,
+        points: npt.NDArray[np.float64],
+        values: npt.NDArray[np.float64],
+        noise: list[float],
+        threshold: float,
+    ) -> str: ...
+
+def sensitivity_plan(
+    coating: Coating,
+    vary: str,
+    outputs: str | None,
+    method: str,
+    samples: int | None,
+    standard: str,
+    walks: int,
+) -> SensitivityPlan: ...

@@ -5,7 +5,8 @@ Kubelka-Munk base, with or without effect flakes (``docs/coatings.md``). The sam
 Read a formulation with :func:`read` (a TOML file, or a dict of the same tables), then ask for
 its :func:`info`, its spectral table (:func:`compute`), its multi-angle colour
 (:func:`multiangle`, a DataFrame), a formulation study (:func:`study`, a DataFrame) or its
-picture on the curved panel (:func:`panel_picture`, a numpy RGB array).
+picture on the curved panel (:func:`panel_picture`, a numpy RGB array), and which
+constituents drive which reading (:func:`sensitivity`, on Dask when given a client).
 
 Units: wavelengths in nm, angles in degrees, reflectances as fractions (0-1), CIELAB under D65
 for the 10° observer; the walks' counts are per evaluation (per geometry, per table cell).
@@ -31,6 +32,8 @@ __all__ = [
     "multiangle",
     "study",
     "panel_picture",
+    "sensitivity",
+    "Sensitivity",
     "TABLE_RESOLUTION",
     "DEFAULT_BANDS_NM",
 ]
@@ -150,3 +153,105 @@ def panel_picture(
     radiance. A few seconds to a minute on two cores."""
     srgb, radiance, _seconds = read(coating).panel_picture()
     return radiance if linear else srgb
+
+
+class Sensitivity:
+    """What :func:`sensitivity` found: ``summary`` (which constituents drive which reading, in
+    words), ``indices`` (a DataFrame, one row per output and constituent: Sobol ``s1``,
+    ``s1_conf``, ``st``, ``st_conf``, or Morris ``mu``, ``mu_star``, ``sigma``,
+    ``mu_star_conf``; the confidences are 95% half-widths), ``design`` (the points, one column
+    per constituent, physical units), ``readings`` (the outputs at each point), ``noise`` (each
+    output's standard deviation over re-readings of the base formulation) and ``json`` (the
+    structure ``gonio coating sensitivity --json`` prints)."""
+
+    def __init__(self, result: dict, design: pd.DataFrame, readings: pd.DataFrame):
+        self.json = result
+        self.summary: str = result["summary"]
+        self.method: str = result["method"]
+        self.design = design
+        self.readings = readings
+        rows = []
+        for o in result["outputs"]:
+            for name in o["indices"][next(iter(o["indices"]))]:
+                row = {"output": o["output"], "input": name}
+                row.update({k: v[name] for k, v in o["indices"].items()})
+                rows.append(row)
+        self.indices = pd.DataFrame(rows)
+        self.noise = pd.Series({o["output"]: o["noise"] for o in result["outputs"]})
+
+    def __repr__(self) -> str:
+        return f"Sensitivity({self.method}, {len(self.design)} readings)\n{self.summary}"
+
+
+def _plan(description, base_dir, vary, outputs, method, samples, standard, walks):
+    return _gonio.sensitivity_plan(
+        read(description, base_dir), vary, outputs, method, samples, standard, walks
+    )
+
+
+def _read_rows(plan_args: tuple, rows: np.ndarray) -> np.ndarray:
+    """Read some rows of a sensitivity's design (a Dask task: the plan is rebuilt where it
+    runs, from the formulation's path or dict)."""
+    return _plan(*plan_args).read_points(rows)
+
+
+def sensitivity(
+    coating: str | os.PathLike | Mapping[str, Any] | Coating,
+    vary: str | Mapping[str, tuple[float, float]],
+    outputs: Sequence[str] | None = None,
+    method: str = "sobol",
+    samples: int | None = None,
+    standard: str = "e2194",
+    walks: int = 1024,
+    threshold: float = 0.1,
+    client: Any = None,
+    rows_per_task: int = 8,
+    base_dir: str | os.PathLike = ".",
+) -> Sensitivity:
+    """Which constituents drive which reading (``gonio coating sensitivity``): Sobol first-order
+    and total indices (``method="sobol"``, ``samples`` base points N, default 32: N (d + 2)
+    readings) or Morris screening (``"morris"``, ``samples`` trajectories, default 20) of
+    ``outputs`` (``gu20``, ``gu60``, ``gu85``, ``haze``, ``doi``, ``flop``, ``dE00``, ``L@45as15``,
+    ``a@...``, ``b@...``; default all at the standard's geometries) against ``vary``, as
+    ``"tilt=4:20,roughness=0.01:0.1"`` or ``{"tilt": (4, 20), ...}``. Each reading uses
+    ``walks`` walks per geometry with the same random numbers (docs/formulation.md).
+
+    With ``client`` (a ``dask.distributed.Client``) the design's rows are read on the cluster,
+    ``rows_per_task`` per task; each task rebuilds the formulation from its path or dict (a
+    :class:`Coating` read from a file is sent as its path), so the workers must see the file.
+    The result equals the serial one exactly: every row is read from the same streams wherever
+    it runs."""
+    if isinstance(vary, Mapping):
+        vary = ",".join(f"{k}={float(lo)}:{float(hi)}" for k, (lo, hi) in vary.items())
+    if isinstance(coating, Coating):
+        if coating.source == "dict":
+            if client is not None:
+                raise ValueError(
+                    "sensitivity with a client: give the formulation's path or dict, not a "
+                    "Coating built from a dict (the workers rebuild it)"
+                )
+            description = coating
+        else:
+            description = coating.source
+    elif isinstance(coating, Mapping):
+        description = dict(coating)
+    else:
+        description = os.fspath(coating)
+    out = None if outputs is None else ",".join(outputs)
+    plan_args = (description, os.fspath(base_dir), vary, out, method, samples, standard, int(walks))
+    plan = _plan(*plan_args)
+    points = plan.design()
+    if client is None:
+        values = plan.read_points(points)
+    else:
+        chunks = [points[i : i + rows_per_task] for i in range(0, len(points), rows_per_task)]
+        futures = client.map(_read_rows, [plan_args] * len(chunks), chunks, pure=False)
+        values = np.vstack(client.gather(futures))
+    noise = plan.noise()
+    result = json.loads(plan.analyze_json(points, values, noise, float(threshold)))
+    names = [i["name"] for i in result["inputs"]]
+    return Sensitivity(
+        result,
+        pd.DataFrame(points, columns=names),
+        pd.DataFrame(values, columns=plan.output_names()),
+    )
