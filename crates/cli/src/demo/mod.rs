@@ -3,6 +3,7 @@
 //! isotropy, the roughness study by both scattering methods, and the gloss readings.
 
 mod coatings;
+mod formulation;
 mod pictures;
 mod summary;
 
@@ -75,7 +76,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
         .with_context(|| format!("{}: cannot create directory", dir.display()))?;
     let started = Instant::now();
     let mut sections = Vec::new();
-    let steps = if args.quick { 5 } else { 6 };
+    let steps = if args.quick { 5 } else { 7 };
     let mut step = 0;
     let mut announce = |what: &str| {
         step += 1;
@@ -123,6 +124,12 @@ pub fn run(args: DemoArgs) -> Result<()> {
     sections.push(section);
 
     if !args.quick {
+        announce("formulation: which constituents drive the silver metallic's readings");
+        let (section, seconds) = timed(|| formulation::formulation_section(dir));
+        let mut section = section?;
+        section.seconds = seconds;
+        sections.push(section);
+
         announce("pictures: the NIST figure 6 panels and the metallic paints");
         let (section, seconds) = timed(|| pictures::render_section(dir));
         let mut section = section?;
