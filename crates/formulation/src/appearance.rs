@@ -120,6 +120,11 @@ impl Output {
         }
     }
 
+    /// [`Output::words`] starting with a capital, for a table's row or a title.
+    pub fn title(&self) -> String {
+        crate::sensitivity_report::capitalise(&self.words())
+    }
+
     /// The multi-angle geometries this output needs besides the standard's.
     pub fn geometries(&self) -> Vec<Geometry> {
         match self {

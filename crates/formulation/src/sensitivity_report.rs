@@ -334,7 +334,7 @@ fn join(items: &[String]) -> String {
 }
 
 /// The sentence's first letter in upper case.
-fn capitalise(s: &str) -> String {
+pub(crate) fn capitalise(s: &str) -> String {
     let mut chars = s.chars();
     chars
         .next()

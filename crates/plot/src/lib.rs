@@ -418,8 +418,10 @@ pub struct Bar {
 }
 
 /// Horizontal bars (a tornado of sensitivity indices), in the order given from the top, each
-/// with its error bar, on an x axis from `min(0, smallest)` to the largest end of a bar or an
-/// error bar, into a PNG of `size` at `path`.
+/// with its error bar, on an x axis from `min(0, smallest bar)` to the largest end of a bar or
+/// an error bar (an error bar reaching below the axis is cut there: an interval wider than its
+/// estimate says the estimate is not known to be above 0), the labels left of the axis, into a
+/// PNG of `size` at `path`.
 pub fn bar_chart_png(
     path: &Path,
     size: (u32, u32),
@@ -430,10 +432,7 @@ pub fn bar_chart_png(
     let finite = bars
         .iter()
         .filter(|b| b.value.is_finite() && b.error.is_finite());
-    let lo = finite
-        .clone()
-        .map(|b| b.value - b.error)
-        .fold(0.0f64, f64::min);
+    let lo = finite.clone().map(|b| b.value).fold(0.0f64, f64::min);
     let hi = finite.map(|b| b.value + b.error).fold(0.0f64, f64::max);
     if bars.is_empty() || hi <= lo {
         return Err(PlotError::Data(format!("nothing to plot in '{title}'")));
@@ -442,14 +441,12 @@ pub fn bar_chart_png(
     let n = bars.len();
     render_png(path, size, |root| {
         let area = root.titled(title, ("sans-serif", 20))?;
+        let x0 = lo - if lo < 0.0 { pad } else { 0.0 };
         let mut chart = ChartBuilder::on(&area)
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(150)
-            .build_cartesian_2d(
-                (lo - if lo < 0.0 { pad } else { 0.0 })..(hi + pad),
-                0.0..n as f64,
-            )?;
+            .build_cartesian_2d(x0..(hi + pad), 0.0..n as f64)?;
         chart
             .configure_mesh()
             .disable_y_mesh()
@@ -469,12 +466,13 @@ pub fn bar_chart_png(
                 )))?;
             }
             if bar.error > 0.0 && bar.error.is_finite() {
-                let (a, b) = (bar.value - bar.error, bar.value + bar.error);
+                let (a, b) = ((bar.value - bar.error).max(x0), bar.value + bar.error);
                 chart.draw_series(std::iter::once(PathElement::new(
                     vec![(a, middle), (b, middle)],
                     BLACK.stroke_width(2),
                 )))?;
-                for x in [a, b] {
+                let ends = if a > x0 { vec![a, b] } else { vec![b] };
+                for x in ends {
                     chart.draw_series(std::iter::once(PathElement::new(
                         vec![(x, middle - 0.12), (x, middle + 0.12)],
                         BLACK.stroke_width(2),
@@ -482,7 +480,7 @@ pub fn bar_chart_png(
                 }
             }
             // In the backend's pixels, so drawn on the root (the title shifts `area`).
-            let (x, y) = chart.backend_coord(&(lo.min(0.0), middle));
+            let (x, y) = chart.backend_coord(&(x0, middle));
             root.draw(&Text::new(
                 bar.label.clone(),
                 (x - 8, y),

@@ -41,7 +41,7 @@ pub(super) fn formulation_section(dir: &Path) -> Result<Section> {
         .zip(effects)
         .enumerate()
         .map(|(k, (o, e))| {
-            let mut row = vec![o.words(), format!("{:.2}", s.base[k])];
+            let mut row = vec![o.title(), format!("{:.2}", s.base[k])];
             row.extend(
                 e.mu_star
                     .iter()
@@ -72,8 +72,8 @@ pub(super) fn formulation_section(dir: &Path) -> Result<Section> {
                 caption: "What drives the flop index: μ* of each constituent".into(),
             },
             Block::Code(format!(
-                "gonio coating sensitivity silver_metallic.toml --vary {VARY} --outputs {OUTPUTS} \
-                 --method morris --samples {TRAJECTORIES} -o sensitivity"
+                "gonio coating sensitivity silver_metallic.toml \\\n    --vary {VARY} \\\n    \
+                 --outputs {OUTPUTS} \\\n    --method morris --samples {TRAJECTORIES} -o sensitivity"
             )),
         ],
         seconds: 0.0,
