@@ -397,6 +397,35 @@ impl CostFunction for Objective<'_, '_> {
     }
 }
 
+/// The objective a match minimises, at the values `x` of `varied` (in their units): mean ΔE00
+/// from `target` over its geometries plus the weighted gloss differences, the formulation read
+/// with seed 0 as every evaluation of [`run`] is.
+pub fn objective(
+    start: &Coating,
+    target: &Target,
+    gloss: &[GlossTarget],
+    varied: &[Varied],
+    settings: &Settings,
+    x: &[f64],
+) -> Result<f64> {
+    if x.len() != varied.len() {
+        return Err(FormulationError::Invalid(format!(
+            "{} values for {} constituents",
+            x.len(),
+            varied.len()
+        )));
+    }
+    Reader {
+        start,
+        varied,
+        target,
+        gloss,
+        settings,
+        geometries: target.geometries(),
+    }
+    .objective(x)
+}
+
 /// Find the values of `varied` (within their bounds) that bring `start` closest to `target`
 /// (and to the `gloss` readings), reading each formulation with `settings`. `progress` gets a
 /// line per run and about every 10 s.

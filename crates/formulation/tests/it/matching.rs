@@ -175,4 +175,127 @@ fn bad_inputs_are_refused() {
 
 pub(crate) mod slow {
     use super::*;
+
+    fn silver_target(truth: &[f64], varied: &[Varied]) -> Target {
+        let mut c = example("silver_metallic.toml");
+        for (v, &x) in varied.iter().zip(truth) {
+            c = v.constituent.apply(&c, x).unwrap();
+        }
+        synthesised(&c, &E2194, 4096, 2)
+    }
+
+    /// Common random numbers make the objective smooth: along the silver metallic's flake tilt,
+    /// 13° to 15° in 41 steps of 0.05° (target: tilt 12° read with other streams, plus the
+    /// instrument's noise; the line stays clear of the minimum, where the objective, a mean of
+    /// norms, has a kink), the objective read with seed 0 at every step. A smooth curve has
+    /// second differences f(x − h) − 2 f(x) + f(x + h) of order f'' h² (here under 1e-3);
+    /// independent noise of standard deviation σ would give second differences of rms √6 σ. The
+    /// noise between readings is σ, the standard deviation of the objective at 14° over seeds
+    /// 0–5. Measured (docs/formulation.md): σ = 0.0090, the second differences' rms / √6 =
+    /// 0.0008, an eleventh; bound: a fifth (a ratio of standard deviations from 6 seeds is
+    /// uncertain by a factor of about 2 either way; with independent noise it would be 1).
+    #[test]
+    fn objective_is_smooth_along_a_line() {
+        let varied = Varied::parse_list("tilt=4:20").unwrap();
+        let target = silver_target(&[12.0], &varied);
+        let start = example("silver_metallic.toml");
+        let settings = Settings::default();
+        let line: Vec<f64> = (0..41)
+            .map(|k| {
+                let x = 13.0 + 0.05 * k as f64;
+                matching::objective(&start, &target, &[], &varied, &settings, &[x]).unwrap()
+            })
+            .collect();
+        let second: Vec<f64> = line.windows(3).map(|w| w[0] - 2.0 * w[1] + w[2]).collect();
+        let rms = (second.iter().map(|d| d * d).sum::<f64>() / second.len() as f64).sqrt();
+        let wl = wavelengths();
+        let at_14 = varied[0].constituent.apply(&start, 14.0).unwrap();
+        let evaluator = at_14.evaluator(&wl).unwrap();
+        let seeds: Vec<f64> = (0..6u64)
+            .map(|seed| {
+                let r =
+                    coating_study::multiangle_reading(&evaluator, &wl, &E2194, 1024, seed).unwrap();
+                let de = target.de00(&r).unwrap();
+                de.iter().sum::<f64>() / de.len() as f64
+            })
+            .collect();
+        let mean = seeds.iter().sum::<f64>() / 6.0;
+        let sigma = (seeds.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / 5.0).sqrt();
+        let min = line.iter().cloned().fold(f64::INFINITY, f64::min);
+        eprintln!(
+            "objective 13-15°: min {min:.4}, at 14° {:.4}; σ between seeds {sigma:.4}; \
+             second differences rms/√6 {:.5}",
+            line[20],
+            rms / 6f64.sqrt()
+        );
+        assert!(rms / 6f64.sqrt() < sigma / 5.0, "{line:?}");
+    }
+
+    /// The silver metallic's flake tilt and coverage recovered from a target at 9° and 0.45
+    /// (start 12° and 0.6; target read with 4096 walks from other streams, plus the
+    /// instrument's noise): each within 3σ of the truth, σ under 5% of the range.
+    #[test]
+    fn recovers_a_metallics_tilt_and_coverage() {
+        let varied = Varied::parse_list("tilt=4:20,coverage=0.2:0.9").unwrap();
+        let truth = [9.0, 0.45];
+        let target = silver_target(&truth, &varied);
+        let start = example("silver_metallic.toml");
+        let settings = Settings {
+            starts: 2,
+            ..Settings::default()
+        };
+        let m = matching::run(&start, &target, &[], &varied, &settings, &mut quiet).unwrap();
+        eprintln!(
+            "fitted {:?} σ {:?}; ΔE00 {:?} -> {:?}; s {:.3}; {} readings, {:.0} s",
+            m.fitted.values,
+            m.sigma,
+            m.start.de00,
+            m.fitted.de00,
+            m.residual_sd,
+            m.evaluations,
+            m.seconds
+        );
+        assert_recovered(&m, &truth, 0.05);
+    }
+
+    /// The Cornell Cayman Metallic (crates/brdf/tests/data/cayman.astm, imported and read at
+    /// E2194 as `gonio coating match --target cayman.astm` reads it) matched by aluminium flakes
+    /// under a coat tinted with the ColorChecker cyan (examples/coatings/cayman_tinted_start.toml),
+    /// varying the flakes' coverage and tilt and the coat's thickness (the tint's strength);
+    /// one run from the start and the final one, 256 walks, to keep the test short. Reached
+    /// (docs/formulation.md, "The Cornell Cayman"): mean ΔE00 5.16 from 24.1 (10.4, 6.6, 4.8,
+    /// 2.5, 1.5 at 45as15 … 45as110; 97 readings, 22 s); the near-specular geometries stay the
+    /// worst (the toner's hue). Bound: the reached mean + 0.3 (the objective's noise between
+    /// seeds is 0.009 on the silver at 1024 walks, about twice that at 256; 0.3 leaves room for
+    /// the end point's own scatter) — a regression in the model or the optimiser that loses a
+    /// few tenths of a ΔE00 fails it.
+    #[test]
+    fn matches_the_cornell_cayman() {
+        let path = Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../brdf/tests/data/cayman.astm"
+        ));
+        let target = gonio_formulation::target::read_target(path, &E2194).unwrap();
+        let start = example("cayman_tinted_start.toml");
+        let varied = Varied::parse_list("coverage=0.05:0.95,tilt=4:30,thickness=5:400").unwrap();
+        let settings = Settings {
+            starts: 1,
+            walks: 256,
+            ..Settings::default()
+        };
+        let m = matching::run(&start, &target, &[], &varied, &settings, &mut quiet).unwrap();
+        let mean = |d: &[f64]| d.iter().sum::<f64>() / d.len() as f64;
+        eprintln!(
+            "Cayman: fitted {:?} σ {:?}; ΔE00 {:?} (mean {:.2}) -> {:?} (mean {:.2}); {} readings, {:.0} s",
+            m.fitted.values,
+            m.sigma,
+            m.start.de00,
+            mean(&m.start.de00),
+            m.fitted.de00,
+            mean(&m.fitted.de00),
+            m.evaluations,
+            m.seconds
+        );
+        assert!(mean(&m.fitted.de00) < 5.16 + 0.3, "{:?}", m.fitted.de00);
+    }
 }
