@@ -124,7 +124,7 @@ pub struct Match {
     /// The target's geometries.
     pub geometries: Vec<Geometry>,
     pub gloss_targets: Vec<GlossTarget>,
-    /// The start formulation against the target.
+    /// The start formulation against the target (its values clamped into the bounds).
     pub start: Comparison,
     /// The fitted formulation against the target.
     pub fitted: Comparison,
