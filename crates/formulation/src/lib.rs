@@ -7,6 +7,7 @@
 //! cost.
 
 pub mod appearance;
+pub mod bounds;
 pub mod coating_sensitivity;
 pub mod error;
 pub mod fitted_description;
