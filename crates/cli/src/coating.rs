@@ -32,6 +32,56 @@ pub enum CoatingCommand {
     /// colour, flop and ΔE00 against constituents varied within bounds (`--vary
     /// tilt=4:20,roughness=0.01:0.1`; docs/formulation.md).
     Sensitivity(SensitivityArgs),
+    /// From a target back to a formulation: the values of the varied constituents, within
+    /// their bounds, that minimise the mean CIEDE2000 to a multi-angle target (plus weighted
+    /// gloss differences); writes the fitted description (`-o FITTED.toml`, the start's text
+    /// with the values replaced) and prints the values with their uncertainties and ΔE00 per
+    /// geometry before and after (docs/formulation.md).
+    Match(MatchArgs),
+}
+
+#[derive(Args)]
+pub struct MatchArgs {
+    /// The start formulation (TOML; examples/coatings/): the first guess, and everything that
+    /// is not varied.
+    coating: PathBuf,
+    /// The target: a CSV of CIELAB (geometry,L,a,b; D65/10°) or of reflectance factors
+    /// (geometry,R_400nm,...,R_700nm) per geometry, holding every geometry of the standard; a
+    /// measured BRDF (.astm, imported as `gonio brdf import` does); or a spectral table
+    /// (.gbrdf). The last two are read at the standard's geometries.
+    #[arg(long)]
+    target: PathBuf,
+    /// The constituents and their bounds, NAME=LO:HI comma-separated: roughness (the top's α),
+    /// tilt (°), coverage (0–1), tio2 (nm), thickness (the coat's, µm),
+    /// concentration:PIGMENT. The search stays within the bounds.
+    #[arg(long)]
+    vary: String,
+    /// The geometries matched: e2194 (45° illumination; aspecular 15, 25, 45, 75, 110°) or
+    /// e2539 (adds 45as-15 and 15° illumination).
+    #[arg(long, default_value = "e2194")]
+    standard: String,
+    /// Gloss readings to match too, ANGLE=GU comma-separated (20, 60 or 85°; e.g. 20=85,60=92).
+    #[arg(long)]
+    target_gloss: Option<String>,
+    /// ΔE00 units per gloss unit: the objective adds this × |ΔGU| for each --target-gloss.
+    #[arg(long, default_value_t = gonio_formulation::matching::Settings::GLOSS_WEIGHT)]
+    gloss_weight: f64,
+    /// Random walks per multi-angle geometry of each reading (a rough top or flakes); the
+    /// gloss meter takes 8 per quadrature point. Every reading draws the same streams (common
+    /// random numbers), so the objective is smooth in the constituents.
+    #[arg(long, default_value_t = gonio_formulation::coating_sensitivity::Settings::WALKS)]
+    walks: usize,
+    /// Nelder–Mead runs before the final one: from the start formulation, then from Sobol
+    /// points of the bounds.
+    #[arg(long, default_value_t = gonio_formulation::matching::Settings::STARTS)]
+    starts: usize,
+    /// The fitted formulation (TOML): the start's text with the varied values replaced,
+    /// comments kept.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Print the result as JSON.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Args)]
@@ -165,6 +215,7 @@ pub fn run(cmd: CoatingCommand) -> Result<()> {
         CoatingCommand::Info(a) => info(a),
         CoatingCommand::Study(a) => study(a),
         CoatingCommand::Sensitivity(a) => sensitivity(a),
+        CoatingCommand::Match(a) => match_target(a),
     }
 }
 
@@ -413,6 +464,158 @@ fn sensitivity(a: SensitivityArgs) -> Result<()> {
         }
         println!();
     }
+    Ok(())
+}
+
+fn match_target(a: MatchArgs) -> Result<()> {
+    use gonio_formulation::coating_sensitivity::Varied;
+    use gonio_formulation::matching::{self, Settings};
+    use gonio_formulation::target::{GlossTarget, read_target};
+    let wavelengths = default_bands();
+    let coating = read(&a.coating, &wavelengths)?;
+    let varied = Varied::parse_list(&a.vary).context("--vary")?;
+    let geometries: &[Geometry] = match a.standard.as_str() {
+        "e2194" => &E2194,
+        "e2539" => &multiangle::E2539,
+        other => anyhow::bail!("--standard {other}: e2194 or e2539"),
+    };
+    let gloss = match &a.target_gloss {
+        Some(s) => GlossTarget::parse_list(s).context("--target-gloss")?,
+        None => vec![],
+    };
+    let target = read_target(&a.target, geometries)?;
+    let text =
+        std::fs::read_to_string(&a.coating).with_context(|| a.coating.display().to_string())?;
+    let settings = Settings {
+        walks: a.walks,
+        gloss_weight: a.gloss_weight,
+        starts: a.starts,
+        ..Settings::default()
+    };
+    eprintln!(
+        "{}: matching {} at {} geometries by {} ({} Nelder-Mead runs)",
+        a.coating.display(),
+        a.target.display(),
+        geometries.len(),
+        varied
+            .iter()
+            .map(|v| v.name.as_str())
+            .collect::<Vec<_>>()
+            .join(", "),
+        settings.starts + 1
+    );
+    let m = matching::run(&coating, &target, &gloss, &varied, &settings, &mut |line| {
+        eprintln!("{line}")
+    })
+    .with_context(|| a.coating.display().to_string())?;
+    let fitted =
+        gonio_formulation::fitted_description::with_values(&text, &varied, &m.fitted.values)
+            .with_context(|| a.coating.display().to_string())?;
+    gonio_io::write_atomic(
+        &a.output,
+        |w| std::io::Write::write_all(w, fitted.as_bytes()),
+        std::convert::identity,
+    )
+    .with_context(|| a.output.display().to_string())?;
+    let sigma = |i: usize| m.sigma.as_ref().map(|s| s[i]);
+    let mean = |d: &[f64]| d.iter().sum::<f64>() / d.len() as f64;
+    if a.json {
+        let constituents: Vec<_> = varied
+            .iter()
+            .enumerate()
+            .map(|(i, v)| {
+                serde_json::json!({
+                    "name": v.name, "lo": v.lo, "hi": v.hi,
+                    "start": m.start.values[i], "fitted": m.fitted.values[i],
+                    "sigma": sigma(i), "at_bound": m.at_bound(i),
+                })
+            })
+            .collect();
+        let geometries: Vec<_> = m
+            .geometries
+            .iter()
+            .enumerate()
+            .map(|(k, g)| {
+                serde_json::json!({
+                    "name": g.to_string(),
+                    "de00_start": m.start.de00[k], "de00_fitted": m.fitted.de00[k],
+                })
+            })
+            .collect();
+        let gloss = |g: &gonio_instrument::GlossReport| serde_json::json!({"gu20": g.gu20, "gu60": g.gu60, "gu85": g.gu85, "haze": g.haze, "doi": g.doi});
+        let json = serde_json::json!({
+            "file": a.coating.display().to_string(),
+            "target": a.target.display().to_string(),
+            "output": a.output.display().to_string(),
+            "constituents": constituents,
+            "geometries": geometries,
+            "mean_de00_start": mean(&m.start.de00), "mean_de00_fitted": mean(&m.fitted.de00),
+            "objective_start": m.start.objective, "objective_fitted": m.fitted.objective,
+            "residual_sd": m.residual_sd,
+            "target_gloss": m.gloss_targets.iter().map(|t| serde_json::json!({"angle": t.angle, "gu": t.gu})).collect::<Vec<_>>(),
+            "gloss_start": gloss(&m.start.gloss), "gloss_fitted": gloss(&m.fitted.gloss),
+            "evaluations": m.evaluations, "seconds": m.seconds,
+        });
+        println!("{}", serde_json::to_string_pretty(&json)?);
+        return Ok(());
+    }
+    println!("{} matched to {}", a.coating.display(), a.target.display());
+    println!(
+        "{:>22} {:>10} {:>10} {:>10}   bounds",
+        "constituent", "start", "fitted", "± 1 sd"
+    );
+    for (i, v) in varied.iter().enumerate() {
+        println!(
+            "{:>22} {:>10.4} {:>10.4} {:>10}   {}–{}{}",
+            v.name,
+            m.start.values[i],
+            m.fitted.values[i],
+            sigma(i).map_or("—".into(), |s| format!("{s:.2e}")),
+            v.lo,
+            v.hi,
+            if m.at_bound(i) { " (at a bound)" } else { "" }
+        );
+    }
+    println!("{:>9} {:>10} {:>10}", "geometry", "ΔE00 start", "fitted");
+    for (k, g) in m.geometries.iter().enumerate() {
+        println!(
+            "{:>9} {:>10.2} {:>10.2}",
+            g.to_string(),
+            m.start.de00[k],
+            m.fitted.de00[k]
+        );
+    }
+    println!(
+        "{:>9} {:>10.2} {:>10.2}",
+        "mean",
+        mean(&m.start.de00),
+        mean(&m.fitted.de00)
+    );
+    let targets = |angle: u32| {
+        m.gloss_targets
+            .iter()
+            .find(|t| t.angle == angle)
+            .map_or(String::new(), |t| format!(" (target {:.1})", t.gu))
+    };
+    for (name, g) in [("start", &m.start.gloss), ("fitted", &m.fitted.gloss)] {
+        println!(
+            "gloss, {name}: 20° {:.1}, 60° {:.1}, 85° {:.1} GU; haze {:.1} HU; DOI {:.1}",
+            g.gu20, g.gu60, g.gu85, g.haze, g.doi
+        );
+    }
+    if !m.gloss_targets.is_empty() {
+        println!("target gloss:{}{}{}", targets(20), targets(60), targets(85));
+    }
+    println!(
+        "objective (mean ΔE00 + {} × |ΔGU|): {:.3} → {:.3}; residual sd {:.3} (CIELAB)",
+        a.gloss_weight, m.start.objective, m.fitted.objective, m.residual_sd
+    );
+    println!(
+        "{} readings in {:.1} s; wrote {}",
+        m.evaluations,
+        m.seconds,
+        a.output.display()
+    );
     Ok(())
 }
 

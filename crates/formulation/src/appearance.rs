@@ -7,6 +7,7 @@
 use crate::error::{FormulationError, Result};
 use gonio_color::ciede2000;
 use gonio_instrument::coating_study::Reading;
+use gonio_instrument::gloss::GlossReport;
 use gonio_instrument::multiangle::{Geometry, GeometryReading, MultiangleReading};
 
 /// One appearance reading.
@@ -149,14 +150,7 @@ impl Output {
         };
         let gloss = &reading.gloss;
         Ok(match *self {
-            Output::Gloss(20) => gloss.gu20,
-            Output::Gloss(60) => gloss.gu60,
-            Output::Gloss(85) => gloss.gu85,
-            Output::Gloss(angle) => {
-                return Err(FormulationError::Invalid(format!(
-                    "gloss at {angle}°: the gloss meter reads 20, 60 and 85°"
-                )));
-            }
+            Output::Gloss(angle) => gloss_at(gloss, angle)?,
             Output::Haze => gloss.haze,
             Output::Doi => gloss.doi,
             Output::L(g) => at(&reading.multiangle, g)?.lab.l,
@@ -173,6 +167,18 @@ impl Output {
                 sum / geometries.len() as f64
             }
         })
+    }
+}
+
+/// The gloss meter's reading at `angle` (20, 60 or 85°), GU.
+pub fn gloss_at(gloss: &GlossReport, angle: u32) -> Result<f64> {
+    match angle {
+        20 => Ok(gloss.gu20),
+        60 => Ok(gloss.gu60),
+        85 => Ok(gloss.gu85),
+        _ => Err(FormulationError::Invalid(format!(
+            "gloss at {angle}°: the gloss meter reads 20, 60 and 85°"
+        ))),
     }
 }
 

@@ -66,6 +66,27 @@ impl Varied {
         })
     }
 
+    /// Check that the bounds are finite and increasing and that `base` with the constituent at
+    /// either bound is a valid coating at `wavelengths_nm`, so that a bad range fails before any
+    /// reading; the error names the range.
+    pub fn check(&self, base: &Coating, wavelengths_nm: &[f64]) -> Result<()> {
+        let invalid = |why: String| {
+            FormulationError::Invalid(format!("{}={}:{}: {why}", self.name, self.lo, self.hi))
+        };
+        if !(self.lo.is_finite() && self.hi.is_finite() && self.lo < self.hi) {
+            return Err(invalid(
+                "the lower bound must be below the upper one".into(),
+            ));
+        }
+        for bound in [self.lo, self.hi] {
+            self.constituent
+                .apply(base, bound)
+                .and_then(|c| Ok(c.check(wavelengths_nm)?))
+                .map_err(|e| invalid(e.to_string()))?;
+        }
+        Ok(())
+    }
+
     /// Read a comma-separated list of `NAME=LO:HI`.
     pub fn parse_list(s: &str) -> Result<Vec<Self>> {
         s.split(',')
@@ -263,14 +284,7 @@ impl Plan {
         )?;
         // Every bound must make a valid coating, so that a bad range fails before the readings.
         for v in varied {
-            for bound in [v.lo, v.hi] {
-                v.constituent
-                    .apply(base, bound)
-                    .and_then(|c| Ok(c.check(&settings.wavelengths_nm)?))
-                    .map_err(|e| {
-                        FormulationError::Invalid(format!("{}={}:{}: {e}", v.name, v.lo, v.hi))
-                    })?;
-            }
+            v.check(base, &settings.wavelengths_nm)?;
         }
         let mut geometries = settings.geometries.clone();
         for g in outputs.iter().flat_map(Output::geometries) {

@@ -1,14 +1,19 @@
 //! gonio-formulation: from a coating's appearance back to its formulation. Which constituents
 //! matter for which reading ([`sensitivity`]: Sobol indices and Morris screening, generic, no
 //! physics; [`coating_sensitivity`]: the same applied to a coating's gloss, haze, DOI and
-//! multi-angle colour ([`appearance`]), read by `instrument::coating_study`) and, later, which
-//! values reproduce a target (matching). `docs/formulation.md` gives the estimators, their checks
-//! and their cost.
+//! multi-angle colour ([`appearance`]), read by `instrument::coating_study`) and which values
+//! reproduce a target ([`matching`], against a [`target`], written back as a description by
+//! [`fitted_description`]). `docs/formulation.md` gives the methods, their checks and their
+//! cost.
 
 pub mod appearance;
+pub mod bounds;
 pub mod coating_sensitivity;
 pub mod error;
+pub mod fitted_description;
+pub mod matching;
 pub mod sensitivity;
 pub mod sensitivity_report;
+pub mod target;
 
 pub use error::{FormulationError, Result};

@@ -83,6 +83,49 @@ impl Constituent {
             .collect()
     }
 
+    /// This constituent's value in `coating` (the inverse of [`Constituent::apply`]): the top's
+    /// α (the larger of αx, αy; 0 for a smooth top), the flakes' tilt, coverage or TiO2
+    /// thickness, the pigment's concentration, the coat's thickness.
+    pub fn value(&self, coating: &Coating) -> Result<f64> {
+        let no_flakes = || {
+            InstrumentError::Invalid(
+                "the coating has no [flakes] (add a [flakes] table to its description)".into(),
+            )
+        };
+        Ok(match self {
+            Constituent::Roughness => coating.roughness.map_or(0.0, |m| m.alpha_x.max(m.alpha_y)),
+            Constituent::FlakeTilt => coating.flakes.as_ref().ok_or_else(no_flakes)?.tilt_deg,
+            Constituent::FlakeCoverage => coating.flakes.as_ref().ok_or_else(no_flakes)?.coverage,
+            Constituent::Tio2 => match coating.flakes.as_ref().map(|f| &f.pigment) {
+                Some(FlakePigment::Interference { tio2_nm, .. }) => *tio2_nm,
+                _ => {
+                    return Err(InstrumentError::Invalid(
+                        "tio2: the coating has no interference flakes".into(),
+                    ));
+                }
+            },
+            Constituent::Concentration(name) => match &coating.base {
+                Base::KubelkaMunk { pigments, .. } => {
+                    pigments
+                        .iter()
+                        .find(|p| &p.name == name)
+                        .ok_or_else(|| {
+                            InstrumentError::Invalid(format!(
+                                "concentration:{name}: the base has no pigment of that name"
+                            ))
+                        })?
+                        .concentration
+                }
+                Base::Diffuse { .. } => {
+                    return Err(InstrumentError::Invalid(format!(
+                        "concentration:{name}: the base is not a Kubelka-Munk layer of pigments"
+                    )));
+                }
+            },
+            Constituent::CoatThickness => coating.coat.thickness_um,
+        })
+    }
+
     /// `coating` with this constituent set to `value`.
     pub fn apply(&self, coating: &Coating, value: f64) -> Result<Coating> {
         let mut c = coating.clone();

@@ -122,6 +122,114 @@ fn bad_descriptions_are_refused() {
     assert_eq!(out.status.code(), Some(2));
 }
 
+/// `coating match` on the solid red (Kubelka-Munk red and white under a smooth coat, computed
+/// exactly): the target is the red at concentration 0.3 read by `gonio multiangle --spectra`
+/// (reflectance factors per E2194 geometry, the CSV layout targets take); from the example's 1.0
+/// the match finds 0.3 to 1e-3 (a noiseless target: only the optimiser's tolerance remains),
+/// ΔE00 falls from above 2 to under 0.05 at every geometry, and the fitted TOML keeps the
+/// example's comments and reads back (`coating info`) to the target's colour. Bad inputs exit
+/// with status 2 naming what is wrong: an unknown constituent, reversed bounds, a target without
+/// the standard's geometries, a missing target.
+#[test]
+fn match_recovers_a_concentration_and_writes_the_formulation() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let red = example("red_pigmented.toml");
+    let text = std::fs::read_to_string(&red).unwrap();
+    std::fs::write(
+        d.join("variant.toml"),
+        text.replace("concentration = 1.0", "concentration = 0.3"),
+    )
+    .unwrap();
+    ok_in(
+        &["multiangle", "variant.toml", "--spectra", "target.csv"],
+        d,
+    );
+    let args = |vary: &str, target: &str, extra: &[&str]| -> Vec<String> {
+        let mut a: Vec<String> = [
+            "coating",
+            "match",
+            &red,
+            "--target",
+            target,
+            "--vary",
+            vary,
+            "-o",
+            "fitted.toml",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        a.extend(extra.iter().map(|s| s.to_string()));
+        a
+    };
+    let run = |a: &[String]| {
+        let a: Vec<&str> = a.iter().map(String::as_str).collect();
+        gonio(&a, d)
+    };
+    let out = run(&args("concentration:red=0.1:2", "target.csv", &["--json"]));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let c = &json["constituents"][0];
+    assert!((c["fitted"].as_f64().unwrap() - 0.3).abs() < 1e-3, "{c}");
+    assert_eq!(c["start"], 1.0);
+    for g in json["geometries"].as_array().unwrap() {
+        assert!(g["de00_start"].as_f64().unwrap() > 2.0, "{g}");
+        assert!(g["de00_fitted"].as_f64().unwrap() < 0.05, "{g}");
+    }
+    let fitted = std::fs::read_to_string(d.join("fitted.toml")).unwrap();
+    assert!(fitted.contains("# A pigmented red basecoat"), "{fitted}");
+    let colour = |file: &str| {
+        let out = ok_in(&["coating", "info", file, "--json"], d);
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        v["multiangle"].clone()
+    };
+    let (a, b) = (colour("fitted.toml"), colour("variant.toml"));
+    for (x, y) in a.as_array().unwrap().iter().zip(b.as_array().unwrap()) {
+        for k in ["L", "a", "b"] {
+            let (x, y) = (x[k].as_f64().unwrap(), y[k].as_f64().unwrap());
+            assert!((x - y).abs() < 0.05, "{k}: {x} against {y}");
+        }
+    }
+    std::fs::write(
+        d.join("two.csv"),
+        "geometry,L,a,b\n45as15,40,50,30\n45as45,30,40,20\n",
+    )
+    .unwrap();
+    for (a, says) in [
+        (args("gloss=0:1", "target.csv", &[]), "vary one of"),
+        (
+            args("concentration:red=2:0.1", "target.csv", &[]),
+            "below the upper",
+        ),
+        (
+            args("concentration:red=0.1:2", "two.csv", &[]),
+            "no geometry 45as25",
+        ),
+        (
+            args("concentration:red=0.1:2", "missing.csv", &[]),
+            "missing.csv",
+        ),
+        (
+            args(
+                "concentration:red=0.1:2",
+                "target.csv",
+                &["--standard", "e2539"],
+            ),
+            "no geometry 45as-15",
+        ),
+    ] {
+        let out = run(&a);
+        assert_eq!(out.status.code(), Some(2), "{a:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(says), "{a:?}: {err}");
+    }
+}
+
 mod slow {
     use super::*;
 

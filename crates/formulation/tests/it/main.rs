@@ -4,6 +4,7 @@
 //! module is one subject.
 
 mod coating_sensitivity;
+mod matching;
 mod oracle;
 mod salib;
 mod sensitivity;

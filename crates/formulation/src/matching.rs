@@ -1,0 +1,592 @@
+//! From a target appearance back to a formulation: the values of the varied constituents, within
+//! their bounds, whose coating comes closest to a multi-angle target ([`run`]).
+//!
+//! The objective is the mean CIEDE2000 over the target's geometries, plus `gloss_weight` ×
+//! |ΔGU| summed over the gloss readings the target gives. Every evaluation reads the coating with
+//! the readings' seed 0 (common random numbers, as `coating_sensitivity`): the walks of two
+//! nearby formulations draw the same random numbers, so the objective is a smooth function of
+//! the constituents rather than one with independent noise at every point (checked in
+//! `tests/it/matching.rs`, `objective_is_smooth_along_a_line`, and docs/formulation.md).
+//!
+//! Optimiser: Nelder–Mead (argmin's; Nelder & Mead, Comput. J. 7, 308, 1965), derivative-free,
+//! on unbounded parameters `u` mapped into the bounds by MINUIT's sine transform
+//! `x = lo + (hi − lo)(1 + sin u)/2` (F. James & M. Roos, "MINUIT", Comput. Phys. Commun. 10,
+//! 343, 1975; James, MINUIT Reference Manual, CERN D506, §1.3.1 "parameter limits"): every
+//! simplex vertex is a valid formulation, and the map is smooth with no saturation. Runs start
+//! from the start formulation and from `starts − 1` points of a scrambled Sobol sequence over
+//! the bounds (deterministic; low discrepancy fills the box better than random starts with so
+//! few points); the best result is run once more from a fresh simplex (restarting at a claimed
+//! minimum guards against Nelder–Mead's false convergence, Press et al., Numerical Recipes,
+//! 3rd ed., §10.5).
+//!
+//! Uncertainty: Gauss–Newton at the optimum (Bates & Watts, *Nonlinear Regression Analysis and
+//! Its Applications*, 1988, §2.3): `cov = s² (JᵀJ)⁻¹`, `s² = Σr²/(m − p)`, with `r` the
+//! residual vector — the differences ΔL*, Δa*, Δb* at each geometry (the components of each
+//! geometry's colour difference: ΔE00 itself is a norm, with a kink where a geometry is matched,
+//! so its derivative is not defined there) and `gloss_weight` × ΔGU per gloss reading — and `J`
+//! its Jacobian in the constituents by central differences (steps of 1% of each range).
+
+use crate::appearance::gloss_at;
+use crate::bounds::{from_bounds, rounded, to_bounds};
+use crate::coating_sensitivity::Varied;
+use crate::error::{FormulationError, Result};
+use crate::target::GlossTarget;
+use argmin::core::{CostFunction, Executor, State};
+use argmin::solver::neldermead::NelderMead;
+use gonio_coating::system::Coating;
+use gonio_instrument::coating_study::{self, Reading};
+use gonio_instrument::gloss::GlossReport;
+use gonio_instrument::multiangle::{Geometry, MultiangleReading};
+use gonio_instrument::multiangle_target::Target;
+use rayon::prelude::*;
+use std::cell::RefCell;
+use std::time::Instant;
+
+/// How a match reads each formulation and searches.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Settings {
+    /// The bands of the multi-angle colour, nm.
+    pub wavelengths_nm: Vec<f64>,
+    /// Walks per multi-angle geometry.
+    pub walks: usize,
+    /// Walks per quadrature point of the gloss meter.
+    pub gloss_walks: usize,
+    /// ΔE00 units per gloss unit in the objective.
+    pub gloss_weight: f64,
+    /// Nelder–Mead runs before the final one: from the start formulation and from
+    /// `starts − 1` Sobol points.
+    pub starts: usize,
+    /// Nelder–Mead iterations per run at most.
+    pub iterations: u64,
+    /// A run stops when the standard deviation of the objective over the simplex's vertices is
+    /// below this (ΔE00).
+    pub tolerance: f64,
+}
+
+impl Settings {
+    /// Default runs before the final one.
+    pub const STARTS: usize = 4;
+    /// Default iterations per run.
+    pub const ITERATIONS: u64 = 150;
+    /// Default tolerance: a thousandth of a ΔE00, under the objective's own noise between
+    /// seeds (0.02 on the silver metallic, docs/formulation.md).
+    pub const TOLERANCE: f64 = 1e-3;
+    /// Default ΔE00 per GU: a gloss unit counts as a tenth of a colour-difference unit.
+    pub const GLOSS_WEIGHT: f64 = 0.1;
+}
+
+/// 400–700 nm every 10 nm, the sensitivity's walks (`coating_sensitivity::Settings::WALKS`,
+/// `GLOSS_WALKS`) and the defaults above.
+impl Default for Settings {
+    fn default() -> Self {
+        let s = crate::coating_sensitivity::Settings::default();
+        Settings {
+            wavelengths_nm: s.wavelengths_nm,
+            walks: s.walks,
+            gloss_walks: s.gloss_walks,
+            gloss_weight: Settings::GLOSS_WEIGHT,
+            starts: Settings::STARTS,
+            iterations: Settings::ITERATIONS,
+            tolerance: Settings::TOLERANCE,
+        }
+    }
+}
+
+/// One Nelder–Mead run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Run {
+    /// Where it started and where it ended, in the constituents' units.
+    pub from: Vec<f64>,
+    pub to: Vec<f64>,
+    /// The objective where it ended.
+    pub objective: f64,
+    pub evaluations: usize,
+}
+
+/// What one formulation reads against the target.
+#[derive(Clone, Debug)]
+pub struct Comparison {
+    /// The constituents' values.
+    pub values: Vec<f64>,
+    /// ΔE00 at each of the target's geometries, in its order.
+    pub de00: Vec<f64>,
+    /// The gloss meter's reading (20°, 60°, 85° gloss, haze, DOI).
+    pub gloss: GlossReport,
+    /// The multi-angle reading at the target's geometries.
+    pub multiangle: MultiangleReading,
+    /// The objective: mean ΔE00 plus the weighted gloss differences.
+    pub objective: f64,
+}
+
+/// A match's result.
+#[derive(Clone, Debug)]
+pub struct Match {
+    pub varied: Vec<Varied>,
+    /// The target's geometries.
+    pub geometries: Vec<Geometry>,
+    pub gloss_targets: Vec<GlossTarget>,
+    /// The start formulation against the target (its values clamped into the bounds).
+    pub start: Comparison,
+    /// The fitted formulation against the target.
+    pub fitted: Comparison,
+    /// One standard deviation of each fitted value (Gauss–Newton); `None` when the residuals
+    /// cannot determine them (no more residuals than constituents, or JᵀJ singular: a
+    /// constituent that changes nothing).
+    pub sigma: Option<Vec<f64>>,
+    /// The residuals' standard deviation `s` (CIELAB units).
+    pub residual_sd: f64,
+    /// The fitted coating.
+    pub coating: Coating,
+    pub runs: Vec<Run>,
+    /// Readings made in all (runs, the Jacobian, the start and the fitted formulation).
+    pub evaluations: usize,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+impl Match {
+    /// Whether constituent `i` ended within 0.1% of the range of a bound (its σ then
+    /// describes a constrained value).
+    pub fn at_bound(&self, i: usize) -> bool {
+        let v = &self.varied[i];
+        let x = self.fitted.values[i];
+        let margin = 1e-3 * (v.hi - v.lo);
+        x <= v.lo + margin || x >= v.hi - margin
+    }
+}
+
+/// The matcher's reading of formulations against the target.
+struct Reader<'a> {
+    start: &'a Coating,
+    varied: &'a [Varied],
+    target: &'a Target,
+    gloss: &'a [GlossTarget],
+    settings: &'a Settings,
+    geometries: Vec<Geometry>,
+}
+
+impl Reader<'_> {
+    fn coating(&self, x: &[f64]) -> Result<Coating> {
+        let mut c = self.start.clone();
+        for (v, &value) in self.varied.iter().zip(x) {
+            c = v.constituent.apply(&c, value)?;
+        }
+        Ok(c)
+    }
+
+    /// Read the formulation `x` (seed 0): the multi-angle colour, and the gloss meter when
+    /// `with_gloss` (its reading is most of the cost: only when the objective needs it).
+    fn read(
+        &self,
+        x: &[f64],
+        with_gloss: bool,
+    ) -> Result<(Option<GlossReport>, MultiangleReading)> {
+        let s = self.settings;
+        let coating = self.coating(x)?;
+        if with_gloss {
+            let Reading { gloss, multiangle } = coating_study::read_coating(
+                &coating,
+                &self.geometries,
+                &s.wavelengths_nm,
+                s.walks,
+                s.gloss_walks,
+                0,
+            )?;
+            return Ok((Some(gloss), multiangle));
+        }
+        coating.check(&s.wavelengths_nm)?;
+        let evaluator = coating.evaluator(&s.wavelengths_nm)?;
+        let multiangle = coating_study::multiangle_reading(
+            &evaluator,
+            &s.wavelengths_nm,
+            &self.geometries,
+            s.walks,
+            0,
+        )?;
+        Ok((None, multiangle))
+    }
+
+    /// The weighted gloss differences of `gloss` from the targets, in target order.
+    fn gloss_differences(&self, gloss: &GlossReport) -> Result<Vec<f64>> {
+        self.gloss
+            .iter()
+            .map(|t| Ok(self.settings.gloss_weight * (gloss_at(gloss, t.angle)? - t.gu)))
+            .collect()
+    }
+
+    /// The objective at `x`: mean ΔE00 + Σ weight |ΔGU|.
+    fn objective(&self, x: &[f64]) -> Result<f64> {
+        let (gloss, multiangle) = self.read(x, !self.gloss.is_empty())?;
+        let de = self.target.de00(&multiangle)?;
+        let mut f = de.iter().sum::<f64>() / de.len() as f64;
+        if let Some(g) = gloss {
+            f += self
+                .gloss_differences(&g)?
+                .iter()
+                .map(|d| d.abs())
+                .sum::<f64>();
+        }
+        if !f.is_finite() {
+            return Err(FormulationError::Invalid(format!(
+                "the objective at {} is not a number",
+                self.describe(x)
+            )));
+        }
+        Ok(f)
+    }
+
+    /// The residual vector at `x`: ΔL*, Δa*, Δb* per geometry, then the weighted ΔGU.
+    fn residuals(&self, x: &[f64]) -> Result<Vec<f64>> {
+        let (gloss, multiangle) = self.read(x, !self.gloss.is_empty())?;
+        let mut r = Vec::with_capacity(3 * self.geometries.len() + self.gloss.len());
+        for &(g, lab) in &self.target.colours {
+            let m = multiangle
+                .at(g)
+                .ok_or_else(|| FormulationError::Invalid(format!("{g} was not read")))?;
+            r.extend([m.lab.l - lab.l, m.lab.a - lab.a, m.lab.b - lab.b]);
+        }
+        if let Some(g) = gloss {
+            r.extend(self.gloss_differences(&g)?);
+        }
+        Ok(r)
+    }
+
+    /// The formulation `x` read in full against the target.
+    fn compare(&self, x: &[f64]) -> Result<Comparison> {
+        let (gloss, multiangle) = self.read(x, true)?;
+        let gloss = gloss.expect("read with the gloss meter");
+        let de00 = self.target.de00(&multiangle)?;
+        let objective = de00.iter().sum::<f64>() / de00.len() as f64
+            + self
+                .gloss_differences(&gloss)?
+                .iter()
+                .map(|d| d.abs())
+                .sum::<f64>();
+        Ok(Comparison {
+            values: x.to_vec(),
+            de00,
+            gloss,
+            multiangle,
+            objective,
+        })
+    }
+
+    fn describe(&self, x: &[f64]) -> String {
+        self.varied
+            .iter()
+            .zip(x)
+            .map(|(v, x)| format!("{} {x:.4}", v.name))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
+    /// One standard deviation of each constituent at `x` (Gauss–Newton, module docs) and the
+    /// residuals' standard deviation; the number of readings made.
+    fn uncertainty(&self, x: &[f64]) -> Result<(Option<Vec<f64>>, f64, usize)> {
+        let p = x.len();
+        let r0 = self.residuals(x)?;
+        let m = r0.len();
+        let s2 = if m > p {
+            r0.iter().map(|r| r * r).sum::<f64>() / (m - p) as f64
+        } else {
+            f64::NAN
+        };
+        // Central differences, one-sided at a bound: columns of J.
+        let columns = (0..p)
+            .into_par_iter()
+            .map(|i| {
+                let v = &self.varied[i];
+                let h = 0.01 * (v.hi - v.lo);
+                let up = (x[i] + h).min(v.hi);
+                let down = (x[i] - h).max(v.lo);
+                let at = |value: f64| -> Result<Vec<f64>> {
+                    let mut y = x.to_vec();
+                    y[i] = value;
+                    self.residuals(&y)
+                };
+                let (ru, rd) = (at(up)?, at(down)?);
+                Ok(ru
+                    .iter()
+                    .zip(&rd)
+                    .map(|(a, b)| (a - b) / (up - down))
+                    .collect::<Vec<f64>>())
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let readings = 1 + 2 * p;
+        let j = nalgebra::DMatrix::from_fn(m, p, |row, col| columns[col][row]);
+        let sigma = (m > p)
+            .then(|| (j.transpose() * &j).try_inverse())
+            .flatten()
+            .map(|inv| {
+                (0..p)
+                    .map(|i| (s2 * inv[(i, i)]).sqrt())
+                    .collect::<Vec<_>>()
+            })
+            .filter(|s| s.iter().all(|v| v.is_finite()));
+        Ok((sigma, s2.sqrt(), readings))
+    }
+}
+
+/// The objective as argmin sees it: the unbounded parameters, the first error kept (argmin's
+/// error type carries only a message), the evaluations counted, a progress line every ~10 s.
+struct Objective<'a, 'b> {
+    reader: &'a Reader<'a>,
+    state: &'a RefCell<ObjectiveState<'b>>,
+}
+
+struct ObjectiveState<'b> {
+    error: Option<FormulationError>,
+    evaluations: usize,
+    best: f64,
+    last_report: Instant,
+    progress: &'b mut dyn FnMut(&str),
+}
+
+impl CostFunction for Objective<'_, '_> {
+    type Param = Vec<f64>;
+    type Output = f64;
+
+    fn cost(&self, u: &Vec<f64>) -> std::result::Result<f64, argmin::core::Error> {
+        let x: Vec<f64> = self
+            .reader
+            .varied
+            .iter()
+            .zip(u)
+            .map(|(v, &u)| to_bounds(v, u))
+            .collect();
+        let result = self.reader.objective(&x);
+        let mut state = self.state.borrow_mut();
+        state.evaluations += 1;
+        match result {
+            Ok(f) => {
+                state.best = state.best.min(f);
+                if state.last_report.elapsed().as_secs_f64() > 10.0 {
+                    let line = format!(
+                        "  {} readings, best objective so far {:.3}",
+                        state.evaluations, state.best
+                    );
+                    (state.progress)(&line);
+                    state.last_report = Instant::now();
+                }
+                Ok(f)
+            }
+            Err(e) => {
+                let message = e.to_string();
+                state.error.get_or_insert(e);
+                Err(argmin::core::Error::msg(message))
+            }
+        }
+    }
+}
+
+/// The objective a match minimises, at the values `x` of `varied` (in their units): mean ΔE00
+/// from `target` over its geometries plus the weighted gloss differences, the formulation read
+/// with seed 0 as every evaluation of [`run`] is.
+pub fn objective(
+    start: &Coating,
+    target: &Target,
+    gloss: &[GlossTarget],
+    varied: &[Varied],
+    settings: &Settings,
+    x: &[f64],
+) -> Result<f64> {
+    if x.len() != varied.len() {
+        return Err(FormulationError::Invalid(format!(
+            "{} values for {} constituents",
+            x.len(),
+            varied.len()
+        )));
+    }
+    Reader {
+        start,
+        varied,
+        target,
+        gloss,
+        settings,
+        geometries: target.geometries(),
+    }
+    .objective(x)
+}
+
+/// Find the values of `varied` (within their bounds) that bring `start` closest to `target`
+/// (and to the `gloss` readings), reading each formulation with `settings`. `progress` gets a
+/// line per run and about every 10 s.
+pub fn run(
+    start: &Coating,
+    target: &Target,
+    gloss: &[GlossTarget],
+    varied: &[Varied],
+    settings: &Settings,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Match> {
+    let clock = Instant::now();
+    if varied.is_empty() {
+        return Err(FormulationError::Invalid(
+            "a match needs at least one constituent to vary".into(),
+        ));
+    }
+    if settings.starts == 0 {
+        return Err(FormulationError::Invalid(
+            "a match needs at least one start".into(),
+        ));
+    }
+    if !(settings.gloss_weight.is_finite() && settings.gloss_weight >= 0.0) {
+        return Err(FormulationError::Invalid(format!(
+            "gloss weight {}: a non-negative number of ΔE00 per GU",
+            settings.gloss_weight
+        )));
+    }
+    for (i, v) in varied.iter().enumerate() {
+        if varied[..i].iter().any(|w| w.constituent == v.constituent) {
+            return Err(FormulationError::Invalid(format!(
+                "{}: varied twice",
+                v.name
+            )));
+        }
+        v.check(start, &settings.wavelengths_nm)?;
+    }
+    let reader = Reader {
+        start,
+        varied,
+        target,
+        gloss,
+        settings,
+        geometries: target.geometries(),
+    };
+    let x0: Vec<f64> = varied
+        .iter()
+        .map(|v| Ok(v.constituent.value(start)?.clamp(v.lo, v.hi)))
+        .collect::<Result<_>>()?;
+    let d = varied.len();
+    let mut starts = vec![x0.clone()];
+    for k in 1..settings.starts {
+        starts.push(
+            varied
+                .iter()
+                .enumerate()
+                .map(|(i, v)| {
+                    let s = sobol_burley::sample(k as u32, i as u32, 0) as f64;
+                    v.lo + s * (v.hi - v.lo)
+                })
+                .collect(),
+        );
+    }
+    let mut evaluations = 0;
+    let mut runs: Vec<Run> = Vec::new();
+    let mut nelder_mead = |from: &[f64], step: f64, label: &str| -> Result<Run> {
+        let u0: Vec<f64> = varied
+            .iter()
+            .zip(from)
+            .map(|(v, &x)| from_bounds(v, x))
+            .collect();
+        // The initial simplex: u0 and u0 moved by `step` along each axis, away from the
+        // nearer bound (where the sine map is flat).
+        let mut simplex = vec![u0.clone()];
+        for i in 0..d {
+            let mut u = u0.clone();
+            u[i] += if u0[i] > 0.0 { -step } else { step };
+            simplex.push(u);
+        }
+        let state = RefCell::new(ObjectiveState {
+            error: None,
+            evaluations: 0,
+            best: f64::INFINITY,
+            last_report: Instant::now(),
+            progress: &mut *progress,
+        });
+        let objective = Objective {
+            reader: &reader,
+            state: &state,
+        };
+        let solver = NelderMead::new(simplex)
+            .with_sd_tolerance(settings.tolerance)
+            .map_err(|e| FormulationError::Invalid(e.to_string()))?;
+        let result = Executor::new(objective, solver)
+            .configure(|s| s.max_iters(settings.iterations))
+            .run()
+            .map(|r| {
+                (
+                    r.state().get_best_param().cloned(),
+                    r.state().get_best_cost(),
+                )
+            });
+        let state = state.into_inner();
+        if let Some(e) = state.error {
+            return Err(e);
+        }
+        let (best, cost) = result.map_err(|e| FormulationError::Invalid(e.to_string()))?;
+        let best =
+            best.ok_or_else(|| FormulationError::Invalid("Nelder-Mead found no point".into()))?;
+        let to: Vec<f64> = varied
+            .iter()
+            .zip(&best)
+            .map(|(v, &u)| to_bounds(v, u))
+            .collect();
+        let run = Run {
+            from: from.to_vec(),
+            to,
+            objective: cost,
+            evaluations: state.evaluations,
+        };
+        (state.progress)(&format!(
+            "{label}: objective {:.3} at {} ({} readings, {:.0} s so far)",
+            run.objective,
+            reader.describe(&run.to),
+            run.evaluations,
+            clock.elapsed().as_secs_f64()
+        ));
+        Ok(run)
+    };
+    for (k, from) in starts.iter().enumerate() {
+        let label = if k == 0 {
+            format!("run 1 of {} (from the start formulation)", starts.len() + 1)
+        } else {
+            format!("run {} of {} (from a Sobol point)", k + 1, starts.len() + 1)
+        };
+        let r = nelder_mead(from, 0.5, &label)?;
+        evaluations += r.evaluations;
+        runs.push(r);
+    }
+    let best = runs
+        .iter()
+        .min_by(|a, b| a.objective.total_cmp(&b.objective))
+        .expect("at least one run")
+        .to
+        .clone();
+    let last = nelder_mead(
+        &best,
+        0.1,
+        &format!(
+            "run {} of {} (again from the best)",
+            runs.len() + 1,
+            runs.len() + 1
+        ),
+    )?;
+    evaluations += last.evaluations;
+    runs.push(last);
+    let best = runs
+        .iter()
+        .min_by(|a, b| a.objective.total_cmp(&b.objective))
+        .expect("at least one run");
+    let fitted_x: Vec<f64> = varied
+        .iter()
+        .zip(&best.to)
+        .map(|(v, &x)| rounded(v, x))
+        .collect();
+    let (start_cmp, fitted) = rayon::join(|| reader.compare(&x0), || reader.compare(&fitted_x));
+    let (sigma, residual_sd, readings) = reader.uncertainty(&fitted_x)?;
+    evaluations += 2 + readings;
+    Ok(Match {
+        varied: varied.to_vec(),
+        geometries: reader.geometries.clone(),
+        gloss_targets: gloss.to_vec(),
+        start: start_cmp?,
+        fitted: fitted?,
+        sigma,
+        residual_sd,
+        coating: reader.coating(&fitted_x)?,
+        runs,
+        evaluations,
+        seconds: clock.elapsed().as_secs_f64(),
+    })
+}
