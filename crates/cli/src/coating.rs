@@ -474,11 +474,7 @@ fn match_target(a: MatchArgs) -> Result<()> {
     let wavelengths = default_bands();
     let coating = read(&a.coating, &wavelengths)?;
     let varied = Varied::parse_list(&a.vary).context("--vary")?;
-    let geometries: &[Geometry] = match a.standard.as_str() {
-        "e2194" => &E2194,
-        "e2539" => &multiangle::E2539,
-        other => anyhow::bail!("--standard {other}: e2194 or e2539"),
-    };
+    let geometries = multiangle::standard(&a.standard).context("--standard")?;
     let gloss = match &a.target_gloss {
         Some(s) => GlossTarget::parse_list(s).context("--target-gloss")?,
         None => vec![],
