@@ -516,42 +516,16 @@ fn match_target(a: MatchArgs) -> Result<()> {
     let sigma = |i: usize| m.sigma.as_ref().map(|s| s[i]);
     let mean = |d: &[f64]| d.iter().sum::<f64>() / d.len() as f64;
     if a.json {
-        let constituents: Vec<_> = varied
-            .iter()
-            .enumerate()
-            .map(|(i, v)| {
-                serde_json::json!({
-                    "name": v.name, "lo": v.lo, "hi": v.hi,
-                    "start": m.start.values[i], "fitted": m.fitted.values[i],
-                    "sigma": sigma(i), "at_bound": m.at_bound(i),
-                })
-            })
-            .collect();
-        let geometries: Vec<_> = m
-            .geometries
-            .iter()
-            .enumerate()
-            .map(|(k, g)| {
-                serde_json::json!({
-                    "name": g.to_string(),
-                    "de00_start": m.start.de00[k], "de00_fitted": m.fitted.de00[k],
-                })
-            })
-            .collect();
-        let gloss = |g: &gonio_instrument::GlossReport| serde_json::json!({"gu20": g.gu20, "gu60": g.gu60, "gu85": g.gu85, "haze": g.haze, "doi": g.doi});
-        let json = serde_json::json!({
+        let mut json = serde_json::json!({
             "file": a.coating.display().to_string(),
             "target": a.target.display().to_string(),
             "output": a.output.display().to_string(),
-            "constituents": constituents,
-            "geometries": geometries,
-            "mean_de00_start": mean(&m.start.de00), "mean_de00_fitted": mean(&m.fitted.de00),
-            "objective_start": m.start.objective, "objective_fitted": m.fitted.objective,
-            "residual_sd": m.residual_sd,
-            "target_gloss": m.gloss_targets.iter().map(|t| serde_json::json!({"angle": t.angle, "gu": t.gu})).collect::<Vec<_>>(),
-            "gloss_start": gloss(&m.start.gloss), "gloss_fitted": gloss(&m.fitted.gloss),
-            "evaluations": m.evaluations, "seconds": m.seconds,
         });
+        if let (Some(out), serde_json::Value::Object(fields)) =
+            (json.as_object_mut(), m.to_json(&target))
+        {
+            out.extend(fields);
+        }
         println!("{}", serde_json::to_string_pretty(&json)?);
         return Ok(());
     }

@@ -176,7 +176,17 @@ impl Colorimetry {
         illuminant: Illuminant,
         observer: Observer,
     ) -> Self {
-        let xyz = reflectance_xyz(reflectance, illuminant, observer);
+        Colorimetry::of_xyz(
+            reflectance_xyz(reflectance, illuminant, observer),
+            illuminant,
+            observer,
+        )
+    }
+
+    /// The colorimetry of the tristimulus values `xyz` (0–100 scale) under `illuminant` for
+    /// `observer`: a colour known by its XYZ or, through [`Lab::to_xyz`], its CIELAB (a
+    /// multi-angle reading, a target).
+    pub fn of_xyz(xyz: Xyz, illuminant: Illuminant, observer: Observer) -> Self {
         let white = white(illuminant, observer);
         let [r, g, b] = mat3::mul_vec(&display_matrix(illuminant, observer), xyz.to_array());
         let linear_srgb = LinearSrgb { r, g, b };

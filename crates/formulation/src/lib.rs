@@ -11,6 +11,7 @@ pub mod bounds;
 pub mod coating_sensitivity;
 pub mod error;
 pub mod fitted_description;
+pub mod match_report;
 pub mod matching;
 pub mod sensitivity;
 pub mod sensitivity_report;

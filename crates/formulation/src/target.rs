@@ -9,6 +9,36 @@ use gonio_instrument::multiangle::{self, Geometry, Settings};
 use gonio_instrument::multiangle_target::Target;
 use std::path::Path;
 
+/// The target `all` at `geometries` only, in their order; every one of them must be in it
+/// (others are left out). The error names the target and the geometries it holds.
+pub fn at_geometries(all: Target, geometries: &[Geometry]) -> Result<Target> {
+    let colours = geometries
+        .iter()
+        .map(|&g| {
+            all.colours
+                .iter()
+                .find(|(h, _)| *h == g)
+                .copied()
+                .ok_or_else(|| {
+                    FormulationError::Invalid(format!(
+                        "{}: the target has no geometry {g} (it holds {}; give every geometry \
+                         of the standard)",
+                        all.source,
+                        all.geometries()
+                            .iter()
+                            .map(Geometry::to_string)
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ))
+                })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(Target {
+        source: all.source.clone(),
+        colours,
+    })
+}
+
 /// Read the target `path` at `geometries`, by its extension:
 /// - `.csv`: [`Target::read_csv`] (CIELAB or reflectance factors per geometry); it must hold
 ///   every one of `geometries` (others it holds are left out of the match);
@@ -28,33 +58,7 @@ pub fn read_target(path: &Path, geometries: &[Geometry]) -> Result<Target> {
         .unwrap_or("")
         .to_ascii_lowercase();
     let table = match extension.as_str() {
-        "csv" => {
-            let all = Target::read_csv(path)?;
-            let colours = geometries
-                .iter()
-                .map(|&g| {
-                    all.colours
-                        .iter()
-                        .find(|(h, _)| *h == g)
-                        .copied()
-                        .ok_or_else(|| {
-                            invalid(&format!(
-                                "the target has no geometry {g} (it holds {}; give every \
-                                 geometry of the standard)",
-                                all.geometries()
-                                    .iter()
-                                    .map(Geometry::to_string)
-                                    .collect::<Vec<_>>()
-                                    .join(", ")
-                            ))
-                        })
-                })
-                .collect::<Result<Vec<_>>>()?;
-            return Ok(Target {
-                source: name,
-                colours,
-            });
-        }
+        "csv" => return at_geometries(Target::read_csv(path)?, geometries),
         "astm" => {
             astm::import(path, astm::default_resolution())
                 .map_err(|e| invalid(&e))?

@@ -29,6 +29,9 @@ pub struct Coating {
     /// Where it came from: the file, or "dict".
     #[pyo3(get)]
     pub source: String,
+    /// The TOML text it was read from (a match writes the fitted values into it).
+    #[pyo3(get)]
+    pub toml: String,
 }
 
 /// Read the coating description `path` (TOML), or parse `text` (TOML, or JSON of the same
@@ -46,6 +49,8 @@ pub fn read_coating(
         (Some(path), None) => Ok(Coating {
             coating: description::read(&path, &wavelengths)?,
             source: path.display().to_string(),
+            toml: std::fs::read_to_string(&path)
+                .map_err(|e| invalid(format!("{}: {e}", path.display())))?,
         }),
         (None, Some(text)) => {
             let toml = if json {
@@ -63,6 +68,7 @@ pub fn read_coating(
             Ok(Coating {
                 coating: description::parse_in(&toml, &base_dir, &wavelengths)?,
                 source: "dict".into(),
+                toml,
             })
         }
         _ => Err(invalid("give a coating file or a description")),
@@ -289,4 +295,66 @@ impl SensitivityPlan {
         )?;
         Ok(s.to_json(&self.varied, threshold).to_string())
     }
+}
+
+/// Match `start` to a target: the file `target` (.csv of CIELAB or reflectance factors per
+/// geometry, .astm, .gbrdf) or the CSV text `target_csv`, at `standard`'s geometries, varying
+/// `vary` (NAME=LO:HI,...), with optional `target_gloss` (ANGLE=GU,...), `gloss_weight` ΔE00
+/// per GU, `walks` per geometry and `starts` Nelder–Mead runs before the last. Returns the
+/// result as JSON text (`gonio coating match --json` without the file names), the fitted
+/// formulation's TOML (the start's text with the fitted values) and the fitted Coating.
+#[pyfunction]
+#[pyo3(signature = (start, target, target_csv, vary, standard, target_gloss, gloss_weight, walks, starts))]
+#[allow(clippy::too_many_arguments)]
+pub fn match_coating(
+    py: Python<'_>,
+    start: &Coating,
+    target: Option<PathBuf>,
+    target_csv: Option<String>,
+    vary: &str,
+    standard: &str,
+    target_gloss: Option<String>,
+    gloss_weight: f64,
+    walks: usize,
+    starts: usize,
+) -> Result<(String, String, Coating)> {
+    use gonio_formulation::matching::{self, Settings as MatchSettings};
+    use gonio_formulation::target::{GlossTarget, at_geometries, read_target};
+    let varied = Varied::parse_list(vary)?;
+    let geometries = gonio_instrument::multiangle::standard(standard)?;
+    let gloss = match target_gloss {
+        Some(list) => GlossTarget::parse_list(&list)?,
+        None => Vec::new(),
+    };
+    let settings = MatchSettings {
+        walks,
+        gloss_weight,
+        starts,
+        ..MatchSettings::default()
+    };
+    let coating = start.coating.clone();
+    let text = start.toml.clone();
+    let (json, fitted_text, fitted) = py.detach(move || -> Result<_> {
+        let target = match (target, target_csv) {
+            (Some(path), None) => read_target(&path, geometries)?,
+            (None, Some(csv)) => at_geometries(
+                gonio_instrument::multiangle_target::Target::parse_csv(&csv, "target")?,
+                geometries,
+            )?,
+            _ => return Err(invalid("give a target file or a target's CSV text")),
+        };
+        let m = matching::run(&coating, &target, &gloss, &varied, &settings, &mut |_| {})?;
+        let fitted_text =
+            gonio_formulation::fitted_description::with_values(&text, &varied, &m.fitted.values)?;
+        Ok((m.to_json(&target).to_string(), fitted_text, m.coating))
+    })?;
+    Ok((
+        json,
+        fitted_text.clone(),
+        Coating {
+            coating: fitted,
+            source: "fitted".into(),
+            toml: fitted_text,
+        },
+    ))
 }

@@ -2,7 +2,7 @@
 //! a CIE illuminant and observer, with the keys of `gonio color xyz --json`.
 
 use crate::error::{Result, invalid};
-use gonio_color::{Colorimetry, Illuminant, Observer, Spectrum};
+use gonio_color::{Colorimetry, Illuminant, Lab, Observer, Spectrum};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -18,6 +18,33 @@ pub fn xyz<'py>(
     illuminant: &str,
     observer: u32,
 ) -> Result<Bound<'py, PyDict>> {
+    let (ill, obs) = conditions(illuminant, observer)?;
+    let spectrum = Spectrum::new(wavelengths_nm, values)?;
+    report(py, Colorimetry::of_reflectance(&spectrum, ill, obs))
+}
+
+/// The colour of CIELAB `lab` (L*, a*, b*) relative to the perfect diffuser under `illuminant`
+/// for `observer`, with [`xyz`]'s keys: for swatches of a multi-angle reading or a target.
+#[pyfunction]
+#[pyo3(signature = (lab, illuminant="D65", observer=10))]
+pub fn from_lab<'py>(
+    py: Python<'py>,
+    lab: [f64; 3],
+    illuminant: &str,
+    observer: u32,
+) -> Result<Bound<'py, PyDict>> {
+    let (ill, obs) = conditions(illuminant, observer)?;
+    let lab = Lab {
+        l: lab[0],
+        a: lab[1],
+        b: lab[2],
+    };
+    let xyz = lab.to_xyz(gonio_color::white(ill, obs));
+    report(py, Colorimetry::of_xyz(xyz, ill, obs))
+}
+
+/// The illuminant and observer named `illuminant` and `observer`.
+fn conditions(illuminant: &str, observer: u32) -> Result<(Illuminant, Observer)> {
     let ill = Illuminant::from_name(illuminant)
         .ok_or_else(|| invalid(format!("illuminant `{illuminant}`: use \"D65\" or \"A\"")))?;
     let obs = Observer::from_field_deg(observer).ok_or_else(|| {
@@ -25,8 +52,11 @@ pub fn xyz<'py>(
             "observer {observer}: use 2 (CIE 1931) or 10 (CIE 1964)"
         ))
     })?;
-    let spectrum = Spectrum::new(wavelengths_nm, values)?;
-    let c = Colorimetry::of_reflectance(&spectrum, ill, obs);
+    Ok((ill, obs))
+}
+
+/// The keys of `gonio color xyz --json`.
+fn report(py: Python<'_>, c: Colorimetry) -> Result<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("illuminant", c.illuminant.name())?;
     d.set_item("observer_deg", c.observer.field_deg())?;

@@ -36,11 +36,13 @@ fn _gonio(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(table::compute_table, m)?)?;
     m.add_function(wrap_pyfunction!(render::render_scene, m)?)?;
     m.add_function(wrap_pyfunction!(color::xyz, m)?)?;
+    m.add_function(wrap_pyfunction!(color::from_lab, m)?)?;
     m.add_class::<coating::Coating>()?;
     m.add("TABLE_WALKS", gonio_coating::system::TABLE_WALKS)?;
     m.add("TARGET_DL", gonio_coating::system::TARGET_DL)?;
     m.add_function(wrap_pyfunction!(coating::read_coating, m)?)?;
     m.add_class::<coating::SensitivityPlan>()?;
     m.add_function(wrap_pyfunction!(coating::sensitivity_plan, m)?)?;
+    m.add_function(wrap_pyfunction!(coating::match_coating, m)?)?;
     Ok(())
 }

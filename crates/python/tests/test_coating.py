@@ -115,3 +115,27 @@ def test_sensitivity_on_dask_equals_serial_and_the_cli(gonio_cli):
                    "roughness=0.05:0.2,thickness=20:60", "--outputs", "gu60,L@45as15",
                    "--method", "morris", "--samples", "3", "--walks", "16", "--json")
     assert {k: v for k, v in cli.items() if k != "file"} == serial.json
+
+
+def test_match_equals_the_cli_and_recovers_a_concentration(gonio_cli, tmp_path):
+    red = EXAMPLES / "red_pigmented.toml"
+    variant = tmp_path / "variant.toml"
+    variant.write_text(red.read_text().replace("concentration = 1.0", "concentration = 0.3"))
+    # The target as a DataFrame of CIELAB (gonio.coating.multiangle's columns), and as the CSV
+    # of reflectance factors the CLI writes: the same colours, so the same match.
+    target = gonio.coating.multiangle(variant)[["geometry", "L", "a", "b"]]
+    subprocess.run([gonio_cli, "multiangle", variant, "--spectra", tmp_path / "target.csv"],
+                   check=True, capture_output=True)
+    m = gonio.coating.match(red, target, "concentration:red=0.1:2", starts=1)
+    assert abs(m.constituents["fitted"][0] - 0.3) < 1e-3, m.constituents
+    assert m.mean_de00[0] > 2 and m.mean_de00[1] < 0.05, m.mean_de00
+    assert "# Two pigments" in m.toml  # the example's comments are kept
+    again = gonio.coating.info(m.fitted)
+    assert again["multiangle"][2]["L"] == pytest.approx(target["L"][2], abs=0.05)
+    cli = cli_json(gonio_cli, "coating", "match", red, "--target", tmp_path / "target.csv",
+                   "--vary", "concentration:red=0.1:2", "--starts", "1",
+                   "-o", tmp_path / "fitted.toml", "--json")
+    assert cli["constituents"][0]["fitted"] == pytest.approx(m.constituents["fitted"][0], abs=1e-6)
+    assert [g["name"] for g in cli["geometries"]] == list(m.geometries["geometry"])
+    with pytest.raises(ValueError, match="no geometry"):
+        gonio.coating.match(red, target.iloc[:2], "concentration:red=0.1:2")

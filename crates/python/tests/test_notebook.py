@@ -4,19 +4,22 @@ from __future__ import annotations
 
 import nbformat
 from nbclient import NotebookClient
+import pytest
 
 from conftest import ROOT
 
-NOTEBOOK = ROOT / "examples" / "python" / "roughness_study.ipynb"
+NOTEBOOKS = ROOT / "examples" / "python"
 
 
-def test_roughness_study_notebook_runs():
-    nb = nbformat.read(NOTEBOOK, as_version=4)
+@pytest.mark.parametrize("name", ["roughness_study.ipynb", "cayman_match.ipynb"])
+def test_notebook_runs(name):
+    notebook = NOTEBOOKS / name
+    nb = nbformat.read(notebook, as_version=4)
     client = NotebookClient(
         nb,
         timeout=900,
         kernel_name="python3",
-        resources={"metadata": {"path": str(NOTEBOOK.parent)}},
+        resources={"metadata": {"path": str(notebook.parent)}},
     )
     client.execute()
     errors = [

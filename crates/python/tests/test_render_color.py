@@ -52,3 +52,21 @@ def test_colour_of_a_flat_spectrum_and_against_colour_science():
     ours = gonio.color.xyz(sd)
     # Both follow ASTM E308; the CIE tables agree to their printed digits.
     np.testing.assert_allclose(ours["xyz"], ref, rtol=2e-3)
+
+
+def test_from_lab_gives_the_spectrums_colour_back_and_colour_sciences_xyz():
+    # A spectrum's CIELAB taken back through from_lab reports the spectrum's own XYZ and sRGB
+    # (D65, 10°: the multi-angle instruments' conditions).
+    w = np.arange(400.0, 701.0, 10.0)
+    values = 0.1 + 0.5 * np.exp(-((w - 480.0) / 50.0) ** 2)
+    spectrum = gonio.color.xyz(w, values, observer=10)
+    back = gonio.color.from_lab(spectrum["cielab"], observer=10)
+    np.testing.assert_allclose(back["xyz"], spectrum["xyz"], rtol=1e-12)
+    assert back["srgb_hex"] == spectrum["srgb_hex"]
+    try:
+        import colour
+    except ImportError:
+        oracle_missing("colour-science is not installed (pip install colour-science)")
+    white = np.array(spectrum["white_xyz"])
+    ref = colour.Lab_to_XYZ(np.array(spectrum["cielab"]), colour.XYZ_to_xy(white / 100.0)) * white[1]
+    np.testing.assert_allclose(back["xyz"], ref, rtol=1e-9)

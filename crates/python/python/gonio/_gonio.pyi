@@ -118,6 +118,8 @@ class Coating:
 
     @property
     def source(self) -> str: ...
+    @property
+    def toml(self) -> str: ...
     def info_json(self, samples: int) -> str: ...
     def compute(
         self, resolution: list[int], bands: list[float], samples: int, target_dl: float
@@ -158,3 +160,17 @@ def sensitivity_plan(
     standard: str,
     walks: int,
 ) -> SensitivityPlan: ...
+
+def match_coating(
+    start: Coating,
+    target: str | PathLike[str] | None,
+    target_csv: str | None,
+    vary: str,
+    standard: str,
+    target_gloss: str | None,
+    gloss_weight: float,
+    walks: int,
+    starts: int,
+) -> tuple[str, str, Coating]: ...
+
+def from_lab(lab: list[float], illuminant: str = "D65", observer: int = 10) -> dict[str, Any]: ...

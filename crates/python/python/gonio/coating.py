@@ -5,8 +5,9 @@ Kubelka-Munk base, with or without effect flakes (``docs/coatings.md``). The sam
 Read a formulation with :func:`read` (a TOML file, or a dict of the same tables), then ask for
 its :func:`info`, its spectral table (:func:`compute`), its multi-angle colour
 (:func:`multiangle`, a DataFrame), a formulation study (:func:`study`, a DataFrame) or its
-picture on the curved panel (:func:`panel_picture`, a numpy RGB array), and which
-constituents drive which reading (:func:`sensitivity`, on Dask when given a client).
+picture on the curved panel (:func:`panel_picture`, a numpy RGB array), which constituents
+drive which reading (:func:`sensitivity`, on Dask when given a client), and the formulation
+that reproduces a target (:func:`match`).
 
 Units: wavelengths in nm, angles in degrees, reflectances as fractions (0-1), CIELAB under D65
 for the 10° observer; the walks' counts are per evaluation (per geometry, per table cell).
@@ -34,6 +35,8 @@ __all__ = [
     "panel_picture",
     "sensitivity",
     "Sensitivity",
+    "match",
+    "Match",
     "TABLE_RESOLUTION",
     "DEFAULT_BANDS_NM",
 ]
@@ -184,9 +187,11 @@ class Sensitivity:
 
 
 def _plan(description, base_dir, vary, outputs, method, samples, standard, walks):
-    return _gonio.sensitivity_plan(
-        read(description, base_dir), vary, outputs, method, samples, standard, walks
-    )
+    if isinstance(description, tuple):  # ("toml", text): a Coating's own description
+        coating = _gonio.read_coating(None, description[1], False, base_dir)
+    else:
+        coating = read(description, base_dir)
+    return _gonio.sensitivity_plan(coating, vary, outputs, method, samples, standard, walks)
 
 
 def _read_rows(plan_args: tuple, rows: np.ndarray) -> np.ndarray:
@@ -217,22 +222,14 @@ def sensitivity(
     ``walks`` walks per geometry with the same random numbers (docs/formulation.md).
 
     With ``client`` (a ``dask.distributed.Client``) the design's rows are read on the cluster,
-    ``rows_per_task`` per task; each task rebuilds the formulation from its path or dict (a
-    :class:`Coating` read from a file is sent as its path), so the workers must see the file.
+    ``rows_per_task`` per task; each task rebuilds the formulation from its path, dict or (a
+    :class:`Coating`) TOML text, so the workers must see a path's file and the files it names.
     The result equals the serial one exactly: every row is read from the same streams wherever
     it runs."""
     if isinstance(vary, Mapping):
         vary = ",".join(f"{k}={float(lo)}:{float(hi)}" for k, (lo, hi) in vary.items())
     if isinstance(coating, Coating):
-        if coating.source == "dict":
-            if client is not None:
-                raise ValueError(
-                    "sensitivity with a client: give the formulation's path or dict, not a "
-                    "Coating built from a dict (the workers rebuild it)"
-                )
-            description = coating
-        else:
-            description = coating.source
+        description = ("toml", coating.toml)
     elif isinstance(coating, Mapping):
         description = dict(coating)
     else:
@@ -255,3 +252,75 @@ def sensitivity(
         pd.DataFrame(points, columns=names),
         pd.DataFrame(values, columns=plan.output_names()),
     )
+
+
+class Match:
+    """What :func:`match` found: ``fitted`` (the fitted :class:`Coating`), ``toml`` (its
+    description: the start's text with the fitted values, comments kept), ``constituents`` (a
+    DataFrame: ``name``, ``lo``, ``hi``, ``start``, ``fitted``, ``sigma`` (one standard
+    deviation, Gauss-Newton; about half the real scatter, docs/formulation.md), ``at_bound``),
+    ``geometries`` (a DataFrame: ``geometry``, ``de00_start``, ``de00_fitted`` and CIELAB
+    D65/10° of the target, the start and the fitted formulation: ``L_target``, ``a_target``,
+    ..., ``b_fitted``), ``mean_de00`` (start, fitted) and ``json`` (``gonio coating match
+    --json``'s structure without the file names)."""
+
+    def __init__(self, result: dict, toml: str, fitted: Coating):
+        self.json = result
+        self.toml = toml
+        self.fitted = fitted
+        self.constituents = pd.DataFrame(result["constituents"])
+        rows = []
+        for g in result["geometries"]:
+            row = {"geometry": g["name"], "de00_start": g["de00_start"],
+                   "de00_fitted": g["de00_fitted"]}
+            for which in ("target", "start", "fitted"):
+                for c in ("L", "a", "b"):
+                    row[f"{c}_{which}"] = g[which][c] if g[which] else np.nan
+            rows.append(row)
+        self.geometries = pd.DataFrame(rows)
+        self.mean_de00 = (result["mean_de00_start"], result["mean_de00_fitted"])
+
+    def save(self, path: str | os.PathLike) -> None:
+        """Write the fitted description (TOML) to ``path``."""
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(self.toml)
+
+    def __repr__(self) -> str:
+        return (f"Match(mean ΔE00 {self.mean_de00[0]:.2f} -> {self.mean_de00[1]:.2f}, "
+                f"{self.json['evaluations']} readings)")
+
+
+def match(
+    start: str | os.PathLike | Mapping[str, Any] | Coating,
+    target: str | os.PathLike | pd.DataFrame,
+    vary: str | Mapping[str, tuple[float, float]],
+    standard: str = "e2194",
+    target_gloss: Mapping[int, float] | None = None,
+    gloss_weight: float = 0.1,
+    walks: int = 1024,
+    starts: int = 4,
+) -> Match:
+    """The values of the ``vary``'d constituents (``"tilt=4:20,coverage=0.3:0.8"`` or
+    ``{"tilt": (4, 20), ...}``, within the bounds) that make ``start`` look like ``target``
+    (``gonio coating match``): the mean CIEDE2000 over the ``standard``'s geometries (plus
+    ``gloss_weight`` ΔE00 per gloss unit of difference from ``target_gloss``, e.g.
+    ``{20: 85, 60: 92}``) is minimised by Nelder-Mead from the start formulation and
+    ``starts - 1`` other points, every reading with the same random numbers.
+
+    ``target``: a file (``.csv`` of CIELAB or reflectance factors per geometry, a measured BRDF
+    ``.astm`` or a spectral ``.gbrdf``) or a DataFrame with a ``geometry`` column and ``L``,
+    ``a``, ``b`` (or reflectance-factor columns ``R_400nm`` ... as :func:`multiangle` gives)."""
+    if isinstance(vary, Mapping):
+        vary = ",".join(f"{k}={float(lo)}:{float(hi)}" for k, (lo, hi) in vary.items())
+    gloss = None
+    if target_gloss:
+        gloss = ",".join(f"{int(a)}={float(gu)}" for a, gu in target_gloss.items())
+    path, csv = None, None
+    if isinstance(target, pd.DataFrame):
+        csv = target.to_csv(index=False)
+    else:
+        path = os.fspath(target)
+    result, toml, fitted = _gonio.match_coating(
+        read(start), path, csv, vary, standard, gloss, float(gloss_weight), int(walks), int(starts)
+    )
+    return Match(json.loads(result), toml, fitted)

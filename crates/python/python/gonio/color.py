@@ -9,7 +9,7 @@ import numpy as np
 
 from . import _gonio
 
-__all__ = ["xyz", "lab"]
+__all__ = ["xyz", "lab", "from_lab"]
 
 
 def _spectrum(wavelengths_nm: Any, values: Any) -> tuple[list, list]:
@@ -40,3 +40,11 @@ def xyz(wavelengths_nm: Any, values: Any = None, illuminant: str = "D65", observ
 def lab(wavelengths_nm: Any, values: Any = None, illuminant: str = "D65", observer: int = 2) -> np.ndarray:
     """CIELAB (L*, a*, b*) of a reflectance spectrum, as :func:`xyz` computes it."""
     return np.array(xyz(wavelengths_nm, values, illuminant, observer)["cielab"])
+
+
+def from_lab(lab: Any, illuminant: str = "D65", observer: int = 10) -> dict:
+    """The colour of CIELAB ``lab`` (L*, a*, b*; relative to the perfect diffuser under
+    ``illuminant`` for the ``observer``, 10° by default as multi-angle readings are) with the keys
+    of :func:`xyz`: ``srgb_hex`` gives a swatch (clipped where the colour leaves the sRGB gamut
+    or is brighter than the white, as a metallic near the specular direction is)."""
+    return _gonio.from_lab([float(v) for v in lab], illuminant, int(observer))
