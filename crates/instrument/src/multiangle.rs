@@ -276,6 +276,34 @@ pub fn read(
     })
 }
 
+/// Read a Lambertian surface of reflectance `reflectance[k]` at `wavelengths_nm[k]` (a bare
+/// base, a white tile) at `geometries`: its BRDF ρ/π, the same at every geometry, so its colour
+/// is the reflectance's whatever the angles.
+pub fn read_lambertian(
+    reflectance: &[f64],
+    wavelengths_nm: &[f64],
+    geometries: &[Geometry],
+    settings: &Settings,
+) -> Result<MultiangleReading> {
+    if reflectance.len() != wavelengths_nm.len() {
+        return Err(InstrumentError::Invalid(format!(
+            "{} reflectances for {} wavelengths",
+            reflectance.len(),
+            wavelengths_nm.len()
+        )));
+    }
+    read(
+        &|_, _, out: &mut [f64]| {
+            for (o, r) in out.iter_mut().zip(reflectance) {
+                *o = r / std::f64::consts::PI;
+            }
+        },
+        wavelengths_nm,
+        geometries,
+        settings,
+    )
+}
+
 /// Read a spectral table at `geometries` (at the table's own wavelengths). Tables of RGB, XYZ
 /// or one channel are refused: an instrument's colour needs the spectrum.
 pub fn read_table(

@@ -182,17 +182,17 @@ impl Target {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::multiangle::{E2194, read};
+    use crate::multiangle::{E2194, read_lambertian};
 
-    /// A grey Lambertian surface of reflectance 0.3 read at E2194, written as reflectance
+    /// A grey Lambertian surface of reflectance 0.3 read at E2194 ([`read_lambertian`]), written as reflectance
     /// factors and as CIELAB, gives the same target both ways (the spectral CSV's colour is
     /// computed as the reading's), and its own reading is ΔE00 0 from it. L* of a 0.3
     /// reflectance factor is 116·0.3^(1/3) − 16 = 61.65 (CIE 15:2004, Y/Yn above 0.008856).
     #[test]
     fn lab_and_spectral_csv_give_the_same_target() {
         let wl: Vec<f64> = (0..31).map(|i| 400.0 + 10.0 * i as f64).collect();
-        let grey = |_, _, out: &mut [f64]| out.fill(0.3 / std::f64::consts::PI);
-        let reading = read(&grey, &wl, &E2194, &Settings::default()).unwrap();
+        let grey = vec![0.3; wl.len()];
+        let reading = read_lambertian(&grey, &wl, &E2194, &Settings::default()).unwrap();
         let mut spectral = String::from("# a grey tile\ngeometry,illumination_deg");
         for w in &wl {
             spectral.push_str(&format!(",R_{w}nm"));
@@ -221,7 +221,8 @@ mod tests {
             );
         }
         assert!(a.de00(&reading).unwrap().iter().all(|d| d.abs() < 1e-9));
-        let fewer = read(&grey, &wl, &E2194[..2], &Settings::default()).unwrap();
+        let fewer = read_lambertian(&grey, &wl, &E2194[..2], &Settings::default()).unwrap();
+        assert!(read_lambertian(&grey[1..], &wl, &E2194, &Settings::default()).is_err());
         assert!(a.de00(&fewer).unwrap_err().to_string().contains("45as45"));
     }
 

@@ -10,7 +10,6 @@ use gonio_coating::system::Coating;
 use gonio_coating::{clear_coat, description};
 use gonio_instrument::coating_study::Constituent;
 use gonio_instrument::multiangle::{self, E2194, E2539, Geometry, MultiangleReading, Settings};
-use std::f64::consts::PI;
 use std::path::Path;
 
 fn f2(v: f64) -> String {
@@ -30,16 +29,8 @@ pub(super) fn coatings_section(dir: &Path, pictures: bool) -> Result<Section> {
         .map(|&w| stack.at(w))
         .collect::<gonio_coating::Result<Vec<_>>>()?;
     // The bare base: a Lambertian surface of the patch's reflectance.
-    let bare = multiangle::read(
-        &|_, _, out: &mut [f64]| {
-            for (o, at) in out.iter_mut().zip(&optics) {
-                *o = at.rho / PI;
-            }
-        },
-        &wl,
-        &E2194,
-        &settings,
-    )?;
+    let rho: Vec<f64> = optics.iter().map(|at| at.rho).collect();
+    let bare = multiangle::read_lambertian(&rho, &wl, &E2194, &settings)?;
     // The coated red as `gonio coating compute` tabulates it and `gonio multiangle` reads the
     // table: the numbers the commands shown below print.
     let table = stack.body_table(

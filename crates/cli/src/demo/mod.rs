@@ -124,7 +124,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
     sections.push(section);
 
     if !args.quick {
-        announce("formulation: which constituents drive the silver metallic's readings");
+        announce("formulation: the Cayman matched, and what drives the silver metallic");
         let (section, seconds) = timed(|| formulation::formulation_section(dir));
         let mut section = section?;
         section.seconds = seconds;
