@@ -434,7 +434,7 @@ fn sensitivity(a: SensitivityArgs) -> Result<()> {
             dir.display()
         );
     }
-    let names: Vec<&str> = s.problem.inputs().iter().map(|i| i.name.as_str()).collect();
+    let names = s.input_names();
     if a.json {
         let mut json = serde_json::json!({ "file": a.coating.display().to_string() });
         if let (Some(out), serde_json::Value::Object(fields)) =

@@ -8,18 +8,22 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 impl Sensitivity {
+    /// The varied constituents' names, in the design's column order.
+    pub fn input_names(&self) -> Vec<&str> {
+        self.problem
+            .inputs()
+            .iter()
+            .map(|i| i.name.as_str())
+            .collect()
+    }
+
     /// The run as JSON, as `gonio coating sensitivity --json` prints it (without the file's
     /// name): `method`, `readings`, `inputs` [{name, lo, hi}] (`varied`, in order), `summary`
     /// (in words at `threshold`), and `outputs` [{output, base, noise, variance, indices}] with
     /// `indices` {s1, s1_conf, st, st_conf} (Sobol) or {mu, mu_star, sigma, mu_star_conf}
     /// (Morris), each a map from input name to value.
     pub fn to_json(&self, varied: &[Varied], threshold: f64) -> serde_json::Value {
-        let names: Vec<&str> = self
-            .problem
-            .inputs()
-            .iter()
-            .map(|i| i.name.as_str())
-            .collect();
+        let names = self.input_names();
         let per_input = |v: &[f64]| -> serde_json::Value {
             names
                 .iter()
@@ -80,12 +84,7 @@ impl Sensitivity {
     /// says how much of it is noise. E.g. "60° gloss is driven by roughness (ST 0.93 ± 0.05);
     /// tilt and coverage do not matter (ST < 0.02)."
     pub fn summary(&self, threshold: f64) -> String {
-        let names: Vec<&str> = self
-            .problem
-            .inputs()
-            .iter()
-            .map(|i| i.name.as_str())
-            .collect();
+        let names = self.input_names();
         let mut text = String::new();
         for (k, output) in self.outputs.iter().enumerate() {
             let what = capitalise(&output.words());

@@ -149,7 +149,7 @@ pub(super) fn formulation_section(dir: &Path) -> Result<Section> {
     let Indices::Morris { effects, .. } = &s.indices else {
         anyhow::bail!("the demo's sensitivity is a Morris screening");
     };
-    let names: Vec<String> = s.problem.inputs().iter().map(|i| i.name.clone()).collect();
+    let names = s.input_names();
     let mut headers = vec!["reading".to_string(), "base formulation".into()];
     headers.extend(names.iter().map(|n| format!("μ* {n}")));
     let rows = s
