@@ -166,6 +166,7 @@ fn bad_inputs_are_refused() {
                 b: 20.0,
             },
         )],
+        spectra: None,
     };
     let run = |vary: &str, settings: &Settings| {
         matching::run(
