@@ -20,7 +20,7 @@
 use crate::error::{FormulationError, Result};
 use gonio_color::Spectrum;
 use gonio_instrument::multiangle::MultiangleReading;
-use gonio_instrument::multiangle_target::Target;
+use gonio_instrument::multiangle_target::{Spectra, Target};
 use std::fmt;
 use std::str::FromStr;
 
@@ -72,18 +72,23 @@ impl FromStr for Objective {
     }
 }
 
-/// `reading` − `target` in reflectance factor at each of the target's bands within the reading's
-/// wavelengths (the reading linearly interpolated to them) and each of the target's geometries,
-/// geometry by geometry. An error names the target when it holds no spectra, when none of its
-/// bands lies within the reading's, or when the reading lacks one of its geometries.
-pub fn reflectance_differences(target: &Target, reading: &MultiangleReading) -> Result<Vec<f64>> {
-    let spectra = target.spectra.as_ref().ok_or_else(|| {
+/// The target's reflectance factors; an error naming it when it gives CIELAB only.
+pub fn spectra_of(target: &Target) -> Result<&Spectra> {
+    target.spectra.as_ref().ok_or_else(|| {
         FormulationError::Invalid(format!(
             "{}: the target gives CIELAB only; a spectral match needs its reflectance factors \
              (a CSV of R_400nm ... R_700nm per geometry, or a measured table)",
             target.source
         ))
-    })?;
+    })
+}
+
+/// `reading` − `target` in reflectance factor at each of the target's bands within the reading's
+/// wavelengths (the reading linearly interpolated to them) and each of the target's geometries,
+/// geometry by geometry. An error names the target when it holds no spectra, when none of its
+/// bands lies within the reading's, or when the reading lacks one of its geometries.
+pub fn reflectance_differences(target: &Target, reading: &MultiangleReading) -> Result<Vec<f64>> {
+    let spectra = spectra_of(target)?;
     let (first, last) = match reading.wavelengths_nm.as_slice() {
         [first, .., last] => (*first, *last),
         _ => {

@@ -35,7 +35,7 @@ use crate::bounds::{from_bounds, rounded, to_bounds};
 use crate::coating_sensitivity::Varied;
 use crate::error::{FormulationError, Result};
 pub use crate::match_objective::Objective;
-use crate::match_objective::{reflectance_differences, rms};
+use crate::match_objective::{reflectance_differences, rms, spectra_of};
 use crate::target::GlossTarget;
 use argmin::core::{CostFunction, Executor, State};
 use argmin::solver::neldermead::NelderMead;
@@ -461,6 +461,9 @@ pub fn run(
         return Err(FormulationError::Invalid(
             "a match needs at least one start".into(),
         ));
+    }
+    if settings.objective == Objective::Spectral {
+        spectra_of(target)?;
     }
     if settings.objective == Objective::Spectral && !gloss.is_empty() {
         return Err(FormulationError::Invalid(
