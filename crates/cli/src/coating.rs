@@ -75,6 +75,13 @@ pub struct MatchArgs {
     /// points of the bounds.
     #[arg(long, default_value_t = gonio_formulation::matching::Settings::STARTS)]
     starts: usize,
+    /// What the match minimises: de00 (the mean CIEDE2000 over the standard's geometries, plus
+    /// the weighted gloss differences) or spectral (the rms difference of reflectance factors
+    /// over the target's bands and geometries: a target of reflectance factors, a .astm or a
+    /// .gbrdf; no --target-gloss). A spectral match is not metameric; ΔE00 is reported either
+    /// way.
+    #[arg(long, default_value = "de00")]
+    objective: gonio_formulation::matching::Objective,
     /// The fitted formulation (TOML): the start's text with the varied values replaced,
     /// comments kept.
     #[arg(short, long)]
@@ -469,7 +476,7 @@ fn sensitivity(a: SensitivityArgs) -> Result<()> {
 
 fn match_target(a: MatchArgs) -> Result<()> {
     use gonio_formulation::coating_sensitivity::Varied;
-    use gonio_formulation::matching::{self, Settings};
+    use gonio_formulation::matching::{self, Objective, Settings};
     use gonio_formulation::target::{GlossTarget, read_target};
     let wavelengths = default_bands();
     let coating = read(&a.coating, &wavelengths)?;
@@ -486,6 +493,7 @@ fn match_target(a: MatchArgs) -> Result<()> {
         walks: a.walks,
         gloss_weight: a.gloss_weight,
         starts: a.starts,
+        objective: a.objective,
         ..Settings::default()
     };
     eprintln!(
@@ -576,10 +584,16 @@ fn match_target(a: MatchArgs) -> Result<()> {
     if !m.gloss_targets.is_empty() {
         println!("target gloss:{}{}{}", targets(20), targets(60), targets(85));
     }
-    println!(
-        "objective (mean ΔE00 + {} × |ΔGU|): {:.3} → {:.3}; residual sd {:.3} (CIELAB)",
-        a.gloss_weight, m.start.objective, m.fitted.objective, m.residual_sd
-    );
+    match m.objective {
+        Objective::De00 => println!(
+            "objective (mean ΔE00 + {} × |ΔGU|): {:.3} → {:.3}; residual sd {:.3} (CIELAB)",
+            a.gloss_weight, m.start.objective, m.fitted.objective, m.residual_sd
+        ),
+        Objective::Spectral => println!(
+            "objective (rms ΔR): {:.5} → {:.5}; residual sd {:.5} (reflectance factor)",
+            m.start.objective, m.fitted.objective, m.residual_sd
+        ),
+    }
     println!(
         "{} readings in {:.1} s; wrote {}",
         m.evaluations,

@@ -2,7 +2,7 @@
 //! matter for which reading ([`sensitivity`]: Sobol indices and Morris screening, generic, no
 //! physics; [`coating_sensitivity`]: the same applied to a coating's gloss, haze, DOI and
 //! multi-angle colour ([`appearance`]), read by `instrument::coating_study`) and which values
-//! reproduce a target ([`matching`], against a [`target`], written back as a description by
+//! reproduce a target ([`matching`], against a [`target`], by [`match_objective`], written back as a description by
 //! [`fitted_description`]). `docs/formulation.md` gives the methods, their checks and their
 //! cost.
 
@@ -11,6 +11,7 @@ pub mod bounds;
 pub mod coating_sensitivity;
 pub mod error;
 pub mod fitted_description;
+pub mod match_objective;
 pub mod match_report;
 pub mod matching;
 pub mod sensitivity;

@@ -1,8 +1,10 @@
 //! From a target appearance back to a formulation: the values of the varied constituents, within
 //! their bounds, whose coating comes closest to a multi-angle target ([`run`]).
 //!
-//! The objective is the mean CIEDE2000 over the target's geometries, plus `gloss_weight` ×
-//! |ΔGU| summed over the gloss readings the target gives. Every evaluation reads the coating with
+//! The objective ([`Objective`]) is the mean CIEDE2000 over the target's geometries, plus
+//! `gloss_weight` × |ΔGU| summed over the gloss readings the target gives; or, for a target that
+//! gives reflectance factors, their rms difference over its bands and geometries (the spectral
+//! match, `match_objective`; gloss readings are not combined with it). Every evaluation reads the coating with
 //! the readings' seed 0 (common random numbers, as `coating_sensitivity`): the walks of two
 //! nearby formulations draw the same random numbers, so the objective is a smooth function of
 //! the constituents rather than one with independent noise at every point (checked in
@@ -23,13 +25,17 @@
 //! Its Applications*, 1988, §2.3): `cov = s² (JᵀJ)⁻¹`, `s² = Σr²/(m − p)`, with `r` the
 //! residual vector — the differences ΔL*, Δa*, Δb* at each geometry (the components of each
 //! geometry's colour difference: ΔE00 itself is a norm, with a kink where a geometry is matched,
-//! so its derivative is not defined there) and `gloss_weight` × ΔGU per gloss reading — and `J`
+//! so its derivative is not defined there) and `gloss_weight` × ΔGU per gloss reading; for the
+//! spectral objective the ΔR at each band and geometry, whose sum of squares it minimises, so
+//! there the estimate is least squares proper — and `J`
 //! its Jacobian in the constituents by central differences (steps of 1% of each range).
 
 use crate::appearance::gloss_at;
 use crate::bounds::{from_bounds, rounded, to_bounds};
 use crate::coating_sensitivity::Varied;
 use crate::error::{FormulationError, Result};
+pub use crate::match_objective::Objective;
+use crate::match_objective::{reflectance_differences, rms, spectra_of};
 use crate::target::GlossTarget;
 use argmin::core::{CostFunction, Executor, State};
 use argmin::solver::neldermead::NelderMead;
@@ -59,8 +65,10 @@ pub struct Settings {
     /// Nelder–Mead iterations per run at most.
     pub iterations: u64,
     /// A run stops when the standard deviation of the objective over the simplex's vertices is
-    /// below this (ΔE00).
+    /// below this, in ΔE00 (for the spectral objective, this × [`Objective::per_de00`]).
     pub tolerance: f64,
+    /// What the match minimises.
+    pub objective: Objective,
 }
 
 impl Settings {
@@ -76,7 +84,7 @@ impl Settings {
 }
 
 /// 400–700 nm every 10 nm, the sensitivity's walks (`coating_sensitivity::Settings::WALKS`,
-/// `GLOSS_WALKS`) and the defaults above.
+/// `GLOSS_WALKS`), the defaults above and the ΔE00 objective.
 impl Default for Settings {
     fn default() -> Self {
         let s = crate::coating_sensitivity::Settings::default();
@@ -88,6 +96,7 @@ impl Default for Settings {
             starts: Settings::STARTS,
             iterations: Settings::ITERATIONS,
             tolerance: Settings::TOLERANCE,
+            objective: Objective::default(),
         }
     }
 }
@@ -114,13 +123,18 @@ pub struct Comparison {
     pub gloss: GlossReport,
     /// The multi-angle reading at the target's geometries.
     pub multiangle: MultiangleReading,
-    /// The objective: mean ΔE00 plus the weighted gloss differences.
+    /// rms ΔR over the target's bands and geometries, when the target gives reflectance
+    /// factors.
+    pub rms_reflectance: Option<f64>,
+    /// The objective: mean ΔE00 plus the weighted gloss differences, or the rms ΔR.
     pub objective: f64,
 }
 
 /// A match's result.
 #[derive(Clone, Debug)]
 pub struct Match {
+    /// What was minimised.
+    pub objective: Objective,
     pub varied: Vec<Varied>,
     /// The target's geometries.
     pub geometries: Vec<Geometry>,
@@ -133,7 +147,8 @@ pub struct Match {
     /// cannot determine them (no more residuals than constituents, or JᵀJ singular: a
     /// constituent that changes nothing).
     pub sigma: Option<Vec<f64>>,
-    /// The residuals' standard deviation `s` (CIELAB units).
+    /// The residuals' standard deviation `s` (CIELAB units; reflectance factor for the spectral
+    /// objective).
     pub residual_sd: f64,
     /// The fitted coating.
     pub coating: Coating,
@@ -214,18 +229,30 @@ impl Reader<'_> {
             .collect()
     }
 
-    /// The objective at `x`: mean ΔE00 + Σ weight |ΔGU|.
-    fn objective(&self, x: &[f64]) -> Result<f64> {
-        let (gloss, multiangle) = self.read(x, !self.gloss.is_empty())?;
-        let de = self.target.de00(&multiangle)?;
-        let mut f = de.iter().sum::<f64>() / de.len() as f64;
+    /// The objective of a reading: mean ΔE00 + Σ weight |ΔGU| (the gloss when read), or the rms
+    /// ΔR.
+    fn score(&self, multiangle: &MultiangleReading, gloss: Option<&GlossReport>) -> Result<f64> {
+        let mut f = match self.settings.objective {
+            Objective::De00 => {
+                let de = self.target.de00(multiangle)?;
+                de.iter().sum::<f64>() / de.len() as f64
+            }
+            Objective::Spectral => rms(&reflectance_differences(self.target, multiangle)?),
+        };
         if let Some(g) = gloss {
             f += self
-                .gloss_differences(&g)?
+                .gloss_differences(g)?
                 .iter()
                 .map(|d| d.abs())
                 .sum::<f64>();
         }
+        Ok(f)
+    }
+
+    /// The objective at `x`.
+    fn objective(&self, x: &[f64]) -> Result<f64> {
+        let (gloss, multiangle) = self.read(x, !self.gloss.is_empty())?;
+        let f = self.score(&multiangle, gloss.as_ref())?;
         if !f.is_finite() {
             return Err(FormulationError::Invalid(format!(
                 "the objective at {} is not a number",
@@ -235,15 +262,21 @@ impl Reader<'_> {
         Ok(f)
     }
 
-    /// The residual vector at `x`: ΔL*, Δa*, Δb* per geometry, then the weighted ΔGU.
+    /// The residual vector at `x`: ΔL*, Δa*, Δb* per geometry (ΔR per geometry and band for the
+    /// spectral objective), then the weighted ΔGU.
     fn residuals(&self, x: &[f64]) -> Result<Vec<f64>> {
         let (gloss, multiangle) = self.read(x, !self.gloss.is_empty())?;
-        let mut r = Vec::with_capacity(3 * self.geometries.len() + self.gloss.len());
-        for &(g, lab) in &self.target.colours {
-            let m = multiangle
-                .at(g)
-                .ok_or_else(|| FormulationError::Invalid(format!("{g} was not read")))?;
-            r.extend([m.lab.l - lab.l, m.lab.a - lab.a, m.lab.b - lab.b]);
+        let mut r = Vec::new();
+        match self.settings.objective {
+            Objective::De00 => {
+                for &(g, lab) in &self.target.colours {
+                    let m = multiangle
+                        .at(g)
+                        .ok_or_else(|| FormulationError::Invalid(format!("{g} was not read")))?;
+                    r.extend([m.lab.l - lab.l, m.lab.a - lab.a, m.lab.b - lab.b]);
+                }
+            }
+            Objective::Spectral => r = reflectance_differences(self.target, &multiangle)?,
         }
         if let Some(g) = gloss {
             r.extend(self.gloss_differences(&g)?);
@@ -255,18 +288,17 @@ impl Reader<'_> {
     fn compare(&self, x: &[f64]) -> Result<Comparison> {
         let (gloss, multiangle) = self.read(x, true)?;
         let gloss = gloss.expect("read with the gloss meter");
-        let de00 = self.target.de00(&multiangle)?;
-        let objective = de00.iter().sum::<f64>() / de00.len() as f64
-            + self
-                .gloss_differences(&gloss)?
-                .iter()
-                .map(|d| d.abs())
-                .sum::<f64>();
+        let objective = self.score(&multiangle, (!self.gloss.is_empty()).then_some(&gloss))?;
+        let rms_reflectance = match self.target.spectra {
+            Some(_) => Some(rms(&reflectance_differences(self.target, &multiangle)?)),
+            None => None,
+        };
         Ok(Comparison {
             values: x.to_vec(),
-            de00,
+            de00: self.target.de00(&multiangle)?,
             gloss,
             multiangle,
+            rms_reflectance,
             objective,
         })
     }
@@ -329,7 +361,7 @@ impl Reader<'_> {
 
 /// The objective as argmin sees it: the unbounded parameters, the first error kept (argmin's
 /// error type carries only a message), the evaluations counted, a progress line every ~10 s.
-struct Objective<'a, 'b> {
+struct Cost<'a, 'b> {
     reader: &'a Reader<'a>,
     state: &'a RefCell<ObjectiveState<'b>>,
 }
@@ -342,7 +374,7 @@ struct ObjectiveState<'b> {
     progress: &'b mut dyn FnMut(&str),
 }
 
-impl CostFunction for Objective<'_, '_> {
+impl CostFunction for Cost<'_, '_> {
     type Param = Vec<f64>;
     type Output = f64;
 
@@ -430,6 +462,16 @@ pub fn run(
             "a match needs at least one start".into(),
         ));
     }
+    if settings.objective == Objective::Spectral {
+        spectra_of(target)?;
+    }
+    if settings.objective == Objective::Spectral && !gloss.is_empty() {
+        return Err(FormulationError::Invalid(
+            "the spectral objective fits reflectance factors only: give gloss readings with \
+             the de00 objective"
+                .into(),
+        ));
+    }
     if !(settings.gloss_weight.is_finite() && settings.gloss_weight >= 0.0) {
         return Err(FormulationError::Invalid(format!(
             "gloss weight {}: a non-negative number of ΔE00 per GU",
@@ -494,12 +536,12 @@ pub fn run(
             last_report: Instant::now(),
             progress: &mut *progress,
         });
-        let objective = Objective {
+        let objective = Cost {
             reader: &reader,
             state: &state,
         };
         let solver = NelderMead::new(simplex)
-            .with_sd_tolerance(settings.tolerance)
+            .with_sd_tolerance(settings.tolerance * settings.objective.per_de00())
             .map_err(|e| FormulationError::Invalid(e.to_string()))?;
         let result = Executor::new(objective, solver)
             .configure(|s| s.max_iters(settings.iterations))
@@ -577,6 +619,7 @@ pub fn run(
     let (sigma, residual_sd, readings) = reader.uncertainty(&fitted_x)?;
     evaluations += 2 + readings;
     Ok(Match {
+        objective: settings.objective,
         varied: varied.to_vec(),
         geometries: reader.geometries.clone(),
         gloss_targets: gloss.to_vec(),

@@ -6,23 +6,23 @@
 use crate::error::{FormulationError, Result};
 use gonio_brdf::formats::astm;
 use gonio_instrument::multiangle::{self, Geometry, Settings};
-use gonio_instrument::multiangle_target::Target;
+use gonio_instrument::multiangle_target::{Spectra, Target};
 use std::path::Path;
 
-/// The target `all` at `geometries` only, in their order; every one of them must be in it
-/// (others are left out). The error names the target and the geometries it holds.
+/// The target `all` at `geometries` only, in their order, with its spectra when it has them;
+/// every one of them must be in it (others are left out). The error names the target and the
+/// geometries it holds.
 pub fn at_geometries(all: Target, geometries: &[Geometry]) -> Result<Target> {
-    let colours = geometries
+    let indices = geometries
         .iter()
         .map(|&g| {
             all.colours
                 .iter()
-                .find(|(h, _)| *h == g)
-                .copied()
+                .position(|(h, _)| *h == g)
                 .ok_or_else(|| {
                     FormulationError::Invalid(format!(
                         "{}: the target has no geometry {g} (it holds {}; give every geometry \
-                         of the standard)",
+                     of the standard)",
                         all.source,
                         all.geometries()
                             .iter()
@@ -35,7 +35,14 @@ pub fn at_geometries(all: Target, geometries: &[Geometry]) -> Result<Target> {
         .collect::<Result<Vec<_>>>()?;
     Ok(Target {
         source: all.source.clone(),
-        colours,
+        colours: indices.iter().map(|&i| all.colours[i]).collect(),
+        spectra: all.spectra.map(|s| Spectra {
+            reflectance_factors: indices
+                .iter()
+                .map(|&i| s.reflectance_factors[i].clone())
+                .collect(),
+            wavelengths_nm: s.wavelengths_nm,
+        }),
     })
 }
 
@@ -158,6 +165,7 @@ mod tests {
         let t = read_target(&path, &two).unwrap();
         assert_eq!(t.geometries(), two.to_vec());
         assert_eq!(t.colours[1].1.l, 90.0);
+        assert_eq!(t.spectra, None);
         let e = read_target(&path, &multiangle::E2194)
             .unwrap_err()
             .to_string();

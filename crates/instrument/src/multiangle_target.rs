@@ -4,7 +4,8 @@
 //! of reflectance factors per geometry (the layout `gonio multiangle --spectra` writes), or from
 //! a measured BRDF read at a standard's geometries ([`Target::from_reading`] of
 //! [`crate::multiangle::read_table`]). Colour is CIELAB under D65 for the 10° observer, the
-//! standards' choice ([`Settings::default`]).
+//! standards' choice ([`Settings::default`]). A target read from reflectance factors (a spectral
+//! CSV, a reading) keeps them ([`Target::spectra`]) for a spectral match.
 //!
 //! CSV layouts (a header line, then one line per geometry; `#` starts a comment line):
 //! - `geometry,L,a,b` (or `L*`, `a*`, `b*`): CIELAB D65/10° at each geometry, named as
@@ -26,6 +27,19 @@ pub struct Target {
     pub source: String,
     /// CIELAB (D65/10°) at each geometry, in the file's order.
     pub colours: Vec<(Geometry, Lab)>,
+    /// The reflectance factors behind the colours, when the target gives them (a spectral CSV,
+    /// a reading); `None` for a CIELAB CSV.
+    pub spectra: Option<Spectra>,
+}
+
+/// A target's reflectance factors: one spectrum per geometry, in the order of
+/// [`Target::colours`], at `wavelengths_nm`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Spectra {
+    /// Increasing, nm.
+    pub wavelengths_nm: Vec<f64>,
+    /// Reflectance factors (1 = the perfect diffuser), one row per geometry.
+    pub reflectance_factors: Vec<Vec<f64>>,
 }
 
 impl Target {
@@ -38,6 +52,14 @@ impl Target {
                 .iter()
                 .map(|g| (g.geometry, g.lab))
                 .collect(),
+            spectra: Some(Spectra {
+                wavelengths_nm: reading.wavelengths_nm.clone(),
+                reflectance_factors: reading
+                    .geometries
+                    .iter()
+                    .map(|g| g.reflectance_factor.clone())
+                    .collect(),
+            }),
         }
     }
 
@@ -114,6 +136,7 @@ impl Target {
             }
         };
         let mut colours = Vec::new();
+        let mut factors = Vec::new();
         for (n, line) in lines {
             let cells: Vec<&str> = line.split(',').map(str::trim).collect();
             if cells.len() != names.len() {
@@ -141,10 +164,12 @@ impl Target {
                         .iter()
                         .map(|&(i, _)| number(i))
                         .collect::<Result<Vec<f64>>>()?;
-                    to_xyz
+                    let lab = to_xyz
                         .xyz(&r)
                         .map_err(|e| bad(n, e.to_string()))?
-                        .to_lab(*white)
+                        .to_lab(*white);
+                    factors.push(r);
+                    lab
                 }
             };
             if colours.iter().any(|(h, _)| *h == g) {
@@ -155,9 +180,14 @@ impl Target {
         if colours.is_empty() {
             return Err(bad(header_line, "no geometries after the header".into()));
         }
+        let spectra = spectral.is_ok().then(|| Spectra {
+            wavelengths_nm: bands.iter().map(|b| b.1).collect(),
+            reflectance_factors: factors,
+        });
         Ok(Target {
             source: source.to_string(),
             colours,
+            spectra,
         })
     }
 
@@ -213,6 +243,16 @@ mod tests {
         let a = Target::parse_csv(&spectral, "grey.csv").unwrap();
         let b = Target::parse_csv(&lab, "grey.csv").unwrap();
         assert_eq!(a.geometries(), E2194.to_vec());
+        assert_eq!(b.spectra, None);
+        let kept = a.spectra.as_ref().unwrap();
+        assert_eq!(kept.wavelengths_nm, wl);
+        assert_eq!(
+            kept.reflectance_factors,
+            Target::from_reading("grey", &reading)
+                .spectra
+                .unwrap()
+                .reflectance_factors
+        );
         let expected_l = 116.0 * 0.3f64.cbrt() - 16.0;
         for ((_, x), (_, y)) in a.colours.iter().zip(&b.colours) {
             assert!(

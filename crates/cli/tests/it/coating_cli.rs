@@ -127,9 +127,12 @@ fn bad_descriptions_are_refused() {
 /// (reflectance factors per E2194 geometry, the CSV layout targets take); from the example's 1.0
 /// the match finds 0.3 to 1e-3 (a noiseless target: only the optimiser's tolerance remains),
 /// ΔE00 falls from above 2 to under 0.05 at every geometry, and the fitted TOML keeps the
-/// example's comments and reads back (`coating info`) to the target's colour. Bad inputs exit
+/// example's comments and reads back (`coating info`) to the target's colour; `--objective
+/// spectral` finds the same 0.3 to 1e-3 with rms ΔR from above 0.01 to under 1e-3, and the JSON
+/// names the objective. Bad inputs exit
 /// with status 2 naming what is wrong: an unknown constituent, reversed bounds, a target without
-/// the standard's geometries, a missing target.
+/// the standard's geometries, a missing target, a spectral match of a CIELAB target or with gloss
+/// readings, an unknown objective.
 #[test]
 fn match_recovers_a_concentration_and_writes_the_formulation() {
     let tmp = tempfile::tempdir().unwrap();
@@ -181,6 +184,24 @@ fn match_recovers_a_concentration_and_writes_the_formulation() {
         assert!(g["de00_start"].as_f64().unwrap() > 2.0, "{g}");
         assert!(g["de00_fitted"].as_f64().unwrap() < 0.05, "{g}");
     }
+    assert_eq!(json["objective"], "de00");
+    let out = run(&args(
+        "concentration:red=0.1:2",
+        "target.csv",
+        &["--json", "--objective", "spectral"],
+    ));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let spectral: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(spectral["objective"], "spectral");
+    let c = &spectral["constituents"][0];
+    assert!((c["fitted"].as_f64().unwrap() - 0.3).abs() < 1e-3, "{c}");
+    assert!(spectral["rms_reflectance_start"].as_f64().unwrap() > 0.01);
+    assert!(spectral["rms_reflectance_fitted"].as_f64().unwrap() < 1e-3);
+    assert!(spectral["mean_de00_fitted"].as_f64().unwrap() < 0.05);
     let fitted = std::fs::read_to_string(d.join("fitted.toml")).unwrap();
     assert!(fitted.contains("# A pigmented red basecoat"), "{fitted}");
     let colour = |file: &str| {
@@ -200,8 +221,38 @@ fn match_recovers_a_concentration_and_writes_the_formulation() {
         "geometry,L,a,b\n45as15,40,50,30\n45as45,30,40,20\n",
     )
     .unwrap();
+    std::fs::write(
+        d.join("lab.csv"),
+        "geometry,L,a,b\n45as15,40,50,30\n45as25,40,50,30\n45as45,30,40,20\n\
+         45as75,30,40,20\n45as110,30,40,20\n",
+    )
+    .unwrap();
     for (a, says) in [
         (args("gloss=0:1", "target.csv", &[]), "vary one of"),
+        (
+            args(
+                "concentration:red=0.1:2",
+                "lab.csv",
+                &["--objective", "spectral"],
+            ),
+            "gives CIELAB only",
+        ),
+        (
+            args(
+                "concentration:red=0.1:2",
+                "target.csv",
+                &["--objective", "rms"],
+            ),
+            "de00 (mean CIEDE2000) or spectral",
+        ),
+        (
+            args(
+                "concentration:red=0.1:2",
+                "target.csv",
+                &["--objective", "spectral", "--target-gloss", "60=90"],
+            ),
+            "gloss readings with the de00 objective",
+        ),
         (
             args("concentration:red=2:0.1", "target.csv", &[]),
             "below the upper",

@@ -198,6 +198,66 @@ fn kubelka_munk_base() {
     assert!((base.reflectance(550.0).unwrap() - want).abs() < 1e-15);
 }
 
+/// gonio's smooth coat over an opaque Kubelka-Munk layer against Saunderson's correction
+/// (`kubelka_munk::saunderson`, J. L. Saunderson, JOSA 32, 727 (1942)) at 45/0 (45as45), the
+/// geometry of colour-matching instruments, specular excluded (so the leading k1 term, the
+/// mirror reflection, is not read): `R = (1 − k1)(1 − k2) R∞ / (1 − k2 R∞)`, with k1 = F(45°) and
+/// k2 the coat's internal diffuse reflectance (here by the midpoint rule, `internal_average`;
+/// 0.596 for n = 1.5, the "about 0.6" colour-matching programs use).
+///
+/// gonio's body reflection is `π f = (1 − F(θi)) (1 − F(θo)) R∞ / (n² (1 − r̄ R∞))` for a lossless
+/// coat, with r̄ = k2: the same series of internal reflections, term for term, and the same
+/// entry factor (1 − k1). They differ in the exit factor only: Saunderson's (1 − k2) is the
+/// share of the diffuse light inside that leaves into the whole hemisphere (an integrating
+/// sphere's reading), gonio's (1 − F(θo))/n² the radiance leaving towards the receiver (its
+/// hemispherical mean, cosine-weighted, is (1 − k2): `1 − r_e = n² (1 − r_i)`). So
+/// gonio / Saunderson = (1 − F(0°)) / (n² (1 − k2)) at 45/0 for every R∞ — 1.057 for n = 1.5:
+/// gonio reads 5.7% more, since Fresnel transmittance at normal exit (0.96) exceeds its
+/// hemispherical mean (1 − r_e = 0.908). Checked: the ratio is that constant to 1e-6 over R∞
+/// from 0.03 to 0.95 (the quadratures agree to 1e-8 on k2, the opaque layer's residual
+/// substrate term is e^(−2bSX) < 1e-30), and the hemispherical body albedo equals Saunderson's
+/// formula itself to 1e-6.
+#[test]
+fn smooth_coat_over_an_opaque_layer_is_saundersons_correction() {
+    use gonio_coating::kubelka_munk::saunderson;
+    let flat = |v: f64| Spectrum::constant(vec![380.0, 780.0], v).unwrap();
+    let n = 1.5;
+    let (c45, k2) = (45f64.to_radians().cos(), internal_average(n));
+    let k1 = dielectric(c45, n);
+    let exit = (1.0 - dielectric(1.0, n)) / (n * n * (1.0 - k2));
+    eprintln!("k1 {k1:.4}, k2 {k2:.4}, gonio/Saunderson at 45/0 {exit:.4}");
+    assert!((k2 - 0.596).abs() < 5e-4 && (exit - 1.057).abs() < 1e-3);
+    for k_over_s in [0.0013, 0.01, 0.1, 0.5, 2.0, 15.0] {
+        let stack = ClearCoatOverBase {
+            coat: Coat {
+                index: Dispersion::Constant(n),
+                thickness_um: 40.0,
+                absorption_per_um: flat(0.0),
+            },
+            base: Base::KubelkaMunk {
+                pigments: vec![Pigment {
+                    name: "p".into(),
+                    concentration: 1.0,
+                    k_per_um: flat(k_over_s),
+                    s_per_um: flat(1.0),
+                }],
+                thickness_um: 1e4,
+                substrate: flat(0.5),
+            },
+        };
+        let o = stack.at(550.0).unwrap();
+        let r_inf = Coefficients::new(k_over_s, 1.0).unwrap().r_infinity();
+        assert!((o.rho - r_inf).abs() < 1e-12, "opaque: {} {r_inf}", o.rho);
+        let saunderson_45_0 = saunderson(r_inf, k1, k2) - k1;
+        let gonio_45_0 = PI * o.brdf(c45, 1.0);
+        assert!(
+            (gonio_45_0 / saunderson_45_0 / exit - 1.0).abs() < 1e-6,
+            "R∞ {r_inf}: gonio {gonio_45_0}, Saunderson {saunderson_45_0}"
+        );
+        assert!((o.body_albedo(c45) - saunderson_45_0).abs() < 1e-6);
+    }
+}
+
 #[test]
 fn impossible_stacks_are_refused() {
     assert!(stack(0.9, 0.0, 30.0, 0.5).check(&[550.0]).is_err());

@@ -1,6 +1,7 @@
 //! Integration tests of gonio-formulation: the sensitivity estimators against analytic indices
 //! (Ishigami's function, linear models), against SALib on the same points and outputs (oracle),
-//! and the coating's sensitivity against what its physics says. One test binary per crate; each
+//! the coating's sensitivity against what its physics says, and matches of targets the model
+//! synthesises (CIELAB and spectral). One test binary per crate; each
 //! module is one subject.
 
 mod coating_sensitivity;
@@ -8,3 +9,4 @@ mod matching;
 mod oracle;
 mod salib;
 mod sensitivity;
+mod spectral_matching;

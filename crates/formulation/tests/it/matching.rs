@@ -24,7 +24,7 @@ pub(crate) fn example(name: &str) -> Coating {
     description::read(Path::new(&path), &wavelengths()).unwrap()
 }
 
-fn wavelengths() -> Vec<f64> {
+pub(crate) fn wavelengths() -> Vec<f64> {
     (0..31).map(|k| 400.0 + 10.0 * k as f64).collect()
 }
 
@@ -61,11 +61,11 @@ fn synthesised(
     target
 }
 
-fn quiet(_: &str) {}
+pub(crate) fn quiet(_: &str) {}
 
 /// Each fitted value is within 3σ of the truth (σ the match's Gauss–Newton uncertainty), and σ
 /// is under `share` of the range (a σ as wide as the bounds would make the first check empty).
-fn assert_recovered(m: &Match, truth: &[f64], share: f64) {
+pub(crate) fn assert_recovered(m: &Match, truth: &[f64], share: f64) {
     let sigma = m
         .sigma
         .as_ref()
@@ -166,6 +166,7 @@ fn bad_inputs_are_refused() {
                 b: 20.0,
             },
         )],
+        spectra: None,
     };
     let run = |vary: &str, settings: &Settings| {
         matching::run(
