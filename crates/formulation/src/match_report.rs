@@ -6,13 +6,14 @@ use gonio_instrument::GlossReport;
 use gonio_instrument::multiangle_target::Target;
 
 impl Match {
-    /// The match against `target` as JSON: `objective` (`de00` or `spectral`), `constituents` [{name, lo, hi, start, fitted, sigma,
-    /// at_bound}], `geometries` [{name, de00_start, de00_fitted, target {L, a, b}, start {L, a,
-    /// b}, fitted {L, a, b}}] (CIELAB D65/10°), `mean_de00_start`, `mean_de00_fitted`,
-    /// `objective_start`, `objective_fitted` (the objective's value), `rms_reflectance_start`,
-    /// `rms_reflectance_fitted` (rms ΔR over the target's bands and geometries; null for a
-    /// CIELAB target), `residual_sd`, `target_gloss` [{angle, gu}],
-    /// `gloss_start`, `gloss_fitted` {gu20, gu60, gu85, haze, doi}, `evaluations`, `seconds`.
+    /// The match against `target` as JSON: `objective` (`de00` or `spectral`), `constituents`
+    /// [{name, lo, hi, start, fitted, sigma, at_bound}], `geometries` [{name, de00_start,
+    /// de00_fitted, target {L, a, b}, start {L, a, b}, fitted {L, a, b}}] (CIELAB D65/10°),
+    /// `mean_de00_start`, `mean_de00_fitted`, `objective_start`, `objective_fitted` (the
+    /// objective's value), `rms_reflectance_start`, `rms_reflectance_fitted` (rms ΔR over the
+    /// target's bands and geometries; null for a CIELAB target), `residual_sd`, `target_gloss`
+    /// [{angle, gu}], `gloss_start`, `gloss_fitted` {gu20, gu60, gu85, haze, doi},
+    /// `evaluations`, `seconds`.
     pub fn to_json(&self, target: &Target) -> serde_json::Value {
         let sigma = |i: usize| self.sigma.as_ref().map(|s| s[i]);
         let mean = |d: &[f64]| d.iter().sum::<f64>() / d.len() as f64;

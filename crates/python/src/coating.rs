@@ -300,11 +300,12 @@ impl SensitivityPlan {
 /// Match `start` to a target: the file `target` (.csv of CIELAB or reflectance factors per
 /// geometry, .astm, .gbrdf) or the CSV text `target_csv`, at `standard`'s geometries, varying
 /// `vary` (NAME=LO:HI,...), with optional `target_gloss` (ANGLE=GU,...), `gloss_weight` ΔE00
-/// per GU, `walks` per geometry and `starts` Nelder–Mead runs before the last. Returns the
+/// per GU, `walks` per geometry, `starts` Nelder–Mead runs before the last and the `objective`
+/// (`de00`: mean ΔE00; `spectral`: rms ΔR of a target with spectra). Returns the
 /// result as JSON text (`gonio coating match --json` without the file names), the fitted
 /// formulation's TOML (the start's text with the fitted values) and the fitted Coating.
 #[pyfunction]
-#[pyo3(signature = (start, target, target_csv, vary, standard, target_gloss, gloss_weight, walks, starts))]
+#[pyo3(signature = (start, target, target_csv, vary, standard, target_gloss, gloss_weight, walks, starts, objective))]
 #[allow(clippy::too_many_arguments)]
 pub fn match_coating(
     py: Python<'_>,
@@ -317,6 +318,7 @@ pub fn match_coating(
     gloss_weight: f64,
     walks: usize,
     starts: usize,
+    objective: &str,
 ) -> Result<(String, String, Coating)> {
     use gonio_formulation::matching::{self, Settings as MatchSettings};
     use gonio_formulation::target::{GlossTarget, at_geometries, read_target};
@@ -330,6 +332,7 @@ pub fn match_coating(
         walks,
         gloss_weight,
         starts,
+        objective: objective.parse()?,
         ..MatchSettings::default()
     };
     let coating = start.coating.clone();

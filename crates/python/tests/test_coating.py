@@ -139,3 +139,10 @@ def test_match_equals_the_cli_and_recovers_a_concentration(gonio_cli, tmp_path):
     assert [g["name"] for g in cli["geometries"]] == list(m.geometries["geometry"])
     with pytest.raises(ValueError, match="no geometry"):
         gonio.coating.match(red, target.iloc[:2], "concentration:red=0.1:2")
+    # The spectral objective on the reflectance factors (the DataFrame's R_ columns) finds the
+    # same concentration; on CIELAB alone it is refused (no spectra to compare).
+    spectra = gonio.coating.multiangle(variant).drop(columns=["L", "a", "b", "C", "h_deg", "X", "Y", "Z"])
+    s = gonio.coating.match(red, spectra, "concentration:red=0.1:2", starts=1, objective="spectral")
+    assert abs(s.constituents["fitted"][0] - 0.3) < 1e-3 and s.json["objective"] == "spectral"
+    with pytest.raises(ValueError, match="spectr"):
+        gonio.coating.match(red, target, "concentration:red=0.1:2", objective="spectral")

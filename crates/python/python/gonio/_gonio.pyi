@@ -171,6 +171,7 @@ def match_coating(
     gloss_weight: float,
     walks: int,
     starts: int,
+    objective: str,
 ) -> tuple[str, str, Coating]: ...
 
 def from_lab(lab: list[float], illuminant: str = "D65", observer: int = 10) -> dict[str, Any]: ...

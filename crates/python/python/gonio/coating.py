@@ -299,6 +299,7 @@ def match(
     gloss_weight: float = 0.1,
     walks: int = 1024,
     starts: int = 4,
+    objective: str = "de00",
 ) -> Match:
     """The values of the ``vary``'d constituents (``"tilt=4:20,coverage=0.3:0.8"`` or
     ``{"tilt": (4, 20), ...}``, within the bounds) that make ``start`` look like ``target``
@@ -309,7 +310,10 @@ def match(
 
     ``target``: a file (``.csv`` of CIELAB or reflectance factors per geometry, a measured BRDF
     ``.astm`` or a spectral ``.gbrdf``) or a DataFrame with a ``geometry`` column and ``L``,
-    ``a``, ``b`` (or reflectance-factor columns ``R_400nm`` ... as :func:`multiangle` gives)."""
+    ``a``, ``b`` (or reflectance-factor columns ``R_400nm`` ... as :func:`multiangle` gives).
+    ``objective="spectral"`` minimises the rms difference of reflectance factors instead (a
+    target with spectra; the classic fit of a solid colour's pigments, free of metamerism,
+    docs/formulation.md)."""
     if isinstance(vary, Mapping):
         vary = ",".join(f"{k}={float(lo)}:{float(hi)}" for k, (lo, hi) in vary.items())
     gloss = None
@@ -321,6 +325,7 @@ def match(
     else:
         path = os.fspath(target)
     result, toml, fitted = _gonio.match_coating(
-        read(start), path, csv, vary, standard, gloss, float(gloss_weight), int(walks), int(starts)
+        read(start), path, csv, vary, standard, gloss, float(gloss_weight), int(walks), int(starts),
+        objective,
     )
     return Match(json.loads(result), toml, fitted)
