@@ -51,11 +51,16 @@ pub struct MatchArgs {
     /// (.gbrdf). The last two are read at the standard's geometries.
     #[arg(long)]
     target: PathBuf,
-    /// The constituents and their bounds, NAME=LO:HI comma-separated: roughness (the top's α),
-    /// tilt (°), coverage (0–1), tio2 (nm), thickness (the coat's, µm),
-    /// concentration:PIGMENT. The search stays within the bounds.
+    /// The constituents to fit, comma-separated, each NAME or NAME=LO:HI: roughness (the top's
+    /// α), tilt (°), coverage (0–1), tio2 (nm), thickness (the coat's, µm),
+    /// concentration:PIGMENT. The search stays within the bounds (see --bounds).
     #[arg(long)]
     vary: String,
+    /// Bounds of constituents named in --vary without them, NAME=LO:HI comma-separated.
+    /// Default: α 0.005–0.3, tilt 2–40°, coverage 0.05–0.95, tio2 40–300 nm, thickness
+    /// 5–200 µm, a concentration from 0.1 to 4 times the start's.
+    #[arg(long)]
+    bounds: Option<String>,
     /// The geometries matched: e2194 (45° illumination; aspecular 15, 25, 45, 75, 110°) or
     /// e2539 (adds 45as-15 and 15° illumination).
     #[arg(long, default_value = "e2194")]
@@ -95,11 +100,16 @@ pub struct MatchArgs {
 pub struct SensitivityArgs {
     /// The base formulation (TOML; examples/coatings/).
     coating: PathBuf,
-    /// The constituents and their bounds, NAME=LO:HI comma-separated; NAME as `coating study
-    /// --vary` takes it: roughness (the top's α), tilt (°), coverage (0–1), tio2 (nm),
+    /// The constituents to vary, comma-separated, each NAME or NAME=LO:HI; NAME as `coating
+    /// study --vary` takes it: roughness (the top's α), tilt (°), coverage (0–1), tio2 (nm),
     /// thickness (the coat's, µm), concentration:PIGMENT.
     #[arg(long)]
     vary: String,
+    /// Bounds of constituents named in --vary without them, NAME=LO:HI comma-separated.
+    /// Default: α 0.005–0.3, tilt 2–40°, coverage 0.05–0.95, tio2 40–300 nm, thickness
+    /// 5–200 µm, a concentration from 0.1 to 4 times the base's.
+    #[arg(long)]
+    bounds: Option<String>,
     /// The readings to analyse, comma-separated: gu20, gu60, gu85 (ISO 2813 gloss, GU), haze
     /// (ASTM E430, HU), doi (0–100), flop (Alman's index), dE00 (mean CIEDE2000 from the base
     /// formulation over the standard's geometries), L@G, a@G, b@G (CIELAB D65/10° at geometry G,
@@ -412,7 +422,8 @@ fn sensitivity(a: SensitivityArgs) -> Result<()> {
     use gonio_formulation::coating_sensitivity::{self, Indices, Method, Settings, Varied};
     let wavelengths = default_bands();
     let coating = read(&a.coating, &wavelengths)?;
-    let varied = Varied::parse_list(&a.vary).context("--vary")?;
+    let varied = Varied::resolve_list(&a.vary, a.bounds.as_deref(), &coating, &wavelengths)
+        .context("--vary")?;
     let geometries = multiangle::standard(&a.standard).context("--standard")?;
     let outputs = match &a.outputs {
         Some(list) => Output::parse_list(list).context("--outputs")?,
@@ -480,7 +491,8 @@ fn match_target(a: MatchArgs) -> Result<()> {
     use gonio_formulation::target::{GlossTarget, read_target};
     let wavelengths = default_bands();
     let coating = read(&a.coating, &wavelengths)?;
-    let varied = Varied::parse_list(&a.vary).context("--vary")?;
+    let varied = Varied::resolve_list(&a.vary, a.bounds.as_deref(), &coating, &wavelengths)
+        .context("--vary")?;
     let geometries = multiangle::standard(&a.standard).context("--standard")?;
     let gloss = match &a.target_gloss {
         Some(s) => GlossTarget::parse_list(s).context("--target-gloss")?,

@@ -87,6 +87,81 @@ impl Varied {
         Ok(())
     }
 
+    /// The bounds of `constituent` when none are given (`--vary tilt` without `=LO:HI` nor
+    /// `--bounds`): a formulator's working range. The top's α 0.005–0.3 (a high-gloss to a satin
+    /// clear coat: 60° gloss from about 90 to under 10 GU), flake tilt 2–40° (aligned to
+    /// disordered), coverage 0.05–0.95, TiO2 40–300 nm (interference flakes' first orders
+    /// across the visible), coat thickness 5–200 µm, a pigment's concentration from a tenth to
+    /// four times its value in `base` (0.001–1 when it is 0).
+    pub fn default_bounds(constituent: &Constituent, base: &Coating) -> Result<(f64, f64)> {
+        Ok(match constituent {
+            Constituent::Roughness => (0.005, 0.3),
+            Constituent::FlakeTilt => (2.0, 40.0),
+            Constituent::FlakeCoverage => (0.05, 0.95),
+            Constituent::Tio2 => (40.0, 300.0),
+            Constituent::CoatThickness => (5.0, 200.0),
+            Constituent::Concentration(_) => {
+                let c = constituent.value(base)?;
+                if c > 0.0 {
+                    (0.1 * c, 4.0 * c)
+                } else {
+                    (0.001, 1.0)
+                }
+            }
+        })
+    }
+
+    /// The constituents of `vary` (comma-separated `NAME=LO:HI` or `NAME`) with their bounds:
+    /// those written after the name, else those of `bounds` (comma-separated `NAME=LO:HI`, the
+    /// CLI's `--bounds`), else [`Varied::default_bounds`] for `base`. Each is checked
+    /// ([`Varied::check`]) against `base`.
+    pub fn resolve_list(
+        vary: &str,
+        bounds: Option<&str>,
+        base: &Coating,
+        wavelengths_nm: &[f64],
+    ) -> Result<Vec<Self>> {
+        let given = bounds
+            .map(Varied::parse_list)
+            .transpose()?
+            .unwrap_or_default();
+        if let Some(extra) = given.iter().find(|b| {
+            !vary
+                .split(',')
+                .any(|v| v.split('=').next().map(str::trim) == Some(b.name.as_str()))
+        }) {
+            return Err(FormulationError::Invalid(format!(
+                "--bounds names {}, which is not varied (add it to --vary)",
+                extra.name
+            )));
+        }
+        let list = vary
+            .split(',')
+            .map(str::trim)
+            .filter(|p| !p.is_empty())
+            .map(|item| {
+                if item.contains('=') {
+                    return Varied::parse(item);
+                }
+                let constituent = Constituent::parse(item)?;
+                let (lo, hi) = match given.iter().find(|b| b.name == item) {
+                    Some(b) => (b.lo, b.hi),
+                    None => Varied::default_bounds(&constituent, base)?,
+                };
+                Ok(Varied {
+                    name: item.to_string(),
+                    constituent,
+                    lo,
+                    hi,
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        for v in &list {
+            v.check(base, wavelengths_nm)?;
+        }
+        Ok(list)
+    }
+
     /// Read a comma-separated list of `NAME=LO:HI`.
     pub fn parse_list(s: &str) -> Result<Vec<Self>> {
         s.split(',')

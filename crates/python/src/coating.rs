@@ -228,7 +228,7 @@ pub fn sensitivity_plan(
     standard: &str,
     walks: usize,
 ) -> Result<SensitivityPlan> {
-    let varied = Varied::parse_list(vary)?;
+    let varied = Varied::resolve_list(vary, None, &coating.coating, &default_bands())?;
     let geometries = gonio_instrument::multiangle::standard(standard)?;
     let outputs = match outputs {
         Some(list) => Output::parse_list(&list)?,
@@ -322,7 +322,7 @@ pub fn match_coating(
 ) -> Result<(String, String, Coating)> {
     use gonio_formulation::matching::{self, Settings as MatchSettings};
     use gonio_formulation::target::{GlossTarget, at_geometries, read_target};
-    let varied = Varied::parse_list(vary)?;
+    let varied = Varied::resolve_list(vary, None, &start.coating, &default_bands())?;
     let geometries = gonio_instrument::multiangle::standard(standard)?;
     let gloss = match target_gloss {
         Some(list) => GlossTarget::parse_list(&list)?,

@@ -351,7 +351,9 @@ fn sensitivity_finds_what_matters_and_writes_its_files() {
         "sensitivity",
         &toml,
         "--vary",
-        "roughness=0.05:0.2,thickness=20:60",
+        "roughness=0.05:0.2,thickness",
+        "--bounds",
+        "thickness=20:60",
         "--outputs",
         "gu60,L@45as15",
         "--method",
@@ -367,6 +369,7 @@ fn sensitivity_finds_what_matters_and_writes_its_files() {
     let out = ok_in(&args, d);
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(json["readings"], 9);
+    assert_eq!(json["inputs"][1]["lo"], 20.0);
     for o in json["outputs"].as_array().unwrap() {
         let mu_star = &o["indices"]["mu_star"];
         assert_eq!(mu_star["thickness"], 0.0, "{o}");

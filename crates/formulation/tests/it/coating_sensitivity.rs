@@ -70,6 +70,29 @@ fn bounds_are_checked_before_reading() {
     }
 }
 
+/// `--vary` names with and without bounds: inline bounds win, then `--bounds`, then the
+/// defaults (tilt 2–40°; the silver's coverage from `--bounds`); bounds for a constituent not
+/// varied, and defaults that make no valid coating (tio2 on aluminium flakes), are errors.
+#[test]
+fn varied_constituents_take_inline_given_or_default_bounds() {
+    let wl = [450.0, 550.0, 650.0];
+    let coating = silver(&wl);
+    let list = Varied::resolve_list(
+        "roughness=0.01:0.1,tilt,coverage",
+        Some("coverage=0.2:0.9"),
+        &coating,
+        &wl,
+    )
+    .unwrap();
+    let bounds: Vec<(f64, f64)> = list.iter().map(|v| (v.lo, v.hi)).collect();
+    assert_eq!(bounds, [(0.01, 0.1), (2.0, 40.0), (0.2, 0.9)]);
+    let err = Varied::resolve_list("tilt", Some("coverage=0.2:0.9"), &coating, &wl).unwrap_err();
+    assert!(err.to_string().contains("not varied"), "{err}");
+    let ok = Varied::resolve_list("tilt=4:20", Some("tilt=5:6"), &coating, &wl).unwrap();
+    assert_eq!((ok[0].lo, ok[0].hi), (4.0, 20.0));
+    assert!(Varied::resolve_list("tio2", None, &coating, &wl).is_err());
+}
+
 /// A sensitivity made by hand (two inputs, Sobol figures chosen), for the summary and the CSV.
 fn made_by_hand() -> Sensitivity {
     let indices = |st: [f64; 2], variance| SobolIndices {

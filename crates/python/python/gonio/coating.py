@@ -186,6 +186,16 @@ class Sensitivity:
         return f"Sensitivity({self.method}, {len(self.design)} readings)\n{self.summary}"
 
 
+def _vary(vary: str | Mapping[str, tuple[float, float]] | Sequence[str]) -> str:
+    """``--vary``'s text: ``"tilt=4:20,coverage"``, ``{"tilt": (4, 20)}`` or ``["tilt",
+    "coverage"]`` (a name without bounds takes its default range, docs/formulation.md)."""
+    if isinstance(vary, str):
+        return vary
+    if isinstance(vary, Mapping):
+        return ",".join(f"{k}={float(lo)}:{float(hi)}" for k, (lo, hi) in vary.items())
+    return ",".join(str(v) for v in vary)
+
+
 def _plan(description, base_dir, vary, outputs, method, samples, standard, walks):
     if isinstance(description, tuple):  # ("toml", text): a Coating's own description
         coating = _gonio.read_coating(None, description[1], False, base_dir)
@@ -202,7 +212,7 @@ def _read_rows(plan_args: tuple, rows: np.ndarray) -> np.ndarray:
 
 def sensitivity(
     coating: str | os.PathLike | Mapping[str, Any] | Coating,
-    vary: str | Mapping[str, tuple[float, float]],
+    vary: str | Mapping[str, tuple[float, float]] | Sequence[str],
     outputs: Sequence[str] | None = None,
     method: str = "sobol",
     samples: int | None = None,
@@ -226,8 +236,7 @@ def sensitivity(
     :class:`Coating`) TOML text, so the workers must see a path's file and the files it names.
     The result equals the serial one exactly: every row is read from the same streams wherever
     it runs."""
-    if isinstance(vary, Mapping):
-        vary = ",".join(f"{k}={float(lo)}:{float(hi)}" for k, (lo, hi) in vary.items())
+    vary = _vary(vary)
     if isinstance(coating, Coating):
         description = ("toml", coating.toml)
     elif isinstance(coating, Mapping):
@@ -293,7 +302,7 @@ class Match:
 def match(
     start: str | os.PathLike | Mapping[str, Any] | Coating,
     target: str | os.PathLike | pd.DataFrame,
-    vary: str | Mapping[str, tuple[float, float]],
+    vary: str | Mapping[str, tuple[float, float]] | Sequence[str],
     standard: str = "e2194",
     target_gloss: Mapping[int, float] | None = None,
     gloss_weight: float = 0.1,
@@ -314,8 +323,7 @@ def match(
     ``objective="spectral"`` minimises the rms difference of reflectance factors instead (a
     target with spectra; the classic fit of a solid colour's pigments, free of metamerism,
     docs/formulation.md)."""
-    if isinstance(vary, Mapping):
-        vary = ",".join(f"{k}={float(lo)}:{float(hi)}" for k, (lo, hi) in vary.items())
+    vary = _vary(vary)
     gloss = None
     if target_gloss:
         gloss = ",".join(f"{int(a)}={float(gu)}" for a, gu in target_gloss.items())
