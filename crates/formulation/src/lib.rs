@@ -12,6 +12,7 @@ pub mod coating_sensitivity;
 pub mod error;
 pub mod fitted_description;
 pub mod match_objective;
+mod match_reader;
 pub mod match_report;
 pub mod matching;
 pub mod sensitivity;
