@@ -3,10 +3,13 @@
 //! [`write_atomic`], so that a failure never leaves half a file and outputs get ordinary
 //! permissions. Each crate maps the I/O errors into its own error type, naming the file; this
 //! crate has no error type of its own. Long computations report how far they have come through
-//! one [`Progress`] handle ([`progress`]).
+//! one [`Progress`] handle ([`progress`]), and are stopped early through a [`Cancel`] flag
+//! ([`cancel`]).
 
+pub mod cancel;
 pub mod progress;
 
+pub use cancel::Cancel;
 pub use progress::{Progress, Report};
 
 use std::fs::File;
