@@ -9,6 +9,7 @@ mod compare;
 mod demo;
 mod gloss;
 mod inplane;
+mod lab;
 mod isotropy;
 mod multiangle;
 mod output;
@@ -75,6 +76,10 @@ enum Command {
     /// -o T.gbrdf` tabulates the body reflection, `gonio coating info COATING.toml` summarises.
     #[command(subcommand)]
     Coating(coating::CoatingCommand),
+    /// The formulation lab: a web page on this machine where a coating's formulation is changed
+    /// with sliders and its readings, colour and picture follow (docs/lab.md):
+    /// `gonio lab [--port 8765]`, then open http://127.0.0.1:8765/.
+    Lab(lab::LabArgs),
 }
 
 fn main() -> ExitCode {
@@ -100,6 +105,7 @@ fn main() -> ExitCode {
         Command::Render(args) => render::run(args),
         Command::Isotropy(args) => isotropy::run(args),
         Command::Multiangle(args) => multiangle::run(args),
+        Command::Lab(args) => lab::run(args),
         Command::Coating(cmd) => coating::run(cmd),
     };
     match result {

@@ -1,0 +1,315 @@
+//! The lab's HTTP interface: the page and its assets, and the JSON API the page uses and a script
+//! can use too (docs/lab.md gives an example request for each endpoint). Handlers parse, check
+//! and hand the work to [`crate::compute`] on a blocking thread; they hold no physics.
+//!
+//! Every computation runs under a [`gonio_io::Cancel`] flag that a newer request on the same
+//! `channel` raises, and that is raised when the client leaves (the page aborts a request it no
+//! longer needs), so that dragging a slider never queues work. A panic in a computation is a 500
+//! with its message; the server keeps serving.
+
+use crate::compute;
+use crate::error::ApiError;
+use crate::examples;
+use crate::formulation;
+use crate::state::{CancelOnDrop, Lab, UploadKind};
+use axum::Router;
+use axum::body::Bytes;
+use axum::extract::rejection::BytesRejection;
+use axum::extract::{DefaultBodyLimit, Path, Query, State};
+use axum::http::{StatusCode, header};
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use gonio_io::Cancel;
+use serde::Deserialize;
+use serde_json::{Value, json};
+use std::sync::Arc;
+
+type Shared = State<Arc<Lab>>;
+
+/// The lab's routes over `lab`.
+pub fn router(lab: Arc<Lab>) -> Router {
+    let uploads = Router::new()
+        .route("/api/upload/topography", post(upload_topography))
+        .route("/api/upload/target", post(upload_target))
+        .layer(DefaultBodyLimit::max(lab.limits.upload_bytes));
+    Router::new()
+        .route("/", get(|| async { crate::assets::page() }))
+        .route("/lab.js", get(|| async { crate::assets::script() }))
+        .route("/lab.css", get(|| async { crate::assets::style() }))
+        .route("/api/health", get(health))
+        .route("/api/examples", get(|| async { axum::Json(examples::list()) }))
+        .route("/api/examples/{name}", get(example))
+        .route("/api/pigments", get(|| async { axum::Json(examples::pigments()) }))
+        .route("/api/lightings", get(|| async { axum::Json(compute::lightings()) }))
+        .route("/api/formulation/from-toml", post(from_toml))
+        .route("/api/formulation/to-toml", post(to_toml))
+        .route("/api/readings", post(readings))
+        .route("/api/picture", post(picture))
+        .route("/api/export/{format}", post(export))
+        .layer(DefaultBodyLimit::max(lab.limits.json_bytes))
+        .merge(uploads)
+        .fallback(|| async {
+            ApiError::NotFound("no such page or endpoint (the API is under /api: docs/lab.md)".into())
+        })
+        .with_state(lab)
+}
+
+/// The body, or the client's error: too large (413, with the limit), or unreadable.
+fn body(body: Result<Bytes, BytesRejection>, limit: usize, what: &str) -> Result<Bytes, ApiError> {
+    body.map_err(|e| {
+        if e.status() == StatusCode::PAYLOAD_TOO_LARGE {
+            ApiError::TooLarge(format!(
+                "{what} is larger than the lab accepts ({:.0} MiB); {}",
+                limit as f64 / (1 << 20) as f64,
+                if what.starts_with("the upload") {
+                    "crop or resample the file (gonio surface crop) before uploading it"
+                } else {
+                    "a formulation is a few kilobytes of JSON"
+                }
+            ))
+        } else {
+            ApiError::BadRequest(format!("{what}: {e}"))
+        }
+    })
+}
+
+/// The request's JSON as `T`, or a 400 naming what is wrong.
+fn parse<T: serde::de::DeserializeOwned>(
+    raw: Result<Bytes, BytesRejection>,
+    lab: &Lab,
+) -> Result<T, ApiError> {
+    let bytes = body(raw, lab.limits.json_bytes, "the request")?;
+    serde_json::from_slice(&bytes).map_err(|e| ApiError::BadRequest(format!("the request's JSON: {e}")))
+}
+
+/// Run `work` on a blocking thread under `cancel`, raised if this handler is dropped (the client
+/// left). A panic in `work` is an internal error with its message.
+async fn run<T: Send + 'static>(
+    cancel: Cancel,
+    work: impl FnOnce(&Cancel) -> Result<T, ApiError> + Send + 'static,
+) -> Result<T, ApiError> {
+    let _stop_when_dropped = CancelOnDrop(cancel.clone());
+    match tokio::task::spawn_blocking(move || work(&cancel)).await {
+        Ok(result) => result,
+        Err(e) if e.is_panic() => {
+            let panic = e.into_panic();
+            let message = panic
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| panic.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "a computation panicked".into());
+            Err(ApiError::Internal(message))
+        }
+        Err(e) => Err(ApiError::Internal(e.to_string())),
+    }
+}
+
+async fn health() -> axum::Json<Value> {
+    axum::Json(json!({ "gonio": env!("CARGO_PKG_VERSION"), "lab": true }))
+}
+
+async fn example(Path(name): Path<String>) -> Result<axum::Json<Value>, ApiError> {
+    let text = examples::text(&name).ok_or_else(|| {
+        ApiError::NotFound(format!(
+            "no example '{name}'; the examples are {}",
+            examples::EXAMPLES.map(|(n, _)| n).join(", ")
+        ))
+    })?;
+    Ok(axum::Json(json!({
+        "name": name, "toml": text, "formulation": formulation::from_toml(text)?,
+    })))
+}
+
+/// A request that carries only a formulation.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FormulationOnly {
+    formulation: Value,
+}
+
+/// The coating of a formulation, its topography (if any) checked to be one of this lab's uploads.
+fn coating_of(lab: &Lab, f: &Value) -> Result<(gonio_coating::system::Coating, String), ApiError> {
+    if let Some(id) = formulation::map_name(f) {
+        lab.uploaded(UploadKind::Topography, id)?;
+    }
+    formulation::coating(f, lab.uploads_folder())
+}
+
+/// A TOML description (an uploaded file's text) as a formulation, checked.
+async fn from_toml(
+    State(lab): Shared,
+    raw: Result<Bytes, BytesRejection>,
+) -> Result<axum::Json<Value>, ApiError> {
+    let bytes = body(raw, lab.limits.json_bytes, "the description")?;
+    let text = std::str::from_utf8(&bytes)
+        .map_err(|_| ApiError::BadRequest("the description is not UTF-8 text".into()))?;
+    let f = formulation::from_toml(text)?;
+    coating_of(&lab, &f)?;
+    Ok(axum::Json(json!({ "formulation": f })))
+}
+
+/// A formulation as the TOML text `gonio coating` reads, checked first.
+async fn to_toml(State(lab): Shared, raw: Result<Bytes, BytesRejection>) -> Result<Response, ApiError> {
+    let request: FormulationOnly = parse(raw, &lab)?;
+    let (_, text) = coating_of(&lab, &request.formulation)?;
+    let text = format!(
+        "# A coating formulated in gonio lab. Read it with `gonio coating info FILE`.\n{}{text}",
+        formulation::map_name(&request.formulation).map_or(String::new(), |m| format!(
+            "# The top's map ({m}) is the topography uploaded to the lab: put the file beside this \
+             one under that name.\n"
+        )),
+    );
+    Ok((
+        [
+            (header::CONTENT_TYPE, "application/toml; charset=utf-8"),
+            (header::CONTENT_DISPOSITION, "attachment; filename=\"formulation.toml\""),
+        ],
+        text,
+    )
+        .into_response())
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ReadingsRequest {
+    formulation: Value,
+    /// "E2194" (default) or "E2539".
+    #[serde(default)]
+    standard: Option<String>,
+    /// Incidence of the in-plane BRDF, degrees (default 45).
+    #[serde(default)]
+    incidence_deg: Option<f64>,
+    /// A target upload's id: the readings then hold ΔE00 against it.
+    #[serde(default)]
+    target: Option<String>,
+    #[serde(default)]
+    channel: Option<String>,
+}
+
+async fn readings(State(lab): Shared, raw: Result<Bytes, BytesRejection>) -> Result<axum::Json<Value>, ApiError> {
+    let request: ReadingsRequest = parse(raw, &lab)?;
+    let (coating, _) = coating_of(&lab, &request.formulation)?;
+    let target = request
+        .target
+        .as_deref()
+        .map(|id| lab.uploaded(UploadKind::Target, id))
+        .transpose()?;
+    let options = compute::ReadingOptions {
+        standard: request.standard.unwrap_or_else(|| "E2194".into()),
+        incidence_deg: request.incidence_deg.unwrap_or(45.0),
+    };
+    let cancel = lab.begin(request.channel.as_deref());
+    let value = run(cancel, move |cancel| {
+        compute::readings(&coating, &options, target.as_ref(), cancel)
+    })
+    .await?;
+    Ok(axum::Json(value))
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PictureRequest {
+    formulation: Value,
+    /// A light setting's name (`GET /api/lightings`; default the first).
+    #[serde(default)]
+    lighting: Option<String>,
+    /// "preview" (default) or "converged".
+    #[serde(default)]
+    quality: Option<String>,
+    #[serde(default)]
+    channel: Option<String>,
+}
+
+async fn picture(State(lab): Shared, raw: Result<Bytes, BytesRejection>) -> Result<Response, ApiError> {
+    let request: PictureRequest = parse(raw, &lab)?;
+    let (coating, _) = coating_of(&lab, &request.formulation)?;
+    let options = compute::PictureOptions::parse(request.lighting.as_deref(), request.quality.as_deref())?;
+    let cancel = lab.begin(request.channel.as_deref());
+    let picture = run(cancel, move |cancel| compute::picture(&coating, &options, cancel)).await?;
+    let mut response = ([(header::CONTENT_TYPE, "image/png")], picture.png).into_response();
+    for (name, value) in picture.figures {
+        if let Ok(v) = value.parse() {
+            response.headers_mut().insert(name, v);
+        }
+    }
+    Ok(response)
+}
+
+async fn export(
+    State(lab): Shared,
+    Path(format): Path<String>,
+    raw: Result<Bytes, BytesRejection>,
+) -> Result<Response, ApiError> {
+    let format = compute::ExportFormat::parse(&format)?;
+    let request: FormulationOnly = parse(raw, &lab)?;
+    let (coating, text) = coating_of(&lab, &request.formulation)?;
+    let cancel = lab.begin(None);
+    let (bytes, filename) = run(cancel, move |cancel| compute::export(&coating, &text, format, cancel)).await?;
+    Ok((
+        [
+            (header::CONTENT_TYPE, "application/octet-stream".to_string()),
+            (header::CONTENT_DISPOSITION, format!("attachment; filename=\"{filename}\"")),
+        ],
+        bytes,
+    )
+        .into_response())
+}
+
+/// `?name=` of an upload: the client's file name.
+#[derive(Deserialize)]
+struct UploadQuery {
+    name: String,
+}
+
+/// Keep an uploaded file and read it with `read`; a file its reader refuses is removed and the
+/// reader's message returned, naming the client's file (not the lab's copy).
+async fn upload(
+    lab: Arc<Lab>,
+    kind: UploadKind,
+    name: String,
+    raw: Result<Bytes, BytesRejection>,
+    read: impl FnOnce(&std::path::Path, &Cancel) -> Result<Value, ApiError> + Send + 'static,
+) -> Result<axum::Json<Value>, ApiError> {
+    let bytes = body(raw, lab.limits.upload_bytes, &format!("the upload {name}"))?;
+    let (id, upload) = lab.upload(kind, &name, &bytes)?;
+    let path = upload.path.clone();
+    let read = run(Cancel::new(), move |cancel| read(&path, cancel)).await;
+    let shown = upload.path.display().to_string();
+    match read {
+        Ok(value) => Ok(axum::Json(json!({ "id": id, "name": upload.name, "read": value }))),
+        Err(e) => {
+            let _ = std::fs::remove_file(&upload.path);
+            Err(match e {
+                ApiError::BadRequest(m) => ApiError::BadRequest(m.replace(&shown, &upload.name)),
+                other => other,
+            })
+        }
+    }
+}
+
+async fn upload_topography(
+    State(lab): Shared,
+    Query(q): Query<UploadQuery>,
+    raw: Result<Bytes, BytesRejection>,
+) -> Result<axum::Json<Value>, ApiError> {
+    upload(lab, UploadKind::Topography, q.name, raw, |path, _| compute::topography(path)).await
+}
+
+#[derive(Deserialize)]
+struct TargetQuery {
+    name: String,
+    #[serde(default)]
+    standard: Option<String>,
+}
+
+async fn upload_target(
+    State(lab): Shared,
+    Query(q): Query<TargetQuery>,
+    raw: Result<Bytes, BytesRejection>,
+) -> Result<axum::Json<Value>, ApiError> {
+    let standard = q.standard.unwrap_or_else(|| "E2194".into());
+    upload(lab, UploadKind::Target, q.name, raw, move |path, cancel| {
+        compute::target(path, &standard, cancel)
+    })
+    .await
+}

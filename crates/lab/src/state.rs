@@ -1,0 +1,162 @@
+//! What the lab server keeps between requests: the uploaded files (in a temporary folder of its
+//! own, removed when the server stops; named by ids the lab gives, never by the client), the
+//! computation running on each channel (so that a newer request stops an older one), and the
+//! limits it enforces.
+
+use crate::error::ApiError;
+use gonio_io::Cancel;
+use std::collections::{HashMap, VecDeque};
+use std::path::PathBuf;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// The limits on what a client may send.
+#[derive(Clone, Copy, Debug)]
+pub struct Limits {
+    /// Largest JSON request body, bytes.
+    pub json_bytes: usize,
+    /// Largest uploaded file (a topography, a target), bytes.
+    pub upload_bytes: usize,
+    /// Uploads kept at once; the oldest is removed beyond.
+    pub uploads_kept: usize,
+}
+
+impl Default for Limits {
+    /// 1 MiB of JSON (a formulation with measured spectra is a few kB), 64 MiB per upload (an
+    /// optical profiler's 2048 × 2048 map in 32-bit floats is 16 MiB), 32 uploads.
+    fn default() -> Limits {
+        Limits {
+            json_bytes: 1 << 20,
+            upload_bytes: 64 << 20,
+            uploads_kept: 32,
+        }
+    }
+}
+
+/// What an uploaded file is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UploadKind {
+    Topography,
+    Target,
+}
+
+/// One uploaded file.
+#[derive(Clone, Debug)]
+pub struct Upload {
+    pub kind: UploadKind,
+    /// The name the client gave (shown, never used as a path).
+    pub name: String,
+    pub path: PathBuf,
+}
+
+/// The server's state, shared by every request.
+pub struct Lab {
+    pub limits: Limits,
+    folder: tempfile::TempDir,
+    next: AtomicU64,
+    uploads: Mutex<VecDeque<(String, Upload)>>,
+    channels: Mutex<HashMap<String, Cancel>>,
+}
+
+impl Lab {
+    /// A lab with its own temporary folder for uploads.
+    pub fn new(limits: Limits) -> std::io::Result<Lab> {
+        Ok(Lab {
+            limits,
+            folder: tempfile::Builder::new().prefix("gonio-lab-").tempdir()?,
+            next: AtomicU64::new(1),
+            uploads: Mutex::new(VecDeque::new()),
+            channels: Mutex::new(HashMap::new()),
+        })
+    }
+
+    /// The folder holding the uploads (a formulation's `top.roughness.map` is read from here).
+    pub fn uploads_folder(&self) -> &std::path::Path {
+        self.folder.path()
+    }
+
+    /// Keep `bytes` as an upload of `kind` named `name` by the client: written into the lab's
+    /// folder under a new id (`u7.sdf`: a number and the client's extension, letters and digits
+    /// only, which the readers use to tell the format), returned with the upload.
+    pub fn upload(&self, kind: UploadKind, name: &str, bytes: &[u8]) -> Result<(String, Upload), ApiError> {
+        let ext: String = std::path::Path::new(name)
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase())
+            .unwrap_or_default()
+            .chars()
+            .filter(|c| c.is_ascii_alphanumeric())
+            .take(8)
+            .collect();
+        if ext.is_empty() {
+            return Err(ApiError::BadRequest(format!(
+                "{name}: the file's name needs its extension (.sdf, .x3p, .astm, .csv ...): the \
+                 readers tell the format by it"
+            )));
+        }
+        let id = format!("u{}.{ext}", self.next.fetch_add(1, Ordering::Relaxed));
+        let path = self.folder.path().join(&id);
+        std::fs::write(&path, bytes)
+            .map_err(|e| ApiError::Internal(format!("cannot keep the upload {name}: {e}")))?;
+        let upload = Upload {
+            kind,
+            name: name.chars().take(200).collect(),
+            path,
+        };
+        let mut uploads = self.uploads.lock().unwrap_or_else(|p| p.into_inner());
+        uploads.push_back((id.clone(), upload.clone()));
+        while uploads.len() > self.limits.uploads_kept {
+            if let Some((_, old)) = uploads.pop_front() {
+                let _ = std::fs::remove_file(old.path);
+            }
+        }
+        Ok((id, upload))
+    }
+
+    /// The upload `id` of `kind`, or a 404 saying what the lab has.
+    pub fn uploaded(&self, kind: UploadKind, id: &str) -> Result<Upload, ApiError> {
+        let uploads = self.uploads.lock().unwrap_or_else(|p| p.into_inner());
+        uploads
+            .iter()
+            .find(|(i, u)| i == id && u.kind == kind)
+            .map(|(_, u)| u.clone())
+            .ok_or_else(|| {
+                ApiError::NotFound(format!(
+                    "no {} upload '{id}' in this lab (upload the file first; the lab keeps the \
+                     last {} uploads while it runs)",
+                    match kind {
+                        UploadKind::Topography => "topography",
+                        UploadKind::Target => "target",
+                    },
+                    self.limits.uploads_kept
+                ))
+            })
+    }
+
+    /// Start a computation on `channel`: the one running there is cancelled. Without a channel
+    /// the computation stops only when its client leaves.
+    pub fn begin(&self, channel: Option<&str>) -> Cancel {
+        let cancel = Cancel::new();
+        if let Some(channel) = channel {
+            let mut channels = self.channels.lock().unwrap_or_else(|p| p.into_inner());
+            // Finished computations leave cancelled flags behind (see [`CancelOnDrop`]): keep
+            // the map to the ones running, however many channel names clients invent.
+            if channels.len() > 256 {
+                channels.retain(|_, c| !c.is_cancelled());
+            }
+            if let Some(old) = channels.insert(channel.chars().take(64).collect(), cancel.clone()) {
+                old.cancel();
+            }
+        }
+        cancel
+    }
+}
+
+/// Cancels its flag when dropped: a handler holds one while its computation runs, so that a
+/// client closing the connection (the page aborting a stale request) stops the computation.
+pub struct CancelOnDrop(pub Cancel);
+
+impl Drop for CancelOnDrop {
+    fn drop(&mut self) {
+        self.0.cancel();
+    }
+}
