@@ -37,10 +37,19 @@ pub fn router(lab: Arc<Lab>) -> Router {
         .route("/lab.js", get(|| async { crate::assets::script() }))
         .route("/lab.css", get(|| async { crate::assets::style() }))
         .route("/api/health", get(health))
-        .route("/api/examples", get(|| async { axum::Json(examples::list()) }))
+        .route(
+            "/api/examples",
+            get(|| async { axum::Json(examples::list()) }),
+        )
         .route("/api/examples/{name}", get(example))
-        .route("/api/pigments", get(|| async { axum::Json(examples::pigments()) }))
-        .route("/api/lightings", get(|| async { axum::Json(compute::lightings()) }))
+        .route(
+            "/api/pigments",
+            get(|| async { axum::Json(examples::pigments()) }),
+        )
+        .route(
+            "/api/lightings",
+            get(|| async { axum::Json(compute::lightings()) }),
+        )
         .route("/api/formulation/from-toml", post(from_toml))
         .route("/api/formulation/to-toml", post(to_toml))
         .route("/api/readings", post(readings))
@@ -49,7 +58,9 @@ pub fn router(lab: Arc<Lab>) -> Router {
         .layer(DefaultBodyLimit::max(lab.limits.json_bytes))
         .merge(uploads)
         .fallback(|| async {
-            ApiError::NotFound("no such page or endpoint (the API is under /api: docs/lab.md)".into())
+            ApiError::NotFound(
+                "no such page or endpoint (the API is under /api: docs/lab.md)".into(),
+            )
         })
         .with_state(lab)
 }
@@ -79,7 +90,8 @@ fn parse<T: serde::de::DeserializeOwned>(
     lab: &Lab,
 ) -> Result<T, ApiError> {
     let bytes = body(raw, lab.limits.json_bytes, "the request")?;
-    serde_json::from_slice(&bytes).map_err(|e| ApiError::BadRequest(format!("the request's JSON: {e}")))
+    serde_json::from_slice(&bytes)
+        .map_err(|e| ApiError::BadRequest(format!("the request's JSON: {e}")))
 }
 
 /// Run `work` on a blocking thread under `cancel`, raised if this handler is dropped (the client
@@ -149,7 +161,10 @@ async fn from_toml(
 }
 
 /// A formulation as the TOML text `gonio coating` reads, checked first.
-async fn to_toml(State(lab): Shared, raw: Result<Bytes, BytesRejection>) -> Result<Response, ApiError> {
+async fn to_toml(
+    State(lab): Shared,
+    raw: Result<Bytes, BytesRejection>,
+) -> Result<Response, ApiError> {
     let request: FormulationOnly = parse(raw, &lab)?;
     let (_, text) = coating_of(&lab, &request.formulation)?;
     let text = format!(
@@ -162,7 +177,10 @@ async fn to_toml(State(lab): Shared, raw: Result<Bytes, BytesRejection>) -> Resu
     Ok((
         [
             (header::CONTENT_TYPE, "application/toml; charset=utf-8"),
-            (header::CONTENT_DISPOSITION, "attachment; filename=\"formulation.toml\""),
+            (
+                header::CONTENT_DISPOSITION,
+                "attachment; filename=\"formulation.toml\"",
+            ),
         ],
         text,
     )
@@ -186,7 +204,10 @@ struct ReadingsRequest {
     channel: Option<String>,
 }
 
-async fn readings(State(lab): Shared, raw: Result<Bytes, BytesRejection>) -> Result<axum::Json<Value>, ApiError> {
+async fn readings(
+    State(lab): Shared,
+    raw: Result<Bytes, BytesRejection>,
+) -> Result<axum::Json<Value>, ApiError> {
     let request: ReadingsRequest = parse(raw, &lab)?;
     let (coating, _) = coating_of(&lab, &request.formulation)?;
     let target = request
@@ -220,12 +241,19 @@ struct PictureRequest {
     channel: Option<String>,
 }
 
-async fn picture(State(lab): Shared, raw: Result<Bytes, BytesRejection>) -> Result<Response, ApiError> {
+async fn picture(
+    State(lab): Shared,
+    raw: Result<Bytes, BytesRejection>,
+) -> Result<Response, ApiError> {
     let request: PictureRequest = parse(raw, &lab)?;
     let (coating, _) = coating_of(&lab, &request.formulation)?;
-    let options = compute::PictureOptions::parse(request.lighting.as_deref(), request.quality.as_deref())?;
+    let options =
+        compute::PictureOptions::parse(request.lighting.as_deref(), request.quality.as_deref())?;
     let cancel = lab.begin(request.channel.as_deref());
-    let picture = run(cancel, move |cancel| compute::picture(&coating, &options, cancel)).await?;
+    let picture = run(cancel, move |cancel| {
+        compute::picture(&coating, &options, cancel)
+    })
+    .await?;
     let mut response = ([(header::CONTENT_TYPE, "image/png")], picture.png).into_response();
     for (name, value) in picture.figures {
         if let Ok(v) = value.parse() {
@@ -244,11 +272,17 @@ async fn export(
     let request: FormulationOnly = parse(raw, &lab)?;
     let (coating, text) = coating_of(&lab, &request.formulation)?;
     let cancel = lab.begin(None);
-    let (bytes, filename) = run(cancel, move |cancel| compute::export(&coating, &text, format, cancel)).await?;
+    let (bytes, filename) = run(cancel, move |cancel| {
+        compute::export(&coating, &text, format, cancel)
+    })
+    .await?;
     Ok((
         [
             (header::CONTENT_TYPE, "application/octet-stream".to_string()),
-            (header::CONTENT_DISPOSITION, format!("attachment; filename=\"{filename}\"")),
+            (
+                header::CONTENT_DISPOSITION,
+                format!("attachment; filename=\"{filename}\""),
+            ),
         ],
         bytes,
     )
@@ -276,7 +310,9 @@ async fn upload(
     let read = run(Cancel::new(), move |cancel| read(&path, cancel)).await;
     let shown = upload.path.display().to_string();
     match read {
-        Ok(value) => Ok(axum::Json(json!({ "id": id, "name": upload.name, "read": value }))),
+        Ok(value) => Ok(axum::Json(
+            json!({ "id": id, "name": upload.name, "read": value }),
+        )),
         Err(e) => {
             let _ = std::fs::remove_file(&upload.path);
             Err(match e {
@@ -292,7 +328,10 @@ async fn upload_topography(
     Query(q): Query<UploadQuery>,
     raw: Result<Bytes, BytesRejection>,
 ) -> Result<axum::Json<Value>, ApiError> {
-    upload(lab, UploadKind::Topography, q.name, raw, |path, _| compute::topography(path)).await
+    upload(lab, UploadKind::Topography, q.name, raw, |path, _| {
+        compute::topography(path)
+    })
+    .await
 }
 
 #[derive(Deserialize)]

@@ -58,9 +58,15 @@ pub fn readings(
         },
     });
     if let Some(target) = target {
-        let t = gonio_formulation::target::read_target(&target.path, geometries)
-            .map_err(|e| ApiError::BadRequest(e.to_string().replace(&target.path.display().to_string(), &target.name)))?;
-        let de = t.de00(&reading.multiangle).map_err(|e| ApiError::BadRequest(e.to_string()))?;
+        let t = gonio_formulation::target::read_target(&target.path, geometries).map_err(|e| {
+            ApiError::BadRequest(
+                e.to_string()
+                    .replace(&target.path.display().to_string(), &target.name),
+            )
+        })?;
+        let de = t
+            .de00(&reading.multiangle)
+            .map_err(|e| ApiError::BadRequest(e.to_string()))?;
         value["target"] = json!({ "name": target.name, "de00": de });
     }
     value["seconds"] = json!(start.elapsed().as_secs_f64());
@@ -81,7 +87,10 @@ pub struct PictureOptions {
 
 impl PictureOptions {
     /// The options from the request's names (defaults: the first lighting, a preview).
-    pub fn parse(lighting: Option<&str>, quality: Option<&str>) -> Result<PictureOptions, ApiError> {
+    pub fn parse(
+        lighting: Option<&str>,
+        quality: Option<&str>,
+    ) -> Result<PictureOptions, ApiError> {
         let converged = match quality.unwrap_or("preview") {
             "preview" => false,
             "converged" => true,
@@ -105,7 +114,11 @@ pub struct Picture {
 }
 
 /// The picture of `coating` on the panel.
-pub fn picture(coating: &Coating, options: &PictureOptions, cancel: &Cancel) -> Result<Picture, ApiError> {
+pub fn picture(
+    coating: &Coating,
+    options: &PictureOptions,
+    cancel: &Cancel,
+) -> Result<Picture, ApiError> {
     let _ = (options, cancel);
     let dir = tempfile::tempdir().map_err(|e| ApiError::Internal(e.to_string()))?;
     let bands = default_bands();
@@ -117,17 +130,33 @@ pub fn picture(coating: &Coating, options: &PictureOptions, cancel: &Cancel) -> 
             gonio_brdf::table::Provenance::default(),
         )
         .map_err(|e| refused(cancel, e))?;
-    gonio_brdf::gbrdf::write(&table, &dir.path().join("c.gbrdf")).map_err(|e| ApiError::Internal(e.to_string()))?;
-    let panel = gonio_render::panel::Panel { table: "c.gbrdf".into(), coat_index: coating.roughness.is_none().then(|| coating.coat.index.at(550.0)) };
-    let scene = gonio_render::panel::scene(dir.path(), "lab", &[panel]).map_err(|e| ApiError::Internal(e.to_string()))?;
-    let (image, display, stats) = gonio_render::panel::render_image(&scene).map_err(|e| refused(cancel, e))?;
-    Ok(Picture { png: png(&image, display)?, figures: vec![("x-gonio-seconds", format!("{:.3}", stats.seconds))] })
+    gonio_brdf::gbrdf::write(&table, &dir.path().join("c.gbrdf"))
+        .map_err(|e| ApiError::Internal(e.to_string()))?;
+    let panel = gonio_render::panel::Panel {
+        table: "c.gbrdf".into(),
+        coat_index: coating
+            .roughness
+            .is_none()
+            .then(|| coating.coat.index.at(550.0)),
+    };
+    let scene = gonio_render::panel::scene(dir.path(), "lab", &[panel])
+        .map_err(|e| ApiError::Internal(e.to_string()))?;
+    let (image, display, stats) =
+        gonio_render::panel::render_image(&scene).map_err(|e| refused(cancel, e))?;
+    Ok(Picture {
+        png: png(&image, display)?,
+        figures: vec![("x-gonio-seconds", format!("{:.3}", stats.seconds))],
+    })
 }
 
 /// `image` tone-mapped for `display`, as PNG bytes.
 fn png(image: &gonio_render::Image, display: gonio_render::Display) -> Result<Vec<u8>, ApiError> {
-    let rgb = image::RgbImage::from_raw(image.width as u32, image.height as u32, image.to_srgb8(display))
-        .ok_or_else(|| ApiError::Internal("a picture of the wrong size".into()))?;
+    let rgb = image::RgbImage::from_raw(
+        image.width as u32,
+        image.height as u32,
+        image.to_srgb8(display),
+    )
+    .ok_or_else(|| ApiError::Internal("a picture of the wrong size".into()))?;
     let mut out = std::io::Cursor::new(Vec::new());
     rgb.write_to(&mut out, image::ImageFormat::Png)
         .map_err(|e| ApiError::Internal(format!("PNG: {e}")))?;
@@ -146,13 +175,20 @@ impl ExportFormat {
         match name {
             "gbrdf" => Ok(ExportFormat::Gbrdf),
             "mitsuba" => Ok(ExportFormat::Mitsuba),
-            other => Err(ApiError::NotFound(format!("no export '{other}': give gbrdf or mitsuba"))),
+            other => Err(ApiError::NotFound(format!(
+                "no export '{other}': give gbrdf or mitsuba"
+            ))),
         }
     }
 }
 
 /// The table of `coating` (described by `text`) written in `format`: the bytes and a file name.
-pub fn export(coating: &Coating, text: &str, format: ExportFormat, cancel: &Cancel) -> Result<(Vec<u8>, String), ApiError> {
+pub fn export(
+    coating: &Coating,
+    text: &str,
+    format: ExportFormat,
+    cancel: &Cancel,
+) -> Result<(Vec<u8>, String), ApiError> {
     let _ = (coating, text, format, cancel);
     Err(ApiError::Internal("export: not yet".into()))
 }
@@ -160,7 +196,8 @@ pub fn export(coating: &Coating, text: &str, format: ExportFormat, cancel: &Canc
 /// The statistics of an uploaded topography (ISO 25178 after levelling).
 pub fn topography(path: &Path) -> Result<Value, ApiError> {
     let map = gonio_surface::io::read(path).map_err(|e| ApiError::BadRequest(e.to_string()))?;
-    let s = gonio_surface::stats::statistics(&map).map_err(|e| ApiError::BadRequest(e.to_string()))?;
+    let s =
+        gonio_surface::stats::statistics(&map).map_err(|e| ApiError::BadRequest(e.to_string()))?;
     Ok(json!({
         "nx": map.nx(), "ny": map.ny(), "dx_um": map.dx() * 1e6, "dy_um": map.dy() * 1e6,
         "sq_um": s.sq * 1e6, "sa_um": s.sa * 1e6, "ssk": s.ssk, "sku": s.sku, "sdq": s.sdq,

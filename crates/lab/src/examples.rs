@@ -6,14 +6,38 @@ use serde_json::{Value, json};
 
 /// Each example's name (its file's stem) and text.
 pub const EXAMPLES: [(&str, &str); 8] = [
-    ("silver_metallic", include_str!("../../../examples/coatings/silver_metallic.toml")),
-    ("pearl_interference", include_str!("../../../examples/coatings/pearl_interference.toml")),
-    ("red_solid", include_str!("../../../examples/coatings/red_solid.toml")),
-    ("red_rough", include_str!("../../../examples/coatings/red_rough.toml")),
-    ("red_pigmented", include_str!("../../../examples/coatings/red_pigmented.toml")),
-    ("solid_three_pigments", include_str!("../../../examples/coatings/solid_three_pigments.toml")),
-    ("cayman_start", include_str!("../../../examples/coatings/cayman_start.toml")),
-    ("cayman_tinted_start", include_str!("../../../examples/coatings/cayman_tinted_start.toml")),
+    (
+        "silver_metallic",
+        include_str!("../../../examples/coatings/silver_metallic.toml"),
+    ),
+    (
+        "pearl_interference",
+        include_str!("../../../examples/coatings/pearl_interference.toml"),
+    ),
+    (
+        "red_solid",
+        include_str!("../../../examples/coatings/red_solid.toml"),
+    ),
+    (
+        "red_rough",
+        include_str!("../../../examples/coatings/red_rough.toml"),
+    ),
+    (
+        "red_pigmented",
+        include_str!("../../../examples/coatings/red_pigmented.toml"),
+    ),
+    (
+        "solid_three_pigments",
+        include_str!("../../../examples/coatings/solid_three_pigments.toml"),
+    ),
+    (
+        "cayman_start",
+        include_str!("../../../examples/coatings/cayman_start.toml"),
+    ),
+    (
+        "cayman_tinted_start",
+        include_str!("../../../examples/coatings/cayman_tinted_start.toml"),
+    ),
 ];
 
 /// The text of the example `name`.
@@ -49,7 +73,10 @@ pub fn pigments() -> Value {
         let Ok(description) = toml::from_str::<Value>(text) else {
             continue;
         };
-        let Some(list) = description.pointer("/base/pigment").and_then(Value::as_array) else {
+        let Some(list) = description
+            .pointer("/base/pigment")
+            .and_then(Value::as_array)
+        else {
             continue;
         };
         for p in list {

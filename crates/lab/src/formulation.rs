@@ -22,8 +22,9 @@ pub fn to_toml(formulation: &Value) -> Result<String, ApiError> {
                 .into(),
         ));
     };
-    toml::to_string(&without_nulls(formulation))
-        .map_err(|e| ApiError::BadRequest(format!("the formulation cannot be written as TOML: {e}")))
+    toml::to_string(&without_nulls(formulation)).map_err(|e| {
+        ApiError::BadRequest(format!("the formulation cannot be written as TOML: {e}"))
+    })
 }
 
 /// The formulation (JSON) of a description's TOML text.
@@ -40,9 +41,13 @@ fn without_nulls(value: &Value) -> Value {
                 .map(|(k, v)| (k.clone(), without_nulls(v)))
                 .collect(),
         ),
-        Value::Array(items) => {
-            Value::Array(items.iter().filter(|v| !v.is_null()).map(without_nulls).collect())
-        }
+        Value::Array(items) => Value::Array(
+            items
+                .iter()
+                .filter(|v| !v.is_null())
+                .map(without_nulls)
+                .collect(),
+        ),
         other => other.clone(),
     }
 }

@@ -43,7 +43,9 @@ pub fn run(address: SocketAddr, ready: impl FnOnce(SocketAddr)) -> std::io::Resu
         let listener = tokio::net::TcpListener::bind(address).await.map_err(|e| {
             std::io::Error::new(
                 e.kind(),
-                format!("cannot listen on {address}: {e} (another program uses the port? give --port)"),
+                format!(
+                    "cannot listen on {address}: {e} (another program uses the port? give --port)"
+                ),
             )
         })?;
         ready(listener.local_addr()?);

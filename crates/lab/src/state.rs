@@ -78,7 +78,12 @@ impl Lab {
     /// Keep `bytes` as an upload of `kind` named `name` by the client: written into the lab's
     /// folder under a new id (`u7.sdf`: a number and the client's extension, letters and digits
     /// only, which the readers use to tell the format), returned with the upload.
-    pub fn upload(&self, kind: UploadKind, name: &str, bytes: &[u8]) -> Result<(String, Upload), ApiError> {
+    pub fn upload(
+        &self,
+        kind: UploadKind,
+        name: &str,
+        bytes: &[u8],
+    ) -> Result<(String, Upload), ApiError> {
         let ext: String = std::path::Path::new(name)
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase())

@@ -1,0 +1,6 @@
+//! The lab's HTTP API, tested against a server on an ephemeral port (docs/lab.md): every
+//! endpoint, bad requests, limits, concurrent clients and cancellation.
+
+mod api;
+mod handlers;
+mod server;
