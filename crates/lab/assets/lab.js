@@ -598,6 +598,7 @@ async function uploadTopography(file) {
     const r = await api('/api/upload/topography?name=' + encodeURIComponent(file.name), file);
     state.topography = r;
     state.f.top = { roughness: { map: r.id } };
+    setState('form-state', '');
     showError('');
     buildForm();
     changed();

@@ -2,5 +2,6 @@
 //! endpoint, bad requests, limits, concurrent clients and cancellation.
 
 mod api;
+mod browser;
 mod handlers;
 mod server;

@@ -1,0 +1,137 @@
+"""The lab's page in a real browser (Debian's Chromium driven by Playwright), as a coatings person
+uses it: the page loads with the silver metallic; the roughness slider moved up makes the 60°
+gloss fall and the 45as15 swatch change, and the picture refresh; a topography file uploaded
+shows its statistics; Cornell's Cayman loaded as a target shows the ΔE00 table; the formulation
+downloads as TOML. Screenshots of each step go to OUT.
+
+    python3 lab_page.py URL OUT TOPOGRAPHY TARGET
+
+Prints one JSON object of what it saw (the Rust test `browser` checks it and reads the TOML).
+Exits 3 when Playwright or Chromium is missing (the caller decides whether that is a skip).
+"""
+
+import json
+import os
+import sys
+import time
+
+try:
+    from playwright.sync_api import sync_playwright
+except ImportError:
+    print("playwright is not installed (pip install playwright)", file=sys.stderr)
+    sys.exit(3)
+
+CHROMIUM = "/usr/bin/chromium"
+if not os.path.exists(CHROMIUM):
+    print(f"{CHROMIUM} is missing (apt install chromium)", file=sys.stderr)
+    sys.exit(3)
+
+url, out, topography, target = sys.argv[1:5]
+os.makedirs(out, exist_ok=True)
+seen = {"errors": []}
+TIMEOUT = 120_000  # ms: a loaded CI machine renders slowly; the benchmarks time the lab
+
+
+def reading(page, label):
+    """The value (B's column) of the readings row whose first cell is `label`."""
+    row = page.locator("#meters tr", has_text=label).first
+    return float(row.locator("td.b").inner_text().split()[0])
+
+
+def swatch(page, who, index):
+    row = page.locator("#swatches .swatch-row", has=page.locator(".who", has_text=who)).first
+    return row.locator(".swatch").nth(index).evaluate("e => getComputedStyle(e).backgroundColor")
+
+
+def wait_idle(page, state_id, timeout=TIMEOUT):
+    """Wait until the state line `state_id` no longer says it is busy."""
+    page.wait_for_function(
+        f"() => !document.getElementById('{state_id}').classList.contains('busy')", timeout=timeout
+    )
+
+
+with sync_playwright() as p:
+    browser = p.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox"])
+    page = browser.new_page(viewport={"width": 1280, "height": 800}, accept_downloads=True)
+    page.on("pageerror", lambda e: seen["errors"].append(str(e)))
+    page.on("console", lambda m: m.type == "error" and seen["errors"].append(m.text))
+    page.goto(url)
+    # 1. The page opens on the silver metallic, with its readings and a picture.
+    page.wait_for_selector("#meters td.b", timeout=TIMEOUT)
+    page.wait_for_function("() => document.getElementById('picture').naturalWidth > 0", timeout=TIMEOUT)
+    wait_idle(page, "readings-state")
+    seen["gloss60_before"] = reading(page, "gloss 60°")
+    seen["swatch_before"] = swatch(page, "this", 0)
+    picture_before = page.get_attribute("#picture", "src")
+    page.screenshot(path=f"{out}/1-loaded.png", full_page=True)
+
+    # 2. Move the roughness slider up (as a drag does: input events on the range).
+    slider = page.locator('input[type=range][data-path="top.roughness.alpha"]')
+    t0 = time.time()
+    for value in (600, 700, 800):
+        slider.evaluate(f"(e) => {{ e.value = {value}; e.dispatchEvent(new Event('input', {{bubbles: true}})); }}")
+        page.wait_for_timeout(150)
+    seen["alpha_after"] = float(page.locator('input[type=number][data-path="top.roughness.alpha"]').input_value())
+    page.wait_for_function(
+        f"() => {{ const r = [...document.querySelectorAll('#meters tr')].find(t => t.textContent.startsWith('gloss 60°'));"
+        f" return r && Math.abs(parseFloat(r.querySelector('td.b').textContent) - {seen['gloss60_before']}) > 0.05; }}",
+        timeout=TIMEOUT,
+    )
+    wait_idle(page, "readings-state")
+    seen["readings_seconds_after_drag"] = time.time() - t0
+    seen["gloss60_after"] = reading(page, "gloss 60°")
+    seen["swatch_after"] = swatch(page, "this", 0)
+    page.wait_for_function(
+        f"() => document.getElementById('picture').src !== {json.dumps(picture_before)}", timeout=TIMEOUT
+    )
+    seen["picture_refreshed_seconds"] = time.time() - t0
+    wait_idle(page, "picture-state")
+    page.screenshot(path=f"{out}/2-rougher.png", full_page=True)
+
+    # 3. Upload a topography as the top's roughness: its statistics appear.
+    page.select_option('select[aria-label="surface"]', "map")
+    page.set_input_files("#open-topography", topography)
+    page.wait_for_selector("#topography-stats", timeout=TIMEOUT)
+    seen["topography_stats"] = page.inner_text("#topography-stats")
+    page.wait_for_selector("#meters td.b", timeout=TIMEOUT)
+    page.screenshot(path=f"{out}/3-topography.png", full_page=True)
+
+    # 4. A measured BRDF as the target: the ΔE00 column and the target's swatches.
+    page.select_option("#example", "cayman_start")
+    page.wait_for_function("() => !document.querySelector('#topography-stats')", timeout=TIMEOUT)
+    page.set_input_files("#open-target", target)
+    page.wait_for_selector("#swatches .who:text('target')", timeout=TIMEOUT)
+    page.wait_for_function(
+        "() => [...document.querySelectorAll('#colour-table th')].some(t => t.textContent === 'ΔE00')"
+        " && [...document.querySelectorAll('#colour-table tr')].some(t => t.textContent.startsWith('mean ΔE00'))",
+        timeout=TIMEOUT,
+    )
+    rows = page.locator("#colour-table tr").all_inner_texts()
+    seen["de00_rows"] = rows
+    page.screenshot(path=f"{out}/4-target.png", full_page=True)
+
+    # 5. Pin A, change B, see both.
+    page.click("#pin")
+    page.locator('input[type=range][data-path="flakes.tilt_deg"]').evaluate(
+        "(e) => { e.value = 25; e.dispatchEvent(new Event('input', {bubbles: true})); }"
+    )
+    page.wait_for_selector("#meters th.a", timeout=TIMEOUT)
+    wait_idle(page, "readings-state")
+    seen["pinned_columns"] = page.locator("#meters tr").first.inner_text()
+    page.screenshot(path=f"{out}/5-pinned.png", full_page=True)
+
+    # 6. Download the formulation as TOML.
+    with page.expect_download(timeout=TIMEOUT) as download:
+        page.click("#save-toml")
+    path = f"{out}/formulation.toml"
+    download.value.save_as(path)
+    seen["toml"] = path
+
+    # 7. A narrow window: the same page in one column.
+    page.set_viewport_size({"width": 420, "height": 900})
+    page.wait_for_timeout(300)
+    page.screenshot(path=f"{out}/6-narrow.png", full_page=True)
+    seen["narrow_overflow_px"] = page.evaluate("() => document.documentElement.scrollWidth - window.innerWidth")
+    browser.close()
+
+print(json.dumps(seen))
