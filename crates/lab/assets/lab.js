@@ -348,18 +348,22 @@ function buildForm() {
   markInvalid();
 }
 
-// Show the server's message beside the field it names (its path, e.g. "flakes.coverage").
+// Show the server's message beside the field it names. The coating library names a field by its
+// table and its name without the unit ("coat thickness -4 µm", "flake coverage 1.5"): the row
+// whose last key (less its unit suffix) is in the message, preferring one of the table named.
 function markInvalid() {
   document.querySelectorAll('.field-error').forEach((e) => e.remove());
   document.querySelectorAll('.row.invalid').forEach((e) => e.classList.remove('invalid'));
   if (!state.invalid) return;
+  const message = state.invalid.toLowerCase();
   let best = null;
+  let bestScore = 1;
   document.querySelectorAll('.row[data-path]').forEach((row) => {
-    const path = row.dataset.path;
-    const short = path.split('.').filter((k) => !/^\d+$/.test(k)).join('.');
-    if (state.invalid.includes(path) || state.invalid.includes(short) || state.invalid.includes(path.split('.').pop())) {
-      if (!best || path.length > best.dataset.path.length) best = row;
-    }
+    const keys = row.dataset.path.split('.').filter((k) => !/^\d+$/.test(k));
+    const field = keys[keys.length - 1].replace(/_(um|nm|deg|per_um|um2)$/, '').replace(/_/g, ' ');
+    const table = keys[0].replace(/s$/, '');
+    const score = (message.includes(field) ? 2 : 0) + (message.includes(table) ? 1 : 0);
+    if (score > bestScore) { best = row; bestScore = score; }
   });
   if (best) {
     best.classList.add('invalid');

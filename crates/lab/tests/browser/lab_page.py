@@ -88,6 +88,18 @@ with sync_playwright() as p:
     wait_idle(page, "picture-state")
     page.screenshot(path=f"{out}/2-rougher.png", full_page=True)
 
+    # 2b. A value the library refuses: its message beside the field.
+    coverage = page.locator('input[type=number][data-path="flakes.coverage"]')
+    coverage.fill("1.5")
+    coverage.dispatch_event("change")
+    page.wait_for_selector(".field-error", timeout=TIMEOUT)
+    seen["invalid_message"] = page.inner_text(".field-error")
+    seen["invalid_row"] = page.get_attribute(".row.invalid", "data-path")
+    page.screenshot(path=f"{out}/2b-invalid.png", full_page=True)
+    coverage.fill("0.6")
+    coverage.dispatch_event("change")
+    page.wait_for_function("() => !document.querySelector('.field-error')", timeout=TIMEOUT)
+
     # 3. Upload a topography as the top's roughness: its statistics appear.
     page.select_option('select[aria-label="surface"]', "map")
     page.set_input_files("#open-topography", topography)
