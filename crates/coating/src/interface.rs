@@ -23,6 +23,7 @@ use gonio_brdf::microfacet::Microfacet;
 use gonio_brdf::quadrature::gauss_legendre_on;
 use rayon::prelude::*;
 use std::f64::consts::PI;
+use std::sync::{Arc, LazyLock, Mutex};
 
 /// What a BSDF value carries.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -85,7 +86,8 @@ pub struct Interface {
     pub eta: f64,
     /// `None` for a smooth (mirror) interface.
     pub roughness: Option<Microfacet>,
-    compensation: Option<Compensation>,
+    /// Shared by every interface of the same index and roughness ([`Compensation::shared`]).
+    compensation: Option<Arc<Compensation>>,
 }
 
 /// The light a microfacet interface scatters more than once (`docs/coatings.md`, "Rough top
@@ -147,6 +149,37 @@ impl Compensation {
             (false, true) => self.k_ba,
             (false, false) => self.k_bb,
         }
+    }
+
+    /// Interfaces whose lobes [`Compensation::shared`] keeps: a formulation's readings build
+    /// two evaluators (the gloss meter's band and the colour's bands) and a lab session or a
+    /// study reads many formulations that share the top's index and roughness.
+    const KEPT: usize = 32;
+
+    /// The lobes of `single`, computed once per index and roughness and shared: the table
+    /// costs 2 × 65 × 128² visible normals (about 0.1–0.2 s on one core), more than a
+    /// formulation's readings at the lab's walks. The same values as [`Compensation::new`],
+    /// bit for bit: it is what computes them, at the first request.
+    fn shared(single: &Interface) -> Arc<Compensation> {
+        type Kept = Vec<((u64, Microfacet), Arc<Compensation>)>;
+        static KEPT: LazyLock<Mutex<Kept>> = LazyLock::new(Mutex::default);
+        let key = (
+            single.eta.to_bits(),
+            single.roughness.expect("compensation of a rough interface"),
+        );
+        let lock = || KEPT.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        if let Some((_, c)) = lock().iter().find(|(k, _)| *k == key) {
+            return Arc::clone(c);
+        }
+        let c = Arc::new(Compensation::new(single));
+        let mut kept = lock();
+        if !kept.iter().any(|(k, _)| *k == key) {
+            if kept.len() == Self::KEPT {
+                kept.remove(0);
+            }
+            kept.push((key, Arc::clone(&c)));
+        }
+        c
     }
 
     fn new(single: &Interface) -> Self {
@@ -373,7 +406,7 @@ impl Interface {
             compensation: None,
         };
         if roughness.is_some() {
-            interface.compensation = Some(Compensation::new(&interface));
+            interface.compensation = Some(Compensation::shared(&interface));
         }
         interface
     }
@@ -450,7 +483,8 @@ impl Interface {
         }
         let (p_ms, same) = c.sampling(wo, lobes);
         let side = if wi.z * wo.z > 0.0 { same } else { 1.0 - same };
-        (1.0 - p_ms) * self.pdf_single(wo, wi, lobes) + p_ms * side * c.into(wi).pdf(wi.z)
+        (1.0 - p_ms) * self.pdf_single(wo, wi, lobes)
+            + p_ms * side * Compensation::into(c, wi).pdf(wi.z)
     }
 
     /// The density of the visible-normal sampler of the single-scattering lobes.
@@ -498,7 +532,7 @@ impl Interface {
         let wi = if uc < p_ms {
             // A direction on the side chosen, drawn from the lobes' shape there.
             let side = if uc / p_ms < same { 1.0 } else { -1.0 } * wo.z.signum();
-            let (mu, phi) = c.into(DVec3::Z * side).sample(u);
+            let (mu, phi) = Compensation::into(c, DVec3::Z * side).sample(u);
             let r = (1.0 - mu * mu).max(0.0).sqrt();
             DVec3::new(r * phi.cos(), r * phi.sin(), side * mu)
         } else {
