@@ -570,6 +570,28 @@ impl Interface {
         })
     }
 
+    /// The interface's reflection of light from `wi` as `strata × strata` samples of its lobes
+    /// ([`Interface::sample`], [`Transport::Importance`], reflection only): `u` on the centres
+    /// of a stratified grid, `uc` spread over [0, 1) by a stride coprime with the count (7919),
+    /// so that a sample's [`Sample::weight`] over `strata²` sums to the reflected fraction into
+    /// the directions the samples land in (the gloss meter's windows, the albedo). Samples that
+    /// miss (below the horizon) are left out.
+    pub fn reflection_samples(
+        &self,
+        wi: DVec3,
+        strata: usize,
+    ) -> impl Iterator<Item = Sample> + '_ {
+        let n = strata;
+        (0..n * n).filter_map(move |k| {
+            let u = DVec2::new(
+                ((k / n) as f64 + 0.5) / n as f64,
+                ((k % n) as f64 + 0.5) / n as f64,
+            );
+            let uc = ((k * 7919) % (n * n)) as f64 / (n * n) as f64;
+            self.sample(wi, uc, u, Transport::Importance, Lobes::Reflection)
+        })
+    }
+
     /// A smooth interface's sample: the mirror direction with probability F, Snell's with
     /// 1 − F (within `lobes`).
     fn sample_mirror(&self, wo: DVec3, uc: f64, mode: Transport, lobes: Lobes) -> Option<Sample> {

@@ -13,12 +13,12 @@
 use crate::error::{InstrumentError, Result};
 use crate::gloss::{self, GlossReport, Specimen, Window};
 use crate::multiangle::{self, Geometry, MultiangleReading, Settings};
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 use gonio_brdf::fresnel::dielectric;
 use gonio_brdf::microfacet::Microfacet;
 use gonio_coating::clear_coat::Base;
 use gonio_coating::flakes::FlakePigment;
-use gonio_coating::interface::{Lobes, Transport};
+use gonio_coating::interface::Transport;
 use gonio_coating::layered::Scratch;
 use gonio_coating::system::{Coating, Evaluator};
 use gonio_io::Cancel;
@@ -303,16 +303,7 @@ impl Specimen for CoatingSpecimen {
                 });
             // No samples when every window takes the quadrature.
             let n = if sampled.is_empty() { 0 } else { Self::STRATA };
-            for k in 0..n * n {
-                let u = DVec2::new(
-                    ((k / n) as f64 + 0.5) / n as f64,
-                    ((k % n) as f64 + 0.5) / n as f64,
-                );
-                let uc = ((k * 7919) % (n * n)) as f64 / (n * n) as f64;
-                let Some(s) = top.sample(wi, uc, u, Transport::Importance, Lobes::Reflection)
-                else {
-                    continue;
-                };
+            for s in top.reflection_samples(wi, n) {
                 for &w in &sampled {
                     if windows[w].contains(s.wi) {
                         into[w] += s.weight() / (n * n) as f64;
