@@ -138,11 +138,7 @@ pub fn read(
     mirror_reflectance: f64,
     cancel: &Cancel,
 ) -> Result<BrdfReadings> {
-    if !(incidence_deg.is_finite() && (0.0..=85.0).contains(&incidence_deg)) {
-        return Err(InstrumentError::Invalid(format!(
-            "incidence {incidence_deg}°: the in-plane BRDF's light must be between 0° and 85°"
-        )));
-    }
+    check_incidence(incidence_deg)?;
     let (colour, inplane) = (guarded(colour, cancel), guarded(inplane, cancel));
     let settings = Settings::default();
     let geometries = standard.geometries();
@@ -191,6 +187,16 @@ pub fn read(
             lightness: curve.iter().map(|g| g.lab.l).collect(),
         },
     })
+}
+
+/// Refuse an in-plane incidence outside 0–85°.
+pub fn check_incidence(incidence_deg: f64) -> Result<()> {
+    if !(incidence_deg.is_finite() && (0.0..=85.0).contains(&incidence_deg)) {
+        return Err(InstrumentError::Invalid(format!(
+            "incidence {incidence_deg}°: the in-plane BRDF's light must be between 0° and 85°"
+        )));
+    }
+    Ok(())
 }
 
 /// `brdf`, skipped (zeros) once `cancel` is raised: the reading it feeds is then thrown away.

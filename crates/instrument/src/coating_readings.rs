@@ -114,6 +114,7 @@ pub fn readings(coating: &Coating, request: &ReadingsRequest, cancel: &Cancel) -
                 "readings: the bands must include {SUMMARY_NM} nm (the albedo's)"
             ))
         })?;
+    brdf_readings::check_incidence(r.incidence_deg)?;
     coating.check(&r.wavelengths_nm)?;
     let evaluator = coating.evaluator(&r.wavelengths_nm)?;
     let specimen = CoatingSpecimen::new(coating, 555.0, r.gloss_walks)?
