@@ -296,10 +296,14 @@ impl Evaluator {
     }
 
     /// Walks `walks` of the estimate seeded `seed`, for every group of bands, their
-    /// contributions added into `sums` (per band) and, with `tally`, each walk's contributions
-    /// weighted by `tally.0` (per band) into `tally.1` ([`Walk::add_walks`]).
+    /// contributions added into `sums` (per band, not divided by the number of walks) and, with
+    /// `tally`, each walk's contributions weighted by `tally.0` (per band) into `tally.1`
+    /// ([`Walk::add_walks`]). Walk `k` draws the same numbers whatever range it is run in, so
+    /// the walks `0..n` of [`Evaluator::eval_body`] can be run in groups (the gloss meter's
+    /// jackknife over groups of walks, `instrument::coating_study`); nothing for the exact
+    /// series.
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn add_walks(
+    pub fn add_walks(
         &self,
         wo: DVec3,
         wi: DVec3,

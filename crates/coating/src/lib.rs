@@ -9,6 +9,7 @@
 
 pub mod cell;
 pub mod clear_coat;
+mod compensation;
 pub mod description;
 pub mod error;
 pub mod flakes;

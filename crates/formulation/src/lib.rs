@@ -3,7 +3,8 @@
 //! physics; [`coating_sensitivity`]: the same applied to a coating's gloss, haze, DOI and
 //! multi-angle colour ([`appearance`]), read by `instrument::coating_study`) and which values
 //! reproduce a target ([`matching`], against a [`target`], by [`match_objective`], written back as a description by
-//! [`fitted_description`]). `docs/formulation.md` gives the methods, their checks and their
+//! [`fitted_description`]), and what the lab shows of an uploaded target
+//! ([`lab_target`]). `docs/formulation.md` gives the methods, their checks and their
 //! cost.
 
 pub mod appearance;
@@ -11,6 +12,7 @@ pub mod bounds;
 pub mod coating_sensitivity;
 pub mod error;
 pub mod fitted_description;
+pub mod lab_target;
 pub mod match_objective;
 mod match_reader;
 pub mod match_report;

@@ -5,6 +5,7 @@
 
 use crate::error::{FormulationError, Result};
 use gonio_brdf::formats::astm;
+use gonio_brdf::table::BrdfTable;
 use gonio_instrument::multiangle::{self, Geometry, Settings};
 use gonio_instrument::multiangle_target::{Spectra, Target};
 use std::path::Path;
@@ -59,29 +60,39 @@ pub fn read_target(path: &Path, geometries: &[Geometry]) -> Result<Target> {
     if geometries.is_empty() {
         return Err(invalid(&"a target needs at least one geometry"));
     }
-    let extension = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
-    let table = match extension.as_str() {
-        "csv" => return at_geometries(Target::read_csv(path)?, geometries),
-        "astm" => {
-            astm::import(path, astm::default_resolution())
-                .map_err(|e| invalid(&e))?
-                .0
-        }
-        "gbrdf" => gonio_brdf::gbrdf::read(path).map_err(|e| invalid(&e))?,
-        _ => {
-            return Err(invalid(
-                &"a target is a .csv (CIELAB or reflectance factors per geometry), a measured \
-                  BRDF (.astm) or a spectral table (.gbrdf)",
-            ));
-        }
-    };
+    if extension(path) == "csv" {
+        return at_geometries(Target::read_csv(path)?, geometries);
+    }
+    let table = measured_table(path)?;
     let reading = multiangle::read_table(&table, geometries, &Settings::default())
         .map_err(|e| invalid(&e))?;
     Ok(Target::from_reading(name, &reading))
+}
+
+/// The extension of `path`, lower case ("" without one).
+pub(crate) fn extension(path: &Path) -> String {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase()
+}
+
+/// The measured BRDF `path` as a table: `.astm` (Cornell's ASTM text) imported as `gonio brdf
+/// import` imports it (fitted and resampled onto [`astm::default_resolution`]), `.gbrdf` read;
+/// any other extension refused, naming the target's formats.
+pub(crate) fn measured_table(path: &Path) -> Result<BrdfTable> {
+    let name = path.display().to_string();
+    let invalid = |e: &dyn std::fmt::Display| FormulationError::Invalid(format!("{name}: {e}"));
+    match extension(path).as_str() {
+        "astm" => Ok(astm::import(path, astm::default_resolution())
+            .map_err(|e| invalid(&e))?
+            .0),
+        "gbrdf" => gonio_brdf::gbrdf::read(path).map_err(|e| invalid(&e)),
+        _ => Err(invalid(
+            &"a target is a .csv (CIELAB or reflectance factors per geometry), a measured \
+              BRDF (.astm) or a spectral table (.gbrdf)",
+        )),
+    }
 }
 
 /// A gloss-meter reading the match should reproduce (ISO 2813).

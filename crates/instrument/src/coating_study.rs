@@ -13,14 +13,15 @@
 use crate::error::{InstrumentError, Result};
 use crate::gloss::{self, GlossReport, Specimen, Window};
 use crate::multiangle::{self, Geometry, MultiangleReading, Settings};
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 use gonio_brdf::fresnel::dielectric;
 use gonio_brdf::microfacet::Microfacet;
 use gonio_coating::clear_coat::Base;
 use gonio_coating::flakes::FlakePigment;
-use gonio_coating::interface::{Lobes, Transport};
+use gonio_coating::interface::Transport;
 use gonio_coating::layered::Scratch;
 use gonio_coating::system::{Coating, Evaluator};
+use gonio_io::Cancel;
 use rayon::prelude::*;
 
 /// The constituent a study varies.
@@ -191,19 +192,38 @@ impl Constituent {
 /// (DOI's 0.1° slits); a smooth top's mirror reflection is Fresnel's at the binder's index; the
 /// light that has been inside the coat, broad beside the receptor, by `order × order`
 /// Gauss-Legendre points of `walks` walks each.
+///
+/// The walks' Monte Carlo error: the specimen's "patches" ([`Specimen::reflectance_by_patch`])
+/// are [`CoatingSpecimen::BATCHES`] groups of the walks at every quadrature point (walks
+/// `b n/B .. (b+1) n/B` of each point's stream, so that their sum is the estimate of all `n`),
+/// and the top's and the mirror's reflection, computed without walks, shared equally among
+/// them; the jackknife over the groups ([`gloss::jackknife`]) is then the walks' standard error
+/// of DOI, at no extra cost. It treats the groups as independent, which the Sobol
+/// stratification of a point's walks makes pessimistic (docs/instruments.md, "The lab's
+/// readings", compares it with the spread over seeds).
 pub struct CoatingSpecimen {
     evaluator: Evaluator,
     /// The binder's index when the top is smooth (its mirror reflection is a delta).
     mirror_index: Option<f64>,
     walks: usize,
+    /// Gauss-Legendre order per axis over each receptor of the light from inside the coat.
     order: usize,
+    /// Gauss-Legendre order per axis over the source.
+    source_order: usize,
     /// Mixed into every quadrature point's stream (0: the study's streams).
     seed: u64,
+    /// Checked before each source direction: a raised flag ends the reading with
+    /// [`InstrumentError::Cancelled`].
+    cancel: Cancel,
 }
 
 impl CoatingSpecimen {
     /// Strata per axis of the top reflection's samples.
     const STRATA: usize = 64;
+    /// The most groups of walks the jackknife of DOI splits them into (fewer when there are
+    /// fewer walks per quadrature point; one walk per point leaves DOI's uncertainty at 0, not
+    /// estimated).
+    pub const BATCHES: usize = 8;
 
     /// The specimen of `coating` at `wavelength_nm`.
     pub fn new(coating: &Coating, wavelength_nm: f64, walks: usize) -> Result<Self> {
@@ -215,7 +235,9 @@ impl CoatingSpecimen {
                 .then(|| coating.coat.index.at(wavelength_nm)),
             walks,
             order: 6,
+            source_order: 4,
             seed: 0,
+            cancel: Cancel::default(),
         })
     }
 
@@ -224,10 +246,40 @@ impl CoatingSpecimen {
     pub fn with_seed(self, seed: u64) -> Self {
         CoatingSpecimen { seed, ..self }
     }
+
+    /// The same specimen with `source` × `source` directions over the source (4 unless told)
+    /// and `receptor` × `receptor` points over each receptor for the light from inside the coat
+    /// (6 unless told): fewer for a quick reading (the lab's), whose estimates then differ from
+    /// the study's by the quadrature's error as well as by the walks' noise.
+    pub fn with_orders(self, source: usize, receptor: usize) -> Result<Self> {
+        if source == 0 || receptor == 0 {
+            return Err(InstrumentError::Invalid(
+                "the gloss meter's quadrature needs at least one point per axis".into(),
+            ));
+        }
+        Ok(CoatingSpecimen {
+            source_order: source,
+            order: receptor,
+            ..self
+        })
+    }
+
+    /// The same specimen, whose readings stop with [`InstrumentError::Cancelled`] once `cancel`
+    /// is raised (checked before each source direction of the meter).
+    pub fn with_cancel(self, cancel: Cancel) -> Self {
+        CoatingSpecimen { cancel, ..self }
+    }
 }
 
 impl Specimen for CoatingSpecimen {
     fn reflectance_into(&self, wi: DVec3, windows: &[Window]) -> Result<Vec<f64>> {
+        Ok(gloss::column_sums(&self.reflectance_by_patch(wi, windows)?))
+    }
+
+    fn reflectance_by_patch(&self, wi: DVec3, windows: &[Window]) -> Result<Vec<Vec<f64>>> {
+        if self.cancel.is_cancelled() {
+            return Err(InstrumentError::Cancelled);
+        }
         let mirror = DVec3::new(-wi.x, -wi.y, wi.z);
         let mut into: Vec<f64> = windows
             .iter()
@@ -249,17 +301,9 @@ impl Specimen for CoatingSpecimen {
                     let a = windows[k].aperture;
                     lobe < a.in_plane.min(a.perpendicular) / 8.0
                 });
-            let n = Self::STRATA;
-            for k in 0..n * n {
-                let u = DVec2::new(
-                    ((k / n) as f64 + 0.5) / n as f64,
-                    ((k % n) as f64 + 0.5) / n as f64,
-                );
-                let uc = ((k * 7919) % (n * n)) as f64 / (n * n) as f64;
-                let Some(s) = top.sample(wi, uc, u, Transport::Importance, Lobes::Reflection)
-                else {
-                    continue;
-                };
+            // No samples when every window takes the quadrature.
+            let n = if sampled.is_empty() { 0 } else { Self::STRATA };
+            for s in top.reflection_samples(wi, n) {
                 for &w in &sampled {
                     if windows[w].contains(s.wi) {
                         into[w] += s.weight() / (n * n) as f64;
@@ -275,25 +319,46 @@ impl Specimen for CoatingSpecimen {
                     .sum::<f64>();
             }
         }
+        // The groups of walks ([`CoatingSpecimen`]): what needs no walks shared equally.
+        let exact = matches!(self.evaluator, Evaluator::Exact(_));
+        let batches = if exact {
+            1
+        } else {
+            Self::BATCHES.min(self.walks).max(1)
+        };
+        let mut rows: Vec<Vec<f64>> = (0..batches)
+            .map(|_| into.iter().map(|v| v / batches as f64).collect())
+            .collect();
         let mut scratch = Scratch::default();
         let mut value = [0.0];
-        for (k, (v, window)) in into.iter_mut().zip(windows).enumerate() {
+        for (k, window) in windows.iter().enumerate() {
             for (j, (wo, dw)) in window.quadrature(self.order).into_iter().enumerate() {
-                if wo.z > 0.0 {
-                    let seed = (k * 4096 + j) as u64
-                        ^ wi.x.to_bits().rotate_left(7)
-                        ^ self.seed.wrapping_mul(GOLDEN);
+                if wo.z <= 0.0 {
+                    continue;
+                }
+                let seed = (k * 4096 + j) as u64
+                    ^ wi.x.to_bits().rotate_left(7)
+                    ^ self.seed.wrapping_mul(GOLDEN);
+                if exact || self.walks == 0 {
                     self.evaluator
                         .eval_body(wo, wi, self.walks, seed, &mut scratch, &mut value);
-                    *v += value[0] * wo.z * dw;
+                    rows[0][k] += value[0] * wo.z * dw;
+                    continue;
+                }
+                for (b, row) in rows.iter_mut().enumerate() {
+                    value[0] = 0.0;
+                    let walks = b * self.walks / batches..(b + 1) * self.walks / batches;
+                    self.evaluator
+                        .add_walks(wo, wi, walks, seed, &mut scratch, &mut value, None);
+                    row[k] += value[0] / self.walks as f64 * wo.z * dw;
                 }
             }
         }
-        Ok(into)
+        Ok(rows)
     }
 
     fn source_order(&self) -> usize {
-        4
+        self.source_order
     }
 }
 
@@ -313,11 +378,23 @@ pub fn multiangle_reading(
     walks: usize,
     seed: u64,
 ) -> Result<MultiangleReading> {
-    let stream = 1 ^ seed.wrapping_mul(GOLDEN);
-    let brdf = |wo: DVec3, wi: DVec3, out: &mut [f64]| {
-        evaluator.eval(wo, wi, walks, stream, &mut Scratch::default(), out);
-    };
+    let brdf = walked_brdf(evaluator, walks, seed);
     multiangle::read(&brdf, wavelengths_nm, geometries, &Settings::default())
+}
+
+/// The coating's spectral BRDF as [`multiangle::read`] takes it, `walks` walks per evaluation
+/// (a rough top or flakes) drawn from the streams of `seed`, the same streams at every pair of
+/// directions (so that a geometry's reading does not depend on which others are read with it,
+/// and neighbouring geometries' readings share their random numbers).
+pub fn walked_brdf(
+    evaluator: &Evaluator,
+    walks: usize,
+    seed: u64,
+) -> impl Fn(DVec3, DVec3, &mut [f64]) + Sync + '_ {
+    let stream = 1 ^ seed.wrapping_mul(GOLDEN);
+    move |wo: DVec3, wi: DVec3, out: &mut [f64]| {
+        evaluator.eval(wo, wi, walks, stream, &mut Scratch::default(), out);
+    }
 }
 
 /// What the instruments read on one coating.

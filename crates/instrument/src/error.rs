@@ -29,6 +29,10 @@ pub enum InstrumentError {
     /// A coating could not be computed.
     #[error(transparent)]
     Coating(#[from] gonio_coating::CoatingError),
+    /// The caller raised its [`gonio_io::Cancel`] flag before the computation finished: no
+    /// result, not a partial one.
+    #[error("cancelled")]
+    Cancelled,
 }
 
 /// Result with [`InstrumentError`].

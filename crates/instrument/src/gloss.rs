@@ -18,6 +18,7 @@ use crate::error::Result;
 use glam::DVec3;
 use gonio_brdf::Ior;
 use gonio_brdf::quadrature::gauss_legendre_on;
+use rayon::prelude::*;
 
 /// Refractive index of the black-glass primary standard of ISO 2813 / ASTM D523.
 pub const STANDARD_INDEX: f64 = 1.567;
@@ -214,7 +215,7 @@ fn source_average(
     theta: f64,
     source: Aperture,
     specimen: &dyn Specimen,
-    query: impl Fn(DVec3) -> Result<Vec<Vec<f64>>>,
+    query: impl Fn(DVec3) -> Result<Vec<Vec<f64>>> + Sync,
 ) -> Result<Vec<Vec<f64>>> {
     let source = Window {
         centre: -theta,
@@ -222,9 +223,15 @@ fn source_average(
     };
     let mut sums: Vec<Vec<f64>> = Vec::new();
     let mut norm = 0.0;
-    for (wi, dw) in source.quadrature(specimen.source_order()) {
+    // The source directions in parallel, their rows summed in order: the same sums on any
+    // number of threads.
+    let directions = source.quadrature(specimen.source_order());
+    let all = directions
+        .par_iter()
+        .map(|&(wi, _)| query(wi))
+        .collect::<Result<Vec<_>>>()?;
+    for ((wi, dw), rows) in directions.into_iter().zip(all) {
         let weight = wi.z * dw;
-        let rows = query(wi)?;
         if sums.is_empty() {
             sums = rows.iter().map(|row| vec![0.0; row.len()]).collect();
         }
@@ -351,8 +358,10 @@ pub struct GlossReport {
     /// Distinctness of image (ASTM E430): `100 · (Rs − R0.3) / Rs` through equal apertures,
     /// R0.3 the mean of both sides; 100 for a mirror, 0 where Rs = R0.3.
     pub doi: f64,
-    /// Standard uncertainty of `doi` from the finite map (the jackknife over 16 patches of a
-    /// height map read by the ray method, [`jackknife`]); 0 for a specimen computed exactly.
+    /// Standard uncertainty of `doi`: from the finite map (the jackknife over 16 patches of a
+    /// height map read by the ray method, [`jackknife`]) or from a coating's random walks (the
+    /// jackknife over groups of them, `coating_study::CoatingSpecimen`); 0 for a specimen
+    /// computed exactly.
     pub doi_uncertainty: f64,
 }
 

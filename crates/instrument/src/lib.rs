@@ -3,8 +3,12 @@
 //! image (ASTM E430) on a height map or a table (`gloss`, `meter`), the comparison of measured and computed
 //! in-plane curves, the isotropy check (the curves of a map and of the map turned about its
 //! normal), the multi-angle spectrophotometer of effect coatings (ASTM E2194, E2539:
-//! `multiangle`), and the validity warnings of a virtual reading (`validity`).
+//! `multiangle`), the validity warnings of a virtual reading (`validity`), and every reading the
+//! lab shows of a formulation or a measured BRDF in one cancellable call (`coating_readings`,
+//! `brdf_readings`).
 
+pub mod brdf_readings;
+pub mod coating_readings;
 pub mod coating_study;
 pub mod coating_study_output;
 pub mod coating_summary;

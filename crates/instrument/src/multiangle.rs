@@ -66,12 +66,44 @@ pub const E2539: [Geometry; 10] = [
 
 /// The geometries of the standard named `name`: `e2194` or `e2539` (any case).
 pub fn standard(name: &str) -> Result<&'static [Geometry]> {
-    match name.to_ascii_lowercase().as_str() {
-        "e2194" => Ok(&E2194),
-        "e2539" => Ok(&E2539),
-        _ => Err(InstrumentError::Invalid(format!(
-            "standard '{name}': e2194 (45° illumination) or e2539 (with 15° illumination)"
-        ))),
+    Standard::parse(name).map(Standard::geometries)
+}
+
+/// A standard's set of geometries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Standard {
+    /// [`E2194`].
+    E2194,
+    /// [`E2539`].
+    E2539,
+}
+
+impl Standard {
+    /// `e2194` or `e2539` (any case).
+    pub fn parse(name: &str) -> Result<Standard> {
+        match name.to_ascii_lowercase().as_str() {
+            "e2194" => Ok(Standard::E2194),
+            "e2539" => Ok(Standard::E2539),
+            _ => Err(InstrumentError::Invalid(format!(
+                "standard '{name}': e2194 (45° illumination) or e2539 (with 15° illumination)"
+            ))),
+        }
+    }
+
+    /// The standard's geometries.
+    pub fn geometries(self) -> &'static [Geometry] {
+        match self {
+            Standard::E2194 => &E2194,
+            Standard::E2539 => &E2539,
+        }
+    }
+
+    /// `E2194` or `E2539`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Standard::E2194 => "E2194",
+            Standard::E2539 => "E2539",
+        }
     }
 }
 

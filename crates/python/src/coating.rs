@@ -15,9 +15,12 @@ use gonio_coating::system::{self, default_bands};
 use gonio_formulation::appearance::Output;
 use gonio_formulation::coating_sensitivity::{Method, Plan, Settings, Varied};
 use gonio_formulation::sensitivity;
+use gonio_instrument::coating_readings::{ReadingsRequest, readings};
 use gonio_instrument::coating_study::{self, Constituent};
 use gonio_instrument::coating_study_output;
 use gonio_instrument::coating_summary::summarise;
+use gonio_instrument::multiangle::Standard;
+use gonio_io::Cancel;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray2};
 use pyo3::prelude::*;
 use std::path::PathBuf;
@@ -86,6 +89,38 @@ impl Coating {
         let coating = self.coating.clone();
         let summary = py.detach(move || summarise(&coating, &default_bands(), samples))?;
         Ok(summary.to_json().to_string())
+    }
+
+    /// Every reading the lab shows (`coating_readings::readings`), as JSON text
+    /// (`Readings::to_json`): `standard` ("e2194" or "e2539"), the in-plane BRDF's
+    /// `incidence_deg`, and the walks, `None` for the lab's defaults.
+    #[pyo3(signature = (standard, incidence_deg, walks, brdf_walks, gloss_walks, albedo_samples, seed))]
+    #[allow(clippy::too_many_arguments)]
+    fn readings_json(
+        &self,
+        py: Python<'_>,
+        standard: &str,
+        incidence_deg: f64,
+        walks: Option<usize>,
+        brdf_walks: Option<usize>,
+        gloss_walks: Option<usize>,
+        albedo_samples: Option<usize>,
+        seed: u64,
+    ) -> Result<String> {
+        let d = ReadingsRequest::default();
+        let request = ReadingsRequest {
+            standard: Standard::parse(standard)?,
+            incidence_deg,
+            walks: walks.unwrap_or(d.walks),
+            brdf_walks: brdf_walks.unwrap_or(d.brdf_walks),
+            gloss_walks: gloss_walks.unwrap_or(d.gloss_walks),
+            albedo_samples: albedo_samples.unwrap_or(d.albedo_samples),
+            seed,
+            ..d
+        };
+        let coating = self.coating.clone();
+        let r = py.detach(move || readings(&coating, &request, &Cancel::default()))?;
+        Ok(r.to_json().to_string())
     }
 
     /// The coating's spectral table as `gonio coating compute` makes it: `resolution` (theta_h,

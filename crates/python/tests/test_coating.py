@@ -43,6 +43,24 @@ def test_info_and_study_equal_the_cli(gonio_cli):
         assert row["multiangle"][0]["L"] == getattr(r, "L_45as15")
 
 
+def test_readings_are_the_summary_and_the_multiangle_reading():
+    """The lab's readings from Python: at the same walks (and seed 0) the multi-angle colour is
+    :func:`multiangle`'s and the albedo :func:`info`'s (16 times the walks), bit for bit; every
+    reading is there, with the swatches; a bad standard is a ValueError."""
+    path = EXAMPLES / "silver_metallic.toml"
+    r = gonio.coating.readings(path, walks=64, brdf_walks=4, gloss_walks=2, albedo_samples=1024)
+    df = gonio.coating.multiangle(path, samples=64)
+    assert [m["L"] for m in r["multiangle"]] == list(df["L"])
+    assert r["flop_index"] == df.attrs["flop_index"]
+    assert r["albedo"] == gonio.coating.info(path, samples=64)["albedo"]
+    assert all(m["srgb_hex"].startswith("#") for m in r["multiangle"])
+    assert len(r["inplane_brdf"]["scatter_deg"]) == len(r["inplane_brdf"]["brdf_per_sr"])
+    assert r["gloss"]["doi_uncertainty"] > 0
+    assert r["walks"]["per_geometry"] == 64
+    with pytest.raises(ValueError, match="e2194"):
+        gonio.coating.readings(path, standard="e9999")
+
+
 def test_a_dict_is_read_as_the_toml_with_its_tables(tmp_path):
     text = (
         "[top]\nroughness = { alpha = 0.1 }\n"

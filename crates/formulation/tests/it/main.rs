@@ -5,6 +5,7 @@
 //! module is one subject.
 
 mod coating_sensitivity;
+mod lab_target;
 mod matching;
 mod oracle;
 mod salib;

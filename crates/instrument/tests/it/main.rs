@@ -8,6 +8,7 @@
 //! function its tests reach, where these link the library's compiled copy. One test binary per
 //! crate (one link instead of one per file); each module is one subject.
 
+mod coating_readings;
 mod coating_study;
 mod coating_tables;
 mod compare;

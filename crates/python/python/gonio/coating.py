@@ -31,6 +31,7 @@ __all__ = [
     "info",
     "compute",
     "multiangle",
+    "readings",
     "study",
     "panel_picture",
     "sensitivity",
@@ -114,6 +115,37 @@ def multiangle(
     ``samples`` walks per geometry. The columns of :func:`gonio.multiangle`; Alman's flop index
     in ``df.attrs["flop_index"]``."""
     return _reading_frame(*read(coating).multiangle_columns(standard, int(samples)))
+
+
+def readings(
+    coating: Coating | str | os.PathLike | Mapping[str, Any],
+    standard: str = "e2194",
+    incidence_deg: float = 45.0,
+    walks: int | None = None,
+    brdf_walks: int | None = None,
+    gloss_walks: int | None = None,
+    albedo_samples: int | None = None,
+    seed: int = 0,
+) -> dict:
+    """Every reading ``gonio lab`` shows of the coating, in one call (``docs/instruments.md``,
+    "The lab's readings"): ``gloss`` (ISO 2813 gloss, ASTM E430 haze, DOI with its uncertainty),
+    ``multiangle`` (CIELAB D65/10° at ``standard``'s geometries with ``srgb_hex`` swatches),
+    ``flop_index``, ``albedo`` (550 nm, 0/45/75°), ``inplane_brdf`` (the luminance BRDF at
+    ``incidence_deg``, a smooth top's mirror apart) and ``lightness_curve`` (L* against the
+    aspecular angle at 45°). The walks default to the lab's (about 0.25 s of CPU per reading);
+    the same ``seed`` repeats a reading, and nearby formulations share their random numbers."""
+    none_or_int = lambda v: None if v is None else int(v)  # noqa: E731
+    return json.loads(
+        read(coating).readings_json(
+            standard,
+            float(incidence_deg),
+            none_or_int(walks),
+            none_or_int(brdf_walks),
+            none_or_int(gloss_walks),
+            none_or_int(albedo_samples),
+            int(seed),
+        )
+    )
 
 
 def study(
