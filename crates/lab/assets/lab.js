@@ -449,15 +449,16 @@ function showReadings() {
       el('td', { class: 'b' }, typeof vb === 'string' ? vb : fmt(vb, digits)), el('td', { class: 'unit' }, unit)));
   };
   const head = el('tr', {}, el('th', {}, 'reading'), ...(a ? [el('th', { class: 'a' }, 'A')] : []), el('th', { class: 'b' }, a ? 'B' : 'value'), el('th', {}, ''));
-  row('gloss 20°', 'GU', (r) => r.gloss.gu20, 1, 'ISO 2813 specular gloss, 20° geometry (high gloss)');
-  row('gloss 60°', 'GU', (r) => r.gloss.gu60, 1, 'ISO 2813 specular gloss, 60° geometry');
-  row('gloss 85°', 'GU', (r) => r.gloss.gu85, 1, 'ISO 2813 specular gloss, 85° geometry (sheen)');
-  row('haze (30°, ±2°)', 'HU', (r) => r.gloss.haze, 2, 'ASTM E430 narrow-angle reflection haze');
-  row('haze 20° (log)', 'HU', (r) => r.gloss.haze_20_log, 0, 'ASTM E430 Method B, logarithmic scale');
+  row('gloss 20°', 'GU', (r) => r.gloss.gloss_20_gu, 1, 'ISO 2813 specular gloss, 20° geometry (high gloss)');
+  row('gloss 60°', 'GU', (r) => r.gloss.gloss_60_gu, 1, 'ISO 2813 specular gloss, 60° geometry');
+  row('gloss 85°', 'GU', (r) => r.gloss.gloss_85_gu, 1, 'ISO 2813 specular gloss, 85° geometry (sheen)');
+  row('haze (30°, ±2°)', 'HU', (r) => r.gloss.haze_hu, 2, 'ASTM E430 narrow-angle reflection haze');
+  row('haze 20° (log)', 'HU', (r) => r.gloss.haze_20_log_hu, 0, 'ASTM E430 Method B, logarithmic scale');
   row('DOI', '', (r) => r.gloss.doi_uncertainty ? `${fmt(r.gloss.doi, 1)} ± ${fmt(r.gloss.doi_uncertainty, 1)}` : fmt(r.gloss.doi, 1), 1, 'ASTM E430 distinctness of image, 0–100');
-  row('flop index', '', (r) => r.multiangle.flop_index, 2, 'Alman\'s flop index from L* at 15°, 45° and 110° aspecular');
+  row('flop index', '', (r) => r.flop_index, 2, 'Alman\'s flop index from L* at 15°, 45° and 110° aspecular');
   if (b?.albedo) for (const [i, x] of b.albedo.entries()) {
-    row(`reflectance ${x.theta_i_deg}°/hemisphere`, '%', (r) => r.albedo?.[i] ? 100 * r.albedo[i].albedo : null, 1, 'directional-hemispherical reflectance at 550 nm');
+    row(`reflectance ${x.theta_i_deg}°/hemisphere`, '%', (r) => r.albedo?.[i] ? 100 * r.albedo[i].albedo : null, 1,
+      `directional-hemispherical reflectance at ${b.albedo_nm} nm, the mirror reflection included`);
   }
   $('meters').replaceChildren(head, ...rows);
   showColour();
@@ -467,42 +468,46 @@ function showReadings() {
 function swatchRow(who, geometries) {
   return el('div', { class: 'swatch-row', style: `--n:${geometries.length}` }, el('span', { class: 'who' }, who),
     ...geometries.map((g) => el('div', {
-      class: 'swatch' + (g.clipped ? ' clipped' : ''), style: `background:${g.srgb || '#888'}`,
-      title: `${who} ${g.name}: L* ${fmt(g.L)} a* ${fmt(g.a)} b* ${fmt(g.b)}` + (g.clipped ? ' (outside sRGB: clipped)' : ''),
+      class: 'swatch' + (g.srgb_clipped ? ' clipped' : ''), style: `background:${g.srgb_hex}`,
+      title: `${who} ${g.geometry}: L* ${fmt(g.L)} a* ${fmt(g.a)} b* ${fmt(g.b)}` + (g.srgb_clipped ? ' (outside sRGB: clipped)' : ''),
     })));
 }
 
 function showColour() {
   const b = state.readings?.multiangle;
   if (!b) return;
-  const t = state.target?.read?.multiangle;
+  const comparison = state.readings.target;
+  const t = comparison?.read?.multiangle ?? state.target?.read?.multiangle;
   const a = state.pinned?.readings?.multiangle;
-  const rows = [el('div', { class: 'swatch-row', style: `--n:${b.geometries.length}` }, el('span', {}),
-    ...b.geometries.map((g) => el('div', { class: 'swatch-head' }, g.name)))];
-  if (a) rows.push(swatchRow('A', a.geometries));
-  rows.push(swatchRow(a ? 'B' : 'this', b.geometries));
-  if (t) rows.push(swatchRow('target', t.geometries));
+  // The standard's geometries, each with the target's where it has one (a CSV may give fewer).
+  const on = (list) => b.map((g) => list?.find((x) => x.geometry === g.geometry) ?? { geometry: g.geometry, srgb_hex: 'transparent', L: NaN, a: NaN, b: NaN });
+  const rows = [el('div', { class: 'swatch-row', style: `--n:${b.length}` }, el('span', {}),
+    ...b.map((g) => el('div', { class: 'swatch-head' }, g.geometry)))];
+  if (a) rows.push(swatchRow('A', on(a)));
+  rows.push(swatchRow(a ? 'B' : 'this', b));
+  if (t) rows.push(swatchRow('target', on(t)));
   $('swatches').replaceChildren(...rows);
-  const de = state.readings.target?.de00;
+  const de = comparison?.de00;
   const head = el('tr', {}, el('th', {}, 'geometry'), el('th', {}, 'L*'), el('th', {}, 'a*'), el('th', {}, 'b*'),
     ...(t ? [el('th', {}, 'target L* a* b*'), el('th', {}, 'ΔE00')] : []),
     ...(a ? [el('th', { class: 'a' }, 'A: L* a* b*')] : []));
-  const body = b.geometries.map((g, i) => {
-    const tg = t?.geometries.find((x) => x.name === g.name);
-    const ag = a?.geometries.find((x) => x.name === g.name);
-    return el('tr', {}, el('td', {}, g.name), el('td', {}, fmt(g.L)), el('td', {}, fmt(g.a)), el('td', {}, fmt(g.b)),
-      ...(t ? [el('td', {}, tg ? `${fmt(tg.L)} ${fmt(tg.a)} ${fmt(tg.b)}` : '–'), el('td', {}, de ? fmt(de[i], 2) : '–')] : []),
+  const body = b.map((g) => {
+    const tg = t?.find((x) => x.geometry === g.geometry);
+    const ag = a?.find((x) => x.geometry === g.geometry);
+    const d = de?.find((x) => x.geometry === g.geometry);
+    return el('tr', {}, el('td', {}, g.geometry), el('td', {}, fmt(g.L)), el('td', {}, fmt(g.a)), el('td', {}, fmt(g.b)),
+      ...(t ? [el('td', {}, tg ? `${fmt(tg.L)} ${fmt(tg.a)} ${fmt(tg.b)}` : '–'), el('td', {}, d ? fmt(d.de00, 2) : '–')] : []),
       ...(a ? [el('td', { class: 'a' }, ag ? `${fmt(ag.L)} ${fmt(ag.a)} ${fmt(ag.b)}` : '–')] : []));
   });
   if (de) body.push(el('tr', {}, el('td', {}, 'mean ΔE00'), el('td', {}), el('td', {}), el('td', {}), el('td', {}),
-    el('td', {}, fmt(mean(de), 2)), ...(a ? [el('td', {})] : [])));
+    el('td', {}, `${fmt(comparison.mean_de00, 2)} (max ${fmt(comparison.max_de00, 2)})`), ...(a ? [el('td', {})] : [])));
   $('colour-table').replaceChildren(head, ...body);
 }
 
 // ---------------------------------------------------------------- plots (SVG, drawn here)
 
 // A line plot into `svg`: series [{x, y, colour, label, dash, points}], a log y axis if `logy`.
-function plot(svg, { series, xlabel, ylabel, logy = false, xmin, xmax }) {
+function plot(svg, { series, marks = [], xlabel, ylabel, logy = false, xmin, xmax }) {
   const NS = 'http://www.w3.org/2000/svg';
   const W = 420, H = 280, L = 54, R = 10, T = 10, B = 58;
   const make = (tag, attrs, text) => {
@@ -548,6 +553,12 @@ function plot(svg, { series, xlabel, ylabel, logy = false, xmin, xmax }) {
   const clip = make('clipPath', { id: svg.id + '-clip' });
   clip.append(make('rect', { x: L, y: T, width: W - L - R, height: H - T - B }));
   svg.append(clip);
+  // A smooth top's mirror: a delta, drawn as a vertical line at the specular angle and named
+  // with its reflectance.
+  marks.forEach((m, k) => {
+    svg.append(make('line', { x1: X(m.x), x2: X(m.x), y1: T, y2: H - B, stroke: m.colour, 'stroke-width': 1.5, 'stroke-dasharray': '2 3' }));
+    svg.append(make('text', { x: X(m.x) - 4, y: T + 12 + 13 * k, 'text-anchor': 'end', fill: m.colour }, m.label));
+  });
   let lx = L;
   for (const s of series) {
     const pts = s.x.map((x, i) => [x, s.y[i]]).filter(([x, y]) => Number.isFinite(y) && (!logy || y > 0) && x >= xmin && x <= xmax);
@@ -570,26 +581,34 @@ function plot(svg, { series, xlabel, ylabel, logy = false, xmin, xmax }) {
 function showPlots() {
   const b = state.readings;
   const a = state.pinned?.readings;
-  const t = state.target?.read;
+  const t = b?.target?.read ?? state.target?.read;
+  const css = (v) => getComputedStyle(document.documentElement).getPropertyValue(v).trim();
   const brdf = [];
   const flop = [];
+  const marks = [];
   const add = (r, label, colour, dash) => {
-    if (r?.inplane) brdf.push({ x: r.inplane.view_deg, y: r.inplane.brdf_per_sr, colour, label, dash });
-    if (r?.aspecular) flop.push({ x: r.aspecular.aspecular_deg, y: r.aspecular.L, colour, label, dash });
+    if (r?.inplane_brdf) {
+      brdf.push({ x: r.inplane_brdf.scatter_deg, y: r.inplane_brdf.brdf_per_sr, colour, label, dash });
+      if (r.inplane_brdf.mirror_reflectance > 0) {
+        marks.push({ x: r.inplane_brdf.incidence_deg, colour, label: `mirror ${fmt(100 * r.inplane_brdf.mirror_reflectance, 1)}%` });
+      }
+    }
+    if (r?.lightness_curve) flop.push({ x: r.lightness_curve.aspecular_deg, y: r.lightness_curve.L, colour, label, dash });
   };
-  if (a) add(a, 'A', getComputedStyle(document.documentElement).getPropertyValue('--a'), '');
-  add(b, a ? 'B' : 'this formulation', getComputedStyle(document.documentElement).getPropertyValue('--b'), '');
+  if (a) add(a, 'A', css('--a'), '');
+  add(b, a ? 'B' : 'this formulation', css('--b'), '');
   if (t) add(t, 'target', '#222', '5 3');
+  const at45 = (list) => list.filter((g) => g.illumination_deg === 45);
   if (b?.multiangle) {
-    const pts = b.multiangle.geometries.filter((g) => g.illumination_deg === 45 || g.illumination_deg === undefined);
-    flop.push({ x: pts.map((g) => g.aspecular_deg), y: pts.map((g) => g.L), colour: getComputedStyle(document.documentElement).getPropertyValue('--b'), label: b.multiangle.standard, points: true });
+    const pts = at45(b.multiangle);
+    flop.push({ x: pts.map((g) => g.aspecular_deg), y: pts.map((g) => g.L), colour: css('--b'), label: b.standard, points: true });
   }
-  if (t?.multiangle && !t.aspecular) {
-    const pts = t.multiangle.geometries.filter((g) => g.illumination_deg === 45 || g.illumination_deg === undefined);
+  if (t?.multiangle && !t.lightness_curve) {
+    const pts = at45(t.multiangle);
     flop.push({ x: pts.map((g) => g.aspecular_deg), y: pts.map((g) => g.L), colour: '#222', label: 'target', points: true });
   }
-  const inc = b?.inplane?.incidence_deg ?? Number($('incidence').value);
-  plot($('plot-brdf'), { series: brdf, xlabel: `view angle (°), specular at ${inc}°`, ylabel: 'BRDF (1/sr, luminance)', logy: true, xmin: -90, xmax: 90 });
+  const inc = b?.inplane_brdf?.incidence_deg ?? Number($('incidence').value);
+  plot($('plot-brdf'), { series: brdf, marks, xlabel: `scatter angle (°), specular at +${inc}°`, ylabel: 'BRDF (1/sr, luminance)', logy: true, xmin: -90, xmax: 90 });
   plot($('plot-flop'), { series: flop, xlabel: 'aspecular angle (°)', ylabel: 'L*', xmin: -15, xmax: 110 });
 }
 
@@ -674,16 +693,8 @@ async function start() {
   $('lighting').replaceChildren(...lightings.map((l) => el('option', { value: l.name, title: l.description }, l.name)));
   $('example').addEventListener('change', () => { if ($('example').value) loadExample($('example').value); });
   $('lighting').addEventListener('change', () => { picture.go(); if (state.pinned) renderPinned(); });
-  $('standard').addEventListener('change', async () => {
-    if (state.target) {
-      // The target's readings at the new standard's geometries: read again.
-      state.target = null;
-      $('target-name').textContent = 'load the target again for this standard';
-      $('clear-target').hidden = true;
-    }
-    readings.go();
-    if (state.pinned) pinnedReadings();
-  });
+  // The target is read again by the server at the new standard (or incidence) with the readings.
+  $('standard').addEventListener('change', () => { readings.go(); if (state.pinned) pinnedReadings(); });
   $('incidence').addEventListener('change', () => { readings.go(); if (state.pinned) pinnedReadings(); });
   $('open-toml').addEventListener('change', async (ev) => {
     const file = ev.target.files[0];

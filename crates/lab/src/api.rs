@@ -210,18 +210,29 @@ async fn readings(
 ) -> Result<axum::Json<Value>, ApiError> {
     let request: ReadingsRequest = parse(raw, &lab)?;
     let (coating, _) = coating_of(&lab, &request.formulation)?;
-    let target = request
-        .target
-        .as_deref()
-        .map(|id| lab.uploaded(UploadKind::Target, id))
-        .transpose()?;
-    let options = compute::ReadingOptions {
-        standard: request.standard.unwrap_or_else(|| "E2194".into()),
-        incidence_deg: request.incidence_deg.unwrap_or(45.0),
-    };
+    let options =
+        compute::ReadingOptions::parse(request.standard.as_deref(), request.incidence_deg)?;
+    if let Some(id) = &request.target {
+        lab.uploaded(UploadKind::Target, id)?;
+    }
     let cancel = lab.begin(request.channel.as_deref());
     let value = run(cancel, move |cancel| {
-        compute::readings(&coating, &options, target.as_ref(), cancel)
+        let target = request
+            .target
+            .as_deref()
+            .map(|id| {
+                Ok::<_, ApiError>((
+                    lab.uploaded(UploadKind::Target, id)?.name,
+                    lab.target(id, &options, cancel)?,
+                ))
+            })
+            .transpose()?;
+        compute::readings(
+            &coating,
+            &options,
+            target.as_ref().map(|(n, t)| (n.as_str(), t.as_ref())),
+            cancel,
+        )
     })
     .await?;
     Ok(axum::Json(value))
@@ -302,12 +313,15 @@ async fn upload(
     kind: UploadKind,
     name: String,
     raw: Result<Bytes, BytesRejection>,
-    read: impl FnOnce(&std::path::Path, &Cancel) -> Result<Value, ApiError> + Send + 'static,
+    read: impl FnOnce(&str, &Cancel) -> Result<Value, ApiError> + Send + 'static,
 ) -> Result<axum::Json<Value>, ApiError> {
     let bytes = body(raw, lab.limits.upload_bytes, &format!("the upload {name}"))?;
     let (id, upload) = lab.upload(kind, &name, &bytes)?;
-    let path = upload.path.clone();
-    let read = run(Cancel::new(), move |cancel| read(&path, cancel)).await;
+    let read = run(Cancel::new(), {
+        let id = id.clone();
+        move |cancel| read(&id, cancel)
+    })
+    .await;
     let shown = upload.path.display().to_string();
     match read {
         Ok(value) => Ok(axum::Json(
@@ -328,8 +342,9 @@ async fn upload_topography(
     Query(q): Query<UploadQuery>,
     raw: Result<Bytes, BytesRejection>,
 ) -> Result<axum::Json<Value>, ApiError> {
-    upload(lab, UploadKind::Topography, q.name, raw, |path, _| {
-        compute::topography(path)
+    let kept = lab.clone();
+    upload(lab, UploadKind::Topography, q.name, raw, move |id, _| {
+        compute::topography(&kept.uploaded(UploadKind::Topography, id)?.path)
     })
     .await
 }
@@ -339,6 +354,8 @@ struct TargetQuery {
     name: String,
     #[serde(default)]
     standard: Option<String>,
+    #[serde(default)]
+    incidence_deg: Option<f64>,
 }
 
 async fn upload_target(
@@ -346,9 +363,10 @@ async fn upload_target(
     Query(q): Query<TargetQuery>,
     raw: Result<Bytes, BytesRejection>,
 ) -> Result<axum::Json<Value>, ApiError> {
-    let standard = q.standard.unwrap_or_else(|| "E2194".into());
-    upload(lab, UploadKind::Target, q.name, raw, move |path, cancel| {
-        compute::target(path, &standard, cancel)
+    let options = compute::ReadingOptions::parse(q.standard.as_deref(), q.incidence_deg)?;
+    let kept = lab.clone();
+    upload(lab, UploadKind::Target, q.name, raw, move |id, cancel| {
+        Ok(kept.target(id, &options, cancel)?.to_json())
     })
     .await
 }

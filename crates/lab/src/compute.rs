@@ -6,7 +6,9 @@
 use crate::error::{ApiError, refused};
 use crate::state::Upload;
 use gonio_coating::system::{Coating, default_bands};
-use gonio_instrument::multiangle;
+use gonio_formulation::lab_target::{self, LabTarget};
+use gonio_instrument::coating_readings::{self, ReadingsRequest};
+use gonio_instrument::multiangle::Standard;
 use gonio_io::Cancel;
 use serde_json::{Value, json};
 use std::path::Path;
@@ -14,63 +16,79 @@ use std::path::Path;
 /// What the readings are asked for.
 #[derive(Clone, Debug)]
 pub struct ReadingOptions {
-    /// "E2194" or "E2539".
-    pub standard: String,
+    pub standard: Standard,
     /// Incidence of the in-plane BRDF, degrees.
     pub incidence_deg: f64,
 }
 
-/// The geometries of the standard `name`, or the client's error.
-fn geometries(name: &str) -> Result<&'static [multiangle::Geometry], ApiError> {
-    multiangle::standard(name).map_err(|e| ApiError::BadRequest(e.to_string()))
+impl ReadingOptions {
+    /// The options from the request's values (defaults: E2194, 45°).
+    pub fn parse(
+        standard: Option<&str>,
+        incidence_deg: Option<f64>,
+    ) -> Result<ReadingOptions, ApiError> {
+        Ok(ReadingOptions {
+            standard: Standard::parse(standard.unwrap_or("E2194"))
+                .map_err(|e| ApiError::BadRequest(e.to_string()))?,
+            incidence_deg: incidence_deg.unwrap_or(45.0),
+        })
+    }
 }
 
-/// The readings of `coating` as JSON, with ΔE00 against `target` when given.
+/// The readings of `coating` as JSON (`Readings::to_json`, docs/instruments.md), with, given a
+/// target, `target`: {`name`, `de00` [{`geometry`, `de00`}], `mean_de00`, `max_de00`, `read`
+/// (the target's own readings at the same standard and incidence)} and `seconds`, the
+/// computation's wall time.
 pub fn readings(
     coating: &Coating,
     options: &ReadingOptions,
-    target: Option<&Upload>,
+    target: Option<(&str, &LabTarget)>,
     cancel: &Cancel,
 ) -> Result<Value, ApiError> {
-    let geometries = geometries(&options.standard)?;
     let start = std::time::Instant::now();
-    let reading = gonio_instrument::coating_study::read_coating(
-        coating,
-        geometries,
-        &default_bands(),
-        256,
-        4,
-        0,
-    )
-    .map_err(|e| refused(cancel, e))?;
-    let mut value = json!({
-        "gloss": {
-            "gu20": reading.gloss.gu20, "gu60": reading.gloss.gu60, "gu85": reading.gloss.gu85,
-            "haze": reading.gloss.haze, "haze_20_log": reading.gloss.haze_20_log,
-            "doi": reading.gloss.doi, "doi_uncertainty": reading.gloss.doi_uncertainty,
-        },
-        "multiangle": {
-            "standard": options.standard,
-            "flop_index": reading.multiangle.flop_index(),
-            "geometries": reading.multiangle.geometries.iter().map(|g| json!({
-                "name": g.geometry.to_string(), "L": g.lab.l, "a": g.lab.a, "b": g.lab.b,
-            })).collect::<Vec<_>>(),
-        },
-    });
-    if let Some(target) = target {
-        let t = gonio_formulation::target::read_target(&target.path, geometries).map_err(|e| {
-            ApiError::BadRequest(
-                e.to_string()
-                    .replace(&target.path.display().to_string(), &target.name),
-            )
-        })?;
-        let de = t
-            .de00(&reading.multiangle)
+    let request = ReadingsRequest {
+        standard: options.standard,
+        incidence_deg: options.incidence_deg,
+        ..ReadingsRequest::default()
+    };
+    let readings =
+        coating_readings::readings(coating, &request, cancel).map_err(|e| refused(cancel, e))?;
+    let mut value = readings.to_json();
+    if let Some((name, target)) = target {
+        let de = target
+            .de00(&readings)
             .map_err(|e| ApiError::BadRequest(e.to_string()))?;
-        value["target"] = json!({ "name": target.name, "de00": de });
+        let mut comparison = lab_target::comparison_json(&de);
+        comparison["name"] = json!(name);
+        comparison["read"] = target.to_json();
+        value["target"] = comparison;
     }
     value["seconds"] = json!(start.elapsed().as_secs_f64());
     Ok(value)
+}
+
+/// Read the uploaded target `upload` at `options`' standard and incidence (the reader's error,
+/// naming the file by the client's name).
+pub fn target(
+    upload: &Upload,
+    options: &ReadingOptions,
+    cancel: &Cancel,
+) -> Result<LabTarget, ApiError> {
+    lab_target::read_lab_target(
+        &upload.path,
+        options.standard,
+        options.incidence_deg,
+        cancel,
+    )
+    .map_err(|e| {
+        let e = refused(cancel, e);
+        match e {
+            ApiError::BadRequest(m) => {
+                ApiError::BadRequest(m.replace(&upload.path.display().to_string(), &upload.name))
+            }
+            other => other,
+        }
+    })
 }
 
 /// The light settings of the pictures: `[{name, description}]`.
@@ -203,12 +221,4 @@ pub fn topography(path: &Path) -> Result<Value, ApiError> {
         "sq_um": s.sq * 1e6, "sa_um": s.sa * 1e6, "ssk": s.ssk, "sku": s.sku, "sdq": s.sdq,
         "sal_um": s.sal.map(|v| v * 1e6),
     }))
-}
-
-/// The readings of an uploaded target at the standard's geometries.
-pub fn target(path: &Path, standard: &str, cancel: &Cancel) -> Result<Value, ApiError> {
-    let _ = cancel;
-    let t = gonio_formulation::target::read_target(path, geometries(standard)?)
-        .map_err(|e| ApiError::BadRequest(e.to_string()))?;
-    Ok(json!({ "source": t.source }))
 }

@@ -3,12 +3,14 @@
 //! computation running on each channel (so that a newer request stops an older one), and the
 //! limits it enforces.
 
+use crate::compute::{self, ReadingOptions};
 use crate::error::ApiError;
+use gonio_formulation::lab_target::LabTarget;
 use gonio_io::Cancel;
 use std::collections::{HashMap, VecDeque};
 use std::path::PathBuf;
-use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
 
 /// The limits on what a client may send.
 #[derive(Clone, Copy, Debug)]
@@ -56,6 +58,9 @@ pub struct Lab {
     next: AtomicU64,
     uploads: Mutex<VecDeque<(String, Upload)>>,
     channels: Mutex<HashMap<String, Cancel>>,
+    /// Targets read, by upload id, standard and incidence (reading a measured BRDF imports it:
+    /// seconds; a formulation's readings compare with it at every change).
+    targets: Mutex<HashMap<String, Arc<LabTarget>>>,
 }
 
 impl Lab {
@@ -67,6 +72,7 @@ impl Lab {
             next: AtomicU64::new(1),
             uploads: Mutex::new(VecDeque::new()),
             channels: Mutex::new(HashMap::new()),
+            targets: Mutex::new(HashMap::new()),
         })
     }
 
@@ -135,6 +141,33 @@ impl Lab {
                     self.limits.uploads_kept
                 ))
             })
+    }
+
+    /// The target upload `id` read at `options`' standard and incidence: kept from an earlier
+    /// request, or read now (under `cancel`) and kept.
+    pub fn target(
+        &self,
+        id: &str,
+        options: &ReadingOptions,
+        cancel: &Cancel,
+    ) -> Result<Arc<LabTarget>, ApiError> {
+        let key = format!("{id} {} {}", options.standard.name(), options.incidence_deg);
+        if let Some(t) = self
+            .targets
+            .lock()
+            .unwrap_or_else(|p| p.into_inner())
+            .get(&key)
+        {
+            return Ok(t.clone());
+        }
+        let upload = self.uploaded(UploadKind::Target, id)?;
+        let target = Arc::new(compute::target(&upload, options, cancel)?);
+        let mut targets = self.targets.lock().unwrap_or_else(|p| p.into_inner());
+        if targets.len() >= 64 {
+            targets.clear();
+        }
+        targets.insert(key, target.clone());
+        Ok(target)
     }
 
     /// Start a computation on `channel`: the one running there is cancelled. Without a channel

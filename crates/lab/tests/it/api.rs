@@ -295,7 +295,7 @@ fn readings_are_deterministic_and_eight_clients_are_served_at_once() {
         handles.into_iter().map(|h| h.join().unwrap()).collect()
     });
     assert_eq!(alone, together);
-    let gu60 = |v: &serde_json::Value| v["gloss"]["gu60"].as_f64().unwrap();
+    let gu60 = |v: &serde_json::Value| v["gloss"]["gloss_60_gu"].as_f64().unwrap();
     // A smooth coat of n = 1.5 (red_solid): 60° gloss is the Fresnel reflectance over the
     // standard's (n = 1.567) times 100: 100 × 0.0893 / 0.1003 ≈ 89 GU; the rough red is below.
     assert!((gu60(&alone[2]) - 89.0).abs() < 1.5, "{}", alone[2]);
@@ -328,9 +328,43 @@ fn targets_give_colour_differences() {
         .as_array()
         .unwrap()
         .iter()
-        .map(|x| x.as_f64().unwrap())
+        .map(|x| x["de00"].as_f64().unwrap())
         .collect();
     assert_eq!(de.len(), 5);
+    // The target's own readings come along (its swatches, its in-plane BRDF at the incidence).
+    assert_eq!(
+        r["target"]["read"]["multiangle"].as_array().unwrap().len(),
+        5
+    );
+    assert_eq!(t["read"]["multiangle"], r["target"]["read"]["multiangle"]);
+    // The formulation against a target made of its own reading (a CSV of its CIELAB): 0.
+    let csv: String = std::iter::once("geometry,L,a,b\n".to_string())
+        .chain(r["multiangle"].as_array().unwrap().iter().map(|g| {
+            format!(
+                "{},{},{},{}\n",
+                g["geometry"].as_str().unwrap(),
+                g["L"],
+                g["a"],
+                g["b"]
+            )
+        }))
+        .collect();
+    let (status, own) = json(
+        agent
+            .post(format!("{base}/api/upload/target?name=own.csv"))
+            .send(csv.as_bytes()),
+    );
+    assert_eq!(status, 200, "{own}");
+    let (_, r2) = json(post(
+        &agent,
+        &format!("{base}/api/readings"),
+        &json!({ "formulation": f, "target": own["id"] }),
+    ));
+    assert!(
+        r2["target"]["max_de00"].as_f64().unwrap() < 1e-6,
+        "{}",
+        r2["target"]
+    );
     assert!(
         de.iter().all(|d| d.is_finite() && *d > 0.0 && *d < 60.0),
         "{de:?}"

@@ -64,7 +64,13 @@ mod slow {
             "the 45as15 swatch did not change"
         );
         assert_eq!(seen["invalid_row"], "flakes.coverage", "{seen}");
-        assert!(seen["invalid_message"].as_str().unwrap().contains("coverage 1.5"), "{seen}");
+        assert!(
+            seen["invalid_message"]
+                .as_str()
+                .unwrap()
+                .contains("coverage 1.5"),
+            "{seen}"
+        );
         let stats = seen["topography_stats"].as_str().unwrap();
         assert!(
             stats.contains("matrix-3.txt")
