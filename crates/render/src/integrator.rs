@@ -44,9 +44,9 @@ pub struct RenderOptions {
     pub denoise: Option<bool>,
     /// Where to report the tiles rendered (stage `rendering`; default: nowhere).
     pub progress: Progress,
-    /// Raised, the render stops: every tile looks at it before its pixels, the denoiser between
-    /// its features and its filter, and the render returns [`RenderError::Cancelled`] (default:
-    /// never).
+    /// Raised, the render stops: every tile looks at it before its pixels and every row of the
+    /// denoiser's features before its pixels, and the render returns
+    /// [`RenderError::Cancelled`] (default: never).
     pub cancel: Cancel,
 }
 
@@ -84,10 +84,7 @@ pub fn render_picture(scene: &Scene, options: &RenderOptions) -> Result<(Image, 
     let mut estimate = render_estimate(scene, options)?;
     let denoised = options.denoise.or(scene.render.denoise).unwrap_or(false);
     let image = if denoised {
-        let features = Features::of(scene);
-        if options.cancel.is_cancelled() {
-            return Err(RenderError::Cancelled);
-        }
+        let features = Features::of_until(scene, &options.cancel)?;
         denoise(&estimate.image, &estimate.variance, &features)
     } else {
         estimate.image.clone()
