@@ -16,15 +16,16 @@
 //! # Ok(()) }
 //! ```
 //!
-//! The scene is the one [`super::scene`] writes for `gonio render` (one description,
-//! [`super::description`]), built from memory ([`crate::Assets`]): the table just computed,
-//! the embedded panel mesh, the lighting's map.
+//! The scene is the one [`super::scene`] writes for `gonio render` (one description of the
+//! panel scene for both), built from memory ([`crate::Assets`]): the table just computed, the
+//! embedded panel mesh, the lighting's map.
 
-use super::{Lighting, MESH, Panel, Shot, description, mesh};
+use super::{Lighting, MESH, Panel, Shot, coat_index, description, mesh};
 use crate::error::{RenderError, Result};
-use crate::scene::SceneDesc;
+use crate::scene::{PrimKind, SceneDesc};
 use crate::{Assets, ColourMode, Display, Image, RenderOptions, Scene, render_picture};
-use gonio_brdf::table::{Provenance, Resolution, SampledTable};
+use glam::DVec2;
+use gonio_brdf::table::{Resolution, SampledTable};
 use gonio_coating::system::{Coating, Method, default_bands};
 use gonio_io::Cancel;
 use std::path::Path;
@@ -119,7 +120,8 @@ pub struct LiveTable {
 /// [`RenderError::Cancelled`] when `cancel` is raised.
 pub fn live_table(coating: &Coating, quality: Quality, cancel: &Cancel) -> Result<LiveTable> {
     let start = Instant::now();
-    let walks = match coating.method(quality.walks()) {
+    let method = coating.method(quality.walks());
+    let walks = match method {
         Method::ClosedForm => 0,
         Method::RandomWalk(_) => quality.walks(),
     };
@@ -127,7 +129,7 @@ pub fn live_table(coating: &Coating, quality: Quality, cancel: &Cancel) -> Resul
         quality.resolution(coating),
         &quality.bands(),
         quality.walks(),
-        Provenance::new("gonio lab", "coating"),
+        coating.provenance("gonio lab", method),
         cancel,
     )?;
     let table = Arc::new(SampledTable::new(table));
@@ -136,7 +138,7 @@ pub fn live_table(coating: &Coating, quality: Quality, cancel: &Cancel) -> Resul
     }
     Ok(LiveTable {
         table,
-        coat_index: Panel::new(coating, String::new()).coat_index,
+        coat_index: coat_index(coating),
         quality,
         walks,
         seconds: start.elapsed().as_secs_f64(),
@@ -232,4 +234,29 @@ pub fn scene(table: &LiveTable, lighting: Lighting, quality: Quality) -> Result<
         .with_image(lighting.map_file(), lighting.map())
         .with_mesh(MESH, mesh());
     Scene::build_with(&SceneDesc::from_toml(&text, path)?, path, &assets)
+}
+
+/// The pixels of `scene` (made by [`scene`]) that show the panel alone: those whose four
+/// corners, inset a tenth of a pixel, all see its material (no floor mixed in), row-major
+/// indices. For statistics of the panel's colour.
+pub fn panel_pixels(scene: &Scene) -> Vec<usize> {
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let on_panel = |x: f64, y: f64| {
+        let ray = scene.camera.ray(DVec2::new(x, y));
+        scene
+            .accel
+            .intersect(&ray, 0.0, f64::INFINITY)
+            .is_some_and(|hit| {
+                matches!(scene.prims[hit.prim], PrimKind::Surface(m)
+                    if scene.materials[m].name == MATERIAL)
+            })
+    };
+    (0..w * h)
+        .filter(|&i| {
+            let (x, y) = ((i % w) as f64, (i / w) as f64);
+            [(0.1, 0.1), (0.9, 0.1), (0.1, 0.9), (0.9, 0.9)]
+                .iter()
+                .all(|(dx, dy)| on_panel(x + dx, y + dy))
+        })
+        .collect()
 }

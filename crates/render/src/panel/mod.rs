@@ -67,17 +67,23 @@ pub fn table(coating: &Coating, source: &str, dir: &Path, name: &str) -> Result<
 }
 
 impl Panel {
-    /// The panel of `coating` whose table is the file `table`: a smooth top's mirror is added by
-    /// the renderer at the coat's index at 550 nm (its dispersion left out of the mirror).
+    /// The panel of `coating` whose table is the file `table`.
     fn new(coating: &Coating, table: String) -> Panel {
         Panel {
             table,
-            coat_index: coating
-                .roughness
-                .is_none()
-                .then(|| coating.coat.index.at(550.0)),
+            coat_index: coat_index(coating),
         }
     }
+}
+
+/// The index of `coating`'s smooth top, whose mirror the renderer adds (at the coat's index at
+/// 550 nm, its dispersion left out of the mirror); `None` for a rough top, whose reflection is
+/// in the table.
+fn coat_index(coating: &Coating) -> Option<f64> {
+    coating
+        .roughness
+        .is_none()
+        .then(|| coating.coat.index.at(550.0))
 }
 
 /// Write the scene `dir/NAME.toml` with `panels` side by side (left to right) in the dark

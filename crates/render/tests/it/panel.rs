@@ -6,9 +6,8 @@ use glam::DVec2;
 use gonio_coating::system::Coating;
 use gonio_io::Cancel;
 use gonio_render::panel::Lighting;
-use gonio_render::panel::live::{self, LiveTable, MATERIAL, Quality, live_table, picture};
-use gonio_render::scene::PrimKind;
-use gonio_render::{ColourMode, RenderError, RenderOptions, Scene, render_estimate};
+use gonio_render::panel::live::{self, LiveTable, Quality, live_table, panel_pixels, picture};
+use gonio_render::{ColourMode, RenderError, RenderOptions, render_estimate};
 use std::f64::consts::PI;
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -71,30 +70,6 @@ fn bits(values: &[f32]) -> Vec<u32> {
     values.iter().map(|v| v.to_bits()).collect()
 }
 
-/// Panel pixels of `scene`: those whose four corners (inset a tenth of a pixel) all see the
-/// panel's material, so that no floor is mixed into them.
-fn panel_pixels(scene: &Scene) -> Vec<usize> {
-    let (w, h) = (scene.camera.width, scene.camera.height);
-    let on_panel = |x: f64, y: f64| {
-        let ray = scene.camera.ray(DVec2::new(x, y));
-        scene
-            .accel
-            .intersect(&ray, 0.0, f64::INFINITY)
-            .is_some_and(|hit| {
-                matches!(scene.prims[hit.prim], PrimKind::Surface(m)
-                    if scene.materials[m].name == MATERIAL)
-            })
-    };
-    (0..w * h)
-        .filter(|&i| {
-            let (x, y) = ((i % w) as f64, (i / w) as f64);
-            [(0.1, 0.1), (0.9, 0.1), (0.1, 0.9), (0.9, 0.9)]
-                .iter()
-                .all(|(dx, dy)| on_panel(x + dx, y + dy))
-        })
-        .collect()
-}
-
 /// Mean luminance of `image` over `pixels`.
 fn mean_luminance(image: &gonio_render::Image, pixels: &[usize]) -> f64 {
     pixels
@@ -110,7 +85,7 @@ fn albedo_luminance(table: &LiveTable, theta_deg: f64) -> f64 {
     let t = table.table.table();
     let values = t.albedo(theta_deg.to_radians(), 0.0);
     let rgb = t.to_rgb(&values);
-    gonio_render::light::luminance(rgb.as_vec3().to_array().map(|v| v as f32))
+    gonio_render::light::luminance(rgb.as_vec3().to_array())
 }
 
 mod slow {
