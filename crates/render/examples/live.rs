@@ -33,7 +33,8 @@ fn main() {
     while let Some(a) = args.next() {
         match a.as_str() {
             "--quality" => {
-                quality = Quality::from_name(&args.next().unwrap()).expect("preview, converged")
+                quality =
+                    Quality::from_name(&args.next().unwrap()).expect("preview, refined, converged")
             }
             "--lighting" => {
                 lighting = Lighting::from_name(&args.next().unwrap()).expect("a lighting")

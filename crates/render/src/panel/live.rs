@@ -40,19 +40,27 @@ pub enum Quality {
     /// samples per pixel (fewer leave a smooth coat's mirror too rare a choice for the
     /// denoiser: 4 darkened the red's mirrored softbox by a fifth), denoised.
     Preview,
+    /// Between the two, a few seconds after a change: the converged picture's table (the same
+    /// table: a caller computes it once for both), 384 × 256 pixels (half the converged
+    /// picture's side), 16 samples per pixel, denoised.
+    Refined,
     /// The finished picture: 768 × 512 pixels, 16 samples per pixel, denoised; the table at
-    /// the nodes of [`Quality::resolution`] with 32 walks per cell and the 31 bands of 10 nm.
+    /// [`super::resolution`]'s θh nodes (45, more for a very narrow rough top) × 24 θd × 16 φd
+    /// with 32 walks per cell and the 31 bands of 10 nm: a third of the cells of the table of
+    /// `gonio coating study`'s pictures (45 × 45 × 24), and the same picture (docs/render.md,
+    /// "The converged table").
     Converged,
 }
 
 impl Quality {
     /// Every level, coarsest first: the order the lab shows them in.
-    pub const ALL: [Quality; 2] = [Quality::Preview, Quality::Converged];
+    pub const ALL: [Quality; 3] = [Quality::Preview, Quality::Refined, Quality::Converged];
 
-    /// Its name in the API (`"preview"`, `"converged"`).
+    /// Its name in the API (`"preview"`, `"refined"`, `"converged"`).
     pub fn name(self) -> &'static str {
         match self {
             Quality::Preview => "preview",
+            Quality::Refined => "refined",
             Quality::Converged => "converged",
         }
     }
@@ -66,7 +74,9 @@ impl Quality {
     pub fn resolution(self, coating: &Coating) -> Resolution {
         match self {
             Quality::Preview => Resolution::isotropic(12, 12, 8),
-            Quality::Converged => super::resolution(coating),
+            Quality::Refined | Quality::Converged => {
+                Resolution::isotropic(super::resolution(coating).theta_h, 24, 16)
+            }
         }
     }
 
@@ -74,7 +84,7 @@ impl Quality {
     pub fn walks(self) -> usize {
         match self {
             Quality::Preview => 8,
-            Quality::Converged => super::WALKS,
+            Quality::Refined | Quality::Converged => super::WALKS,
         }
     }
 
@@ -82,7 +92,7 @@ impl Quality {
     pub fn bands(self) -> Vec<f64> {
         match self {
             Quality::Preview => (0..16).map(|i| 400.0 + 20.0 * i as f64).collect(),
-            Quality::Converged => default_bands(),
+            Quality::Refined | Quality::Converged => default_bands(),
         }
     }
 
@@ -91,6 +101,10 @@ impl Quality {
         match self {
             Quality::Preview => Shot {
                 height: 128,
+                spp: 16,
+            },
+            Quality::Refined => Shot {
+                height: 256,
                 spp: 16,
             },
             Quality::Converged => Shot {

@@ -111,11 +111,12 @@ mod slow {
         })
     }
 
-    /// A converged table and a converged picture, each of which takes more than 10 s of CPU
-    /// time on this machine (table of the silver: 6.5 s, and 4 times that with 128 walks;
-    /// picture: about 17 s, docs/render.md), stop within 2 s of the flag (generous: a cell's walks
-    /// take under a millisecond, a 16 × 16 tile at 16 samples per pixel about 10 ms of one core;
-    /// the machine is shared, so a thread may wait for a core).
+    /// A table and a converged picture stop within 2 s of the flag: the silver's table at the
+    /// converged nodes with 128 walks per cell (four times the converged table's walks, about
+    /// 11 s of CPU time uncancelled), the converged table (2.7 s) and the converged picture
+    /// (about 17 s; docs/render.md). 2 s is generous: a cell's walks take under a millisecond,
+    /// a 16 × 16 tile at 16 samples per pixel about 10 ms of one core, and the machine is
+    /// shared, so a thread may wait for a core.
     #[test]
     fn cancelled_table_and_render_stop_promptly() {
         let q = Quality::Converged;
@@ -197,7 +198,7 @@ mod slow {
     /// and lit; each table's own half-vector quadrature), plus three standard errors of the
     /// ratio. The denoised preview departs from its raw estimate by the filter's bias where a
     /// sample is rare (a smooth coat's mirror is chosen with probability F ≈ 0.05): within 6%
-    /// (measured: 4.1% for the red in the studio at 16 samples per pixel; 21% at 4, which
+    /// (measured: 4.8% for the red in the studio at 16 samples per pixel; 21% at 4, which
     /// is why the preview takes 16).
     #[test]
     fn preview_is_the_converged_picture_coarser() {
