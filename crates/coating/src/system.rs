@@ -17,6 +17,7 @@ use glam::DVec3;
 use gonio_brdf::fresnel::dielectric;
 use gonio_brdf::microfacet::Microfacet;
 use gonio_brdf::table::{BrdfTable, Channels, Provenance, Resolution, TableBuilder};
+use gonio_io::Cancel;
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
@@ -242,8 +243,36 @@ impl Coating {
         walks: impl Into<CellWalks>,
         provenance: Provenance,
     ) -> Result<BrdfTable> {
-        self.table_cells(resolution, wavelengths_nm, walks, provenance, |_| true)
-            .map(|(table, _)| table)
+        self.table_until(
+            resolution,
+            wavelengths_nm,
+            walks,
+            provenance,
+            &Cancel::default(),
+        )
+    }
+
+    /// [`Coating::table`] that stops when `cancel` is raised: each cell looks at the flag before
+    /// its walks (a cell's walks take milliseconds at most), and the whole returns
+    /// [`CoatingError::Cancelled`] instead of a table. Not cancelled, the table is the same bit
+    /// for bit.
+    pub fn table_until(
+        &self,
+        resolution: Resolution,
+        wavelengths_nm: &[f64],
+        walks: impl Into<CellWalks>,
+        provenance: Provenance,
+        cancel: &Cancel,
+    ) -> Result<BrdfTable> {
+        self.cells(
+            resolution,
+            wavelengths_nm,
+            walks.into(),
+            provenance,
+            |_| true,
+            cancel,
+        )
+        .map(|(table, _)| table)
     }
 
     /// [`Coating::table`] with the walks run only in the cells whose index `keep` accepts (the
@@ -255,15 +284,43 @@ impl Coating {
         resolution: Resolution,
         wavelengths_nm: &[f64],
         walks: impl Into<CellWalks>,
-        mut provenance: Provenance,
+        provenance: Provenance,
         keep: impl Fn(usize) -> bool + Sync,
     ) -> Result<(BrdfTable, Spent)> {
+        let cancel = Cancel::default();
+        self.cells(
+            resolution,
+            wavelengths_nm,
+            walks.into(),
+            provenance,
+            keep,
+            &cancel,
+        )
+    }
+
+    /// [`Coating::table_cells`], stopped by `cancel` ([`Coating::table_until`]).
+    fn cells(
+        &self,
+        resolution: Resolution,
+        wavelengths_nm: &[f64],
+        walks: CellWalks,
+        mut provenance: Provenance,
+        keep: impl Fn(usize) -> bool + Sync,
+        cancel: &Cancel,
+    ) -> Result<(BrdfTable, Spent)> {
+        let stopped = || {
+            if cancel.is_cancelled() {
+                Err(CoatingError::Cancelled)
+            } else {
+                Ok(())
+            }
+        };
         if let Some(exact) = self.clear_coat() {
             self.check(wavelengths_nm)?;
             let table = exact.body_table(resolution, wavelengths_nm, provenance)?;
+            stopped()?;
             return Ok((table, Spent::default()));
         }
-        let walks = walks.into();
         if walks.base == 0 {
             return Err(CoatingError::Invalid(
                 "samples: at least one random walk per cell is needed".into(),
@@ -292,7 +349,7 @@ impl Coating {
             }
         }
         builder.fill(|c, out| {
-            if wanted[c.index] {
+            if wanted[c.index] && !cancel.is_cancelled() {
                 let se = evaluator.eval_cell(
                     c.wo,
                     c.wi,
@@ -304,6 +361,7 @@ impl Coating {
                 first_se[c.index].store(se.to_bits(), Ordering::Relaxed);
             }
         });
+        stopped()?;
         // Second pass: the cells kept take the walks their neighbourhood asks for.
         let se_of = |i: usize| {
             Some(f64::from_bits(first_se[i].load(Ordering::Relaxed))).filter(|s| !s.is_nan())
@@ -311,7 +369,7 @@ impl Coating {
         let [cells, max, capped] = [0; 3].map(AtomicUsize::new);
         let total = AtomicU64::new(0);
         builder.refine(|c, out| {
-            if !kept[c.index] {
+            if !kept[c.index] || cancel.is_cancelled() {
                 out.fill(0.0);
                 return;
             }
@@ -334,6 +392,7 @@ impl Coating {
             max.fetch_max(count, Ordering::Relaxed);
             capped.fetch_add(usize::from(short), Ordering::Relaxed);
         });
+        stopped()?;
         let spent = Spent {
             cells: cells.into_inner(),
             walks: total.into_inner(),

@@ -27,11 +27,13 @@
 //! of samples is smoothed); `docs/render.md` gives the measured error against converged
 //! references. The raw estimate stays available (`denoise = false`, the default).
 
+use crate::error::{RenderError, Result};
 use crate::image::Image;
 use crate::path::{facing_frame, sample_brdf};
 use crate::scene::{PrimKind, Scene};
 use crate::settings::BrdfSampling;
 use glam::{DVec2, DVec3};
+use gonio_io::Cancel;
 use rayon::prelude::*;
 
 /// The first-hit features of every pixel that steer the filter.
@@ -56,11 +58,25 @@ const ALBEDO_SAMPLES: usize = 4;
 impl Features {
     /// The features of every pixel of `scene`'s camera.
     pub fn of(scene: &Scene) -> Features {
+        Features::of_until(scene, &Cancel::default()).expect("never cancelled")
+    }
+
+    /// [`Features::of`], stopping with [`RenderError::Cancelled`] when `cancel` is raised
+    /// (each row of pixels looks at it first).
+    pub fn of_until(scene: &Scene, cancel: &Cancel) -> Result<Features> {
         let (w, h) = (scene.camera.width, scene.camera.height);
         let rows: Vec<Vec<PixelFeatures>> = (0..h)
             .into_par_iter()
-            .map(|y| (0..w).map(|x| pixel_features(scene, x, y)).collect())
+            .map(|y| {
+                if cancel.is_cancelled() {
+                    return Vec::new();
+                }
+                (0..w).map(|x| pixel_features(scene, x, y)).collect()
+            })
             .collect();
+        if cancel.is_cancelled() {
+            return Err(RenderError::Cancelled);
+        }
         let mut f = Features {
             normal: Vec::with_capacity(w * h),
             depth: Vec::with_capacity(w * h),
@@ -71,7 +87,7 @@ impl Features {
             f.depth.push(z);
             f.albedo.push(a);
         }
-        f
+        Ok(f)
     }
 }
 

@@ -20,13 +20,17 @@ pub enum RenderError {
     Brdf(#[from] gonio_brdf::BrdfError),
     /// A coating's table could not be computed.
     #[error(transparent)]
-    Coating(#[from] gonio_coating::CoatingError),
+    Coating(gonio_coating::CoatingError),
     /// An image could not be read or written.
     #[error("{path}: {problem}")]
     Image { path: PathBuf, problem: String },
     /// A render option is out of range.
     #[error("{0}")]
     Invalid(String),
+    /// The caller raised its [`gonio_io::Cancel`] flag: the render (or the table it needed)
+    /// stopped, and no partial picture is returned.
+    #[error("cancelled")]
+    Cancelled,
 }
 
 impl RenderError {
@@ -43,6 +47,17 @@ impl RenderError {
         RenderError::Image {
             path: path.into(),
             problem: problem.to_string(),
+        }
+    }
+}
+
+/// A coating's error, its cancellation the render's own ([`RenderError::Cancelled`]), so that a
+/// caller looks for one variant whichever step was stopped.
+impl From<gonio_coating::CoatingError> for RenderError {
+    fn from(e: gonio_coating::CoatingError) -> Self {
+        match e {
+            gonio_coating::CoatingError::Cancelled => RenderError::Cancelled,
+            e => RenderError::Coating(e),
         }
     }
 }

@@ -124,6 +124,23 @@ impl Image {
         out
     }
 
+    /// The PNG file of the image after exposure and the tone curve of `display`, in memory.
+    pub fn png(&self, display: Display) -> Result<Vec<u8>> {
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        self.srgb_image(display)
+            .write_to(&mut bytes, image::ImageFormat::Png)
+            .map_err(|e| RenderError::Invalid(format!("cannot encode the PNG: {e}")))?;
+        Ok(bytes.into_inner())
+    }
+
+    /// The 8-bit sRGB image of [`Image::to_srgb8`].
+    fn srgb_image(&self, display: Display) -> image::DynamicImage {
+        let (w, h) = (self.width as u32, self.height as u32);
+        image::DynamicImage::ImageRgb8(
+            image::RgbImage::from_raw(w, h, self.to_srgb8(display)).expect("size matches"),
+        )
+    }
+
     /// Write the image; the format follows the extension: `.exr` (linear float), `.hdr`
     /// (linear RGBE) or `.png` (with `display`). The write is atomic.
     pub fn write(&self, path: &Path, display: Display) -> Result<()> {
@@ -147,12 +164,7 @@ impl Image {
                 ),
                 image::ImageFormat::Hdr,
             ),
-            "png" => (
-                image::DynamicImage::ImageRgb8(
-                    image::RgbImage::from_raw(w, h, self.to_srgb8(display)).expect("size matches"),
-                ),
-                image::ImageFormat::Png,
-            ),
+            "png" => (self.srgb_image(display), image::ImageFormat::Png),
             _ => {
                 return Err(RenderError::image(
                     path,

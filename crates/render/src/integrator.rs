@@ -18,7 +18,7 @@ use crate::settings::{BrdfSampling, ColourMode, Settings};
 use crate::spectral::{SpectralFilmSetup, SpectralPath};
 use glam::DVec2;
 use gonio_brdf::Rgb;
-use gonio_io::Progress;
+use gonio_io::{Cancel, Progress};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
@@ -44,6 +44,10 @@ pub struct RenderOptions {
     pub denoise: Option<bool>,
     /// Where to report the tiles rendered (stage `rendering`; default: nowhere).
     pub progress: Progress,
+    /// Raised, the render stops: every tile looks at it before its pixels and every row of the
+    /// denoiser's features before its pixels, and the render returns
+    /// [`RenderError::Cancelled`] (default: never).
+    pub cancel: Cancel,
 }
 
 /// What a render cost.
@@ -80,7 +84,8 @@ pub fn render_picture(scene: &Scene, options: &RenderOptions) -> Result<(Image, 
     let mut estimate = render_estimate(scene, options)?;
     let denoised = options.denoise.or(scene.render.denoise).unwrap_or(false);
     let image = if denoised {
-        denoise(&estimate.image, &estimate.variance, &Features::of(scene))
+        let features = Features::of_until(scene, &options.cancel)?;
+        denoise(&estimate.image, &estimate.variance, &features)
     } else {
         estimate.image.clone()
     };
@@ -142,6 +147,9 @@ pub fn render_estimate(scene: &Scene, options: &RenderOptions) -> Result<Estimat
             .map(|&(x0, y0)| {
                 let mut rays = 0u64;
                 let mut out = Vec::with_capacity(TILE * TILE);
+                if options.cancel.is_cancelled() {
+                    return (out, rays);
+                }
                 for y in y0..(y0 + TILE).min(h) {
                     for x in x0..(x0 + TILE).min(w) {
                         out.push(pixel(scene, opts, &spectral, x, y, &mut rays));
@@ -163,6 +171,9 @@ pub fn render_estimate(scene: &Scene, options: &RenderOptions) -> Result<Estimat
             .install(run),
         None => run(),
     };
+    if options.cancel.is_cancelled() {
+        return Err(RenderError::Cancelled);
+    }
     let mut image = Image::new(w, h);
     let mut variance = vec![0.0; w * h];
     let mut rays = 0;

@@ -15,6 +15,7 @@
 //! # Ok::<(), gonio_render::RenderError>(())
 //! ```
 
+pub mod assets;
 pub mod camera;
 pub mod denoise;
 pub mod difference;
@@ -24,6 +25,7 @@ pub mod image;
 pub mod integrator;
 pub mod light;
 pub mod material;
+pub mod mesh;
 pub mod panel;
 mod path;
 pub mod scene;
@@ -31,6 +33,7 @@ pub mod settings;
 pub mod spectral;
 pub mod surface;
 
+pub use assets::Assets;
 pub use error::{RenderError, Result};
 pub use image::{Display, Image, ToneCurve};
 pub use integrator::{

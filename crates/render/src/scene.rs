@@ -5,12 +5,14 @@
 //! Transforms apply scale, then rotations about x, y and z (degrees), then the translation.
 //! Relative paths (meshes, tables, maps) are relative to the scene file's directory.
 
+use crate::assets::Assets;
 use crate::camera::Camera;
 use crate::error::{RenderError, Result};
 use crate::geometry::{Accel, Shape};
 use crate::image::{Display, Image, ToneCurve};
 use crate::light::{EnvMap, Light};
 use crate::material::{self, Material};
+use crate::mesh::read_obj;
 use glam::{DAffine3, DQuat, DVec3};
 use gonio_brdf::models::{ModelSpec, Reflectance};
 use rayon::prelude::*;
@@ -351,9 +353,16 @@ impl Scene {
 
     /// Build the scene of a parsed description, section by section.
     pub fn build(desc: &SceneDesc, path: &Path) -> Result<Scene> {
+        Scene::build_with(desc, path, &Assets::new())
+    }
+
+    /// [`Scene::build`], taking the files that `assets` holds from memory (by the name the
+    /// description gives them) and the others from disk.
+    pub fn build_with(desc: &SceneDesc, path: &Path, assets: &Assets) -> Result<Scene> {
         let file = SceneFile {
             path,
             dir: path.parent().unwrap_or(Path::new(".")),
+            assets,
         };
         let camera = build_camera(&desc.camera, &file)?;
         let (materials, material_index) = build_materials(&desc.materials, &file)?;
@@ -379,6 +388,7 @@ impl Scene {
 struct SceneFile<'a> {
     path: &'a Path,
     dir: &'a Path,
+    assets: &'a Assets,
 }
 
 impl SceneFile<'_> {
@@ -463,9 +473,10 @@ fn build_material(name: &str, m: &MaterialDesc, file: &SceneFile) -> Result<Mate
         (Some(spec), None, None) => {
             Material::new(name, material::from_model(spec, file.path, name)?)
         }
-        (None, Some(table), None) => {
-            Material::from_table(name, material::read_table(&file.resolve(table))?)
-        }
+        (None, Some(table), None) => match file.assets.table(table) {
+            Some(held) => Material::new(name, held.clone()),
+            None => Material::from_table(name, material::read_table(&file.resolve(table))?),
+        },
         (None, None, Some(surface)) => Material::from_table(
             name,
             crate::surface::table(surface, file.dir, file.path, name)?,
@@ -530,7 +541,10 @@ fn build_shapes(
                     disk: true,
                 }]
             }
-            Geometry::Mesh { file: obj } => read_obj(&file.resolve(obj))?,
+            Geometry::Mesh { file: obj } => match file.assets.mesh(obj) {
+                Some(held) => held.as_ref().clone(),
+                None => read_obj(&file.resolve(obj))?,
+            },
         };
         let transform = s.transform.matrix();
         for shape in local {
@@ -611,7 +625,10 @@ fn build_lights(descs: &[LightDesc], file: &SceneFile, prims: &mut Prims) -> Res
                 scale,
                 rotate_deg,
             } => {
-                let image = Image::read(&file.resolve(map))?;
+                let image = match file.assets.image(map) {
+                    Some(held) => held.as_ref().clone(),
+                    None => Image::read(&file.resolve(map))?,
+                };
                 Light::Environment(EnvMap::new(
                     image,
                     scale.unwrap_or(1.0),
@@ -635,59 +652,4 @@ fn rectangle(size: [f64; 2]) -> Shape {
         v: DVec3::Y * (0.5 * size[1]),
         disk: false,
     }
-}
-
-/// The triangles of every object of a Wavefront OBJ file.
-pub fn read_obj(path: &Path) -> Result<Vec<Shape>> {
-    let opts = tobj::LoadOptions {
-        single_index: true,
-        triangulate: true,
-        ignore_points: true,
-        ignore_lines: true,
-    };
-    let (models, _) = tobj::load_obj(path, &opts)
-        .map_err(|e| RenderError::scene(path, format!("cannot read the OBJ mesh: {e}")))?;
-    let mut tris = Vec::new();
-    for m in &models {
-        let mesh = &m.mesh;
-        let n_vert = mesh.positions.len() / 3;
-        let vertex = |i: u32| -> Result<DVec3> {
-            let i = i as usize;
-            if i >= n_vert {
-                return Err(RenderError::scene(
-                    path,
-                    format!(
-                        "object `{}`: vertex index {i} out of range ({n_vert} vertices)",
-                        m.name
-                    ),
-                ));
-            }
-            Ok(DVec3::new(
-                f64::from(mesh.positions[3 * i]),
-                f64::from(mesh.positions[3 * i + 1]),
-                f64::from(mesh.positions[3 * i + 2]),
-            ))
-        };
-        let has_normals = mesh.normals.len() == mesh.positions.len();
-        for f in mesh.indices.chunks_exact(3) {
-            let p = [vertex(f[0])?, vertex(f[1])?, vertex(f[2])?];
-            let n = has_normals.then(|| {
-                [f[0], f[1], f[2]].map(|i| {
-                    let i = i as usize;
-                    DVec3::new(
-                        f64::from(mesh.normals[3 * i]),
-                        f64::from(mesh.normals[3 * i + 1]),
-                        f64::from(mesh.normals[3 * i + 2]),
-                    )
-                })
-            });
-            if (p[1] - p[0]).cross(p[2] - p[0]).length_squared() > 0.0 {
-                tris.push(Shape::Triangle { p, n });
-            }
-        }
-    }
-    if tris.is_empty() {
-        return Err(RenderError::scene(path, "the OBJ mesh has no triangles"));
-    }
-    Ok(tris)
 }

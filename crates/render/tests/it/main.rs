@@ -13,6 +13,7 @@ mod denoise;
 mod difference;
 mod geometry;
 mod image;
+mod panel;
 mod render;
 mod scene;
 mod spectral;

@@ -1,56 +1,31 @@
-//! Pictures of coatings on a curved, bonnet-like panel in a studio: the coating's spectral table
-//! (computed for the picture), a scene beside it that `gonio render` runs as written, and the
-//! rendered PNG. The `gonio` command (`coating study`, the demo), the Python package and the lab
-//! all draw their panels through this module. Several coatings sit side by side on identical panels, seen from one camera,
-//! so that a picture compares them at the same angles: the bright reflection of the softbox
-//! near the specular direction, the flop colour where the panel turns away.
+//! Pictures of coatings on a curved, bonnet-like panel: the coating's spectral table (computed
+//! for the picture), the panel scene, and the rendered picture. The `gonio` command (`coating
+//! study`, the demo) and the Python package write the scene and its files into a folder, which
+//! `gonio render` runs as written ([`table`], [`scene`], [`render`]); the lab makes the same
+//! scene in memory, a coarse picture first and finer ones while nothing changes ([`live`]).
+//! Several coatings sit side by side on identical panels, seen from one camera, so that a
+//! picture compares them at the same angles: the bright reflection of the light near the
+//! specular direction, the flop colour where the panel turns away.
 //!
 //! The panel is the repository's `examples/panel.obj` (made by `examples/metallic_assets.py`),
-//! embedded in the program and written beside the scene. The studio is dark (so that a
-//! metallic's flop shows: what it sends away from the specular direction), with two softboxes:
-//! one behind the panels that they mirror toward the camera, one behind the camera lighting
-//! them from the viewer's side, far from the specular direction.
+//! embedded in the program. The lights are environment maps drawn by the program
+//! ([`Lighting`]): by default a dark studio with two softboxes.
+
+mod lighting;
+pub mod live;
+
+pub use lighting::Lighting;
 
 use crate::error::{RenderError, Result};
+use crate::geometry::Shape;
 use crate::{ColourMode, Display, Image, RenderOptions, RenderStats, Scene, render_picture};
 use gonio_brdf::table::Resolution;
 use gonio_coating::system::{Coating, default_bands};
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, OnceLock};
 
-const PANEL_OBJ: &[u8] = include_bytes!("../../../examples/panel.obj");
-
-/// The studio's radiance (W m⁻² sr⁻¹, grey) toward polar angle `theta_deg` from the zenith (+y)
-/// and azimuth `phi_deg` from +x toward +z (the renderer's equirectangular mapping; the camera
-/// looks along −z).
-fn studio(theta_deg: f64, phi_deg: f64) -> f64 {
-    let within = |t: (f64, f64), p: (f64, f64)| {
-        (t.0..=t.1).contains(&theta_deg) && (p.0..=p.1).contains(&phi_deg)
-    };
-    if within((35.0, 65.0), (235.0, 305.0)) {
-        4.0 // behind the panels, mirrored by them toward the camera
-    } else if within((25.0, 55.0), (65.0, 115.0)) {
-        3.0 // behind the camera
-    } else if theta_deg < 90.0 {
-        0.03 + 0.03 * (theta_deg.to_radians()).cos()
-    } else {
-        0.01
-    }
-}
-
-/// Write the studio as an equirectangular map (256 × 128, Radiance RGBE) at `path`.
-fn write_studio(path: &Path) -> Result<()> {
-    let (w, h) = (256, 128);
-    let mut image = Image::new(w, h);
-    for j in 0..h {
-        let theta = 180.0 * (j as f64 + 0.5) / h as f64;
-        for i in 0..w {
-            let phi = 360.0 * (i as f64 + 0.5) / w as f64;
-            image.pixels[j * w + i] = [studio(theta, phi) as f32; 3];
-        }
-    }
-    image.write(path, Display::default())
-}
+const PANEL_OBJ: &[u8] = include_bytes!("../../../../examples/panel.obj");
 
 /// Random walks per table cell of a picture's table (`gonio coating compute`'s default).
 pub const WALKS: usize = gonio_coating::system::TABLE_WALKS;
@@ -92,43 +67,99 @@ pub fn table(coating: &Coating, source: &str, dir: &Path, name: &str) -> Result<
 }
 
 impl Panel {
-    /// The panel of `coating` whose table is the file `table`: a smooth top's mirror is added by
-    /// the renderer at the coat's index at 550 nm (its dispersion left out of the mirror).
+    /// The panel of `coating` whose table is the file `table`.
     fn new(coating: &Coating, table: String) -> Panel {
         Panel {
             table,
-            coat_index: coating
-                .roughness
-                .is_none()
-                .then(|| coating.coat.index.at(550.0)),
+            coat_index: coat_index(coating),
         }
     }
 }
 
-/// Write the scene `dir/NAME.toml` with `panels` side by side (left to right), the panel mesh
-/// and the studio beside it. Returns the scene's path.
+/// The index of `coating`'s smooth top, whose mirror the renderer adds (at the coat's index at
+/// 550 nm, its dispersion left out of the mirror); `None` for a rough top, whose reflection is
+/// in the table.
+fn coat_index(coating: &Coating) -> Option<f64> {
+    coating
+        .roughness
+        .is_none()
+        .then(|| coating.coat.index.at(550.0))
+}
+
+/// Write the scene `dir/NAME.toml` with `panels` side by side (left to right) in the dark
+/// studio, the panel mesh and the studio's map beside it. Returns the scene's path.
 pub fn scene(dir: &Path, name: &str, panels: &[Panel]) -> Result<PathBuf> {
-    write_file(&dir.join("panel.obj"), PANEL_OBJ)?;
-    write_studio(&dir.join("dark_studio.hdr"))?;
+    let lighting = Lighting::Studio;
+    write_file(&dir.join(MESH), PANEL_OBJ)?;
+    lighting
+        .map()
+        .write(&dir.join(lighting.map_file()), Display::default())?;
+    let text = description(name, panels, lighting, Shot::FILE);
+    let path = dir.join(format!("{name}.toml"));
+    write_file(&path, text.as_bytes())?;
+    Ok(path)
+}
+
+/// The file name of the panel mesh in a panel scene.
+const MESH: &str = "panel.obj";
+
+/// The panel mesh's triangles, parsed once.
+fn mesh() -> Arc<Vec<Shape>> {
+    static MESH_TRIANGLES: OnceLock<Arc<Vec<Shape>>> = OnceLock::new();
+    MESH_TRIANGLES
+        .get_or_init(|| {
+            let triangles = crate::mesh::parse_obj(PANEL_OBJ, Path::new(MESH))
+                .expect("the embedded panel mesh is valid OBJ (tested by every panel picture)");
+            Arc::new(triangles)
+        })
+        .clone()
+}
+
+/// A picture's size and samples: its height in pixels (the width follows from the number of
+/// panels) and the samples per pixel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Shot {
+    height: usize,
+    spp: u32,
+}
+
+impl Shot {
+    /// The pictures of `gonio coating study` and the demo: 280 px high, 16 samples per pixel.
+    const FILE: Shot = Shot {
+        height: 280,
+        spp: 16,
+    };
+}
+
+/// The panel scene (TOML, as `gonio render` reads it): `panels` side by side, each a mesh
+/// `panel.obj` with its table, on a floor under `lighting`'s map, seen from the camera that
+/// `shot` sizes. The one description of the panel scene, whether written into a folder
+/// ([`scene`]) or built in memory ([`live::picture`]).
+fn description(name: &str, panels: &[Panel], lighting: Lighting, shot: Shot) -> String {
     let k = panels.len() as f64;
-    // Panels 2.4 m wide with 0.3 m between them, in a picture 280 px high and as wide as the
-    // row needs. The camera looks down at 40° from a range that fits the row into the
-    // horizontal field (30° vertical) with a fifth to spare, and no closer than 4.5 m.
+    // Panels 2.4 m wide with 0.3 m between them, in a picture as wide as the row needs
+    // (1.5 times its height for one panel). The camera looks down at 40° from a range that
+    // fits the row into the horizontal field (30° vertical) with a fifth to spare, and no
+    // closer than 4.5 m.
     let pitch = 2.7;
-    let (width, height) = ((280.0 * (0.6 + 0.9 * k)).round(), 280.0);
+    let height = shot.height as f64;
+    let width = (height * (0.6 + 0.9 * k)).round();
     let half_row = (pitch * (k - 1.0) + 2.4) / 2.0;
     let half_field = width / height * 15f64.to_radians().tan();
     let range = (1.2 * half_row / half_field).max(4.5);
     let (sin_e, cos_e) = 40f64.to_radians().sin_cos();
     let mut text = format!(
-        "# {k} coating panel(s) in a studio, written by gonio (the tables beside it come from \
-         `gonio coating compute`).\n#\n#   gonio render {name}.toml --spectral -o {name}.png\n\n\
+        "# {k} coating panel(s) in the {lighting} lighting, written by gonio (the tables beside \
+         it come from `gonio coating compute`).\n#\n#   gonio render {name}.toml --spectral -o \
+         {name}.png\n\n\
          [camera]\nposition = [0.0, {:.2}, {:.2}]\nlook_at = [0.0, 0.3, 0.0]\n\
          fov_deg = 30\nwidth = {width}\nheight = {height}\nexposure = 1.0\ntone = \"filmic\"\n\n\
-         [render]\nspp = 16\nmax_bounces = 4\ndenoise = true\n\n\
-         [materials.floor]\nbrdf = {{ model = \"lambert\", albedo = 0.12 }}\n",
+         [render]\nspp = {}\nmax_bounces = 4\ndenoise = true\n\n\
+         [materials.floor]\nbrdf = {{ model = \"lambert\", albedo = {} }}\n",
         0.3 + range * sin_e,
         range * cos_e,
+        shot.spp,
+        lighting.floor_albedo(),
     );
     for (i, p) in panels.iter().enumerate() {
         text.push_str(&format!(
@@ -142,18 +173,17 @@ pub fn scene(dir: &Path, name: &str, panels: &[Panel]) -> Result<PathBuf> {
     for i in 0..panels.len() {
         let x = pitch * (i as f64 - (k - 1.0) / 2.0);
         text.push_str(&format!(
-            "\n[[shapes]]\ntype = \"mesh\"\nfile = \"panel.obj\"\ntranslate = [{x:.2}, 0.55, 0.0]\n\
+            "\n[[shapes]]\ntype = \"mesh\"\nfile = \"{MESH}\"\ntranslate = [{x:.2}, 0.55, 0.0]\n\
              material = \"coating{i}\"\n"
         ));
     }
-    text.push_str(
+    text.push_str(&format!(
         "\n[[shapes]]\ntype = \"rectangle\"\nsize = [200.0, 200.0]\nrotate_deg = [-90.0, 0.0, 0.0]\n\
-         material = \"floor\"\n\n[[lights]]\ntype = \"environment\"\nfile = \"dark_studio.hdr\"\n\
+         material = \"floor\"\n\n[[lights]]\ntype = \"environment\"\nfile = \"{}\"\n\
          scale = 1.0\n",
-    );
-    let path = dir.join(format!("{name}.toml"));
-    write_file(&path, text.as_bytes())?;
-    Ok(path)
+        lighting.map_file()
+    ));
+    text
 }
 
 /// Write `bytes` to `path` atomically ([`gonio_io::write_atomic`]).
