@@ -405,8 +405,12 @@ const picture = follower(async (signal, stale) => {
   const ok = await renderInto('preview', signal);
   if (ok && !stale()) converged.go();
 });
+// While nothing changes the picture refines: the converged table at few samples, then the
+// finished picture (docs/render.md, "Panel pictures"); a change aborts it.
 const converged = follower(async (signal) => {
   setState('picture-state', 'refining…', 'busy');
+  if (!(await renderInto('refined', signal))) return;
+  setState('picture-state', 'converging…', 'busy');
   await renderInto('converged', signal);
 });
 
@@ -424,7 +428,9 @@ async function renderInto(quality, signal) {
   pictureUrl = URL.createObjectURL(blob);
   $('picture').src = pictureUrl;
   const spp = r.headers.get('x-gonio-spp');
-  setState('picture-state', `${quality === 'preview' ? 'preview' : 'converged'} · ${((performance.now() - t0) / 1000).toFixed(1)} s` + (spp ? ` · ${spp} spp` : ''));
+  const size = r.headers.get('x-gonio-size');
+  $('picture').title = `${quality}: ${size} pixels, ${spp} samples per pixel; table ${r.headers.get('x-gonio-table')}`;
+  setState('picture-state', `${quality} · ${((performance.now() - t0) / 1000).toFixed(1)} s · ${size}`);
   $('picture').dataset.quality = quality;
   return true;
 }

@@ -20,6 +20,7 @@ use axum::http::{StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use gonio_io::Cancel;
+use gonio_render::panel::live::Quality;
 use serde::Deserialize;
 use serde_json::{Value, json};
 use std::sync::Arc;
@@ -257,12 +258,13 @@ async fn picture(
     raw: Result<Bytes, BytesRejection>,
 ) -> Result<Response, ApiError> {
     let request: PictureRequest = parse(raw, &lab)?;
-    let (coating, _) = coating_of(&lab, &request.formulation)?;
+    let (coating, text) = coating_of(&lab, &request.formulation)?;
     let options =
         compute::PictureOptions::parse(request.lighting.as_deref(), request.quality.as_deref())?;
     let cancel = lab.begin(request.channel.as_deref());
     let picture = run(cancel, move |cancel| {
-        compute::picture(&coating, &options, cancel)
+        let table = lab.table(&coating, &text, options.quality, cancel)?;
+        compute::picture(&table, &options, cancel)
     })
     .await?;
     let mut response = ([(header::CONTENT_TYPE, "image/png")], picture.png).into_response();
@@ -284,7 +286,10 @@ async fn export(
     let (coating, text) = coating_of(&lab, &request.formulation)?;
     let cancel = lab.begin(None);
     let (bytes, filename) = run(cancel, move |cancel| {
-        compute::export(&coating, &text, format, cancel)
+        compute::export(
+            &lab.table(&coating, &text, Quality::Converged, cancel)?,
+            format,
+        )
     })
     .await?;
     Ok((

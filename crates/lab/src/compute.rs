@@ -5,11 +5,13 @@
 
 use crate::error::{ApiError, refused};
 use crate::state::Upload;
-use gonio_coating::system::{Coating, default_bands};
+use gonio_coating::system::Coating;
 use gonio_formulation::lab_target::{self, LabTarget};
 use gonio_instrument::coating_readings::{self, ReadingsRequest};
 use gonio_instrument::multiangle::Standard;
 use gonio_io::Cancel;
+use gonio_render::panel::Lighting;
+use gonio_render::panel::live::{self, LiveTable, Quality};
 use serde_json::{Value, json};
 use std::path::Path;
 
@@ -93,14 +95,19 @@ pub fn target(
 
 /// The light settings of the pictures: `[{name, description}]`.
 pub fn lightings() -> Value {
-    json!([{ "name": "studio", "description": "a dark studio with two softboxes" }])
+    Value::Array(
+        Lighting::ALL
+            .iter()
+            .map(|l| json!({ "name": l.name(), "description": l.description() }))
+            .collect(),
+    )
 }
 
 /// What a picture is asked for.
-#[derive(Clone, Debug)]
+#[derive(Clone, Copy, Debug)]
 pub struct PictureOptions {
-    pub lighting: String,
-    pub converged: bool,
+    pub lighting: Lighting,
+    pub quality: Quality,
 }
 
 impl PictureOptions {
@@ -109,18 +116,26 @@ impl PictureOptions {
         lighting: Option<&str>,
         quality: Option<&str>,
     ) -> Result<PictureOptions, ApiError> {
-        let converged = match quality.unwrap_or("preview") {
-            "preview" => false,
-            "converged" => true,
-            other => {
-                return Err(ApiError::BadRequest(format!(
-                    "quality '{other}': give preview or converged"
-                )));
-            }
-        };
+        let names = |all: Vec<&str>| all.join(", ");
         Ok(PictureOptions {
-            lighting: lighting.unwrap_or("studio").to_string(),
-            converged,
+            lighting: match lighting {
+                None => Lighting::ALL[0],
+                Some(name) => Lighting::from_name(name).ok_or_else(|| {
+                    ApiError::BadRequest(format!(
+                        "lighting '{name}': give one of {}",
+                        names(Lighting::ALL.iter().map(|l| l.name()).collect())
+                    ))
+                })?,
+            },
+            quality: match quality {
+                None => Quality::Preview,
+                Some(name) => Quality::from_name(name).ok_or_else(|| {
+                    ApiError::BadRequest(format!(
+                        "quality '{name}': give one of {}",
+                        names(Quality::ALL.iter().map(|q| q.name()).collect())
+                    ))
+                })?,
+            },
         })
     }
 }
@@ -131,54 +146,39 @@ pub struct Picture {
     pub figures: Vec<(&'static str, String)>,
 }
 
-/// The picture of `coating` on the panel.
+/// The picture of the coating whose table at the picture's quality is `table` (see
+/// [`crate::Lab::table`]), on the panel under the options' light.
 pub fn picture(
-    coating: &Coating,
+    table: &LiveTable,
     options: &PictureOptions,
     cancel: &Cancel,
 ) -> Result<Picture, ApiError> {
-    let _ = (options, cancel);
-    let dir = tempfile::tempdir().map_err(|e| ApiError::Internal(e.to_string()))?;
-    let bands = default_bands();
-    let table = coating
-        .table(
-            gonio_brdf::table::Resolution::isotropic(12, 12, 6),
-            &bands,
-            4,
-            gonio_brdf::table::Provenance::default(),
-        )
+    let shown = live::picture(table, options.lighting, options.quality, cancel)
         .map_err(|e| refused(cancel, e))?;
-    gonio_brdf::gbrdf::write(&table, &dir.path().join("c.gbrdf"))
-        .map_err(|e| ApiError::Internal(e.to_string()))?;
-    let panel = gonio_render::panel::Panel {
-        table: "c.gbrdf".into(),
-        coat_index: coating
-            .roughness
-            .is_none()
-            .then(|| coating.coat.index.at(550.0)),
-    };
-    let scene = gonio_render::panel::scene(dir.path(), "lab", &[panel])
-        .map_err(|e| ApiError::Internal(e.to_string()))?;
-    let (image, display, stats) =
-        gonio_render::panel::render_image(&scene).map_err(|e| refused(cancel, e))?;
+    let f = shown.figures;
+    let r = f.resolution;
     Ok(Picture {
-        png: png(&image, display)?,
-        figures: vec![("x-gonio-seconds", format!("{:.3}", stats.seconds))],
+        png: shown.png,
+        figures: vec![
+            ("x-gonio-quality", options.quality.name().to_string()),
+            ("x-gonio-table-seconds", format!("{:.3}", f.table_seconds)),
+            ("x-gonio-render-seconds", format!("{:.3}", f.render_seconds)),
+            ("x-gonio-spp", f.spp.to_string()),
+            ("x-gonio-size", format!("{}x{}", f.size.0, f.size.1)),
+            (
+                "x-gonio-table",
+                format!(
+                    "{}x{}x{} nodes, {} walks, {} bands",
+                    r.theta_h, r.theta_d, r.phi_d, f.walks, f.bands
+                ),
+            ),
+        ],
     })
 }
 
-/// `image` tone-mapped for `display`, as PNG bytes.
-fn png(image: &gonio_render::Image, display: gonio_render::Display) -> Result<Vec<u8>, ApiError> {
-    let rgb = image::RgbImage::from_raw(
-        image.width as u32,
-        image.height as u32,
-        image.to_srgb8(display),
-    )
-    .ok_or_else(|| ApiError::Internal("a picture of the wrong size".into()))?;
-    let mut out = std::io::Cursor::new(Vec::new());
-    rgb.write_to(&mut out, image::ImageFormat::Png)
-        .map_err(|e| ApiError::Internal(format!("PNG: {e}")))?;
-    Ok(out.into_inner())
+/// The table of `coating` for pictures at `quality` (its nodes, walks and bands).
+pub fn table(coating: &Coating, quality: Quality, cancel: &Cancel) -> Result<LiveTable, ApiError> {
+    live::live_table(coating, quality, cancel).map_err(|e| refused(cancel, e))
 }
 
 /// A table export's format.
@@ -194,21 +194,42 @@ impl ExportFormat {
             "gbrdf" => Ok(ExportFormat::Gbrdf),
             "mitsuba" => Ok(ExportFormat::Mitsuba),
             other => Err(ApiError::NotFound(format!(
-                "no export '{other}': give gbrdf or mitsuba"
+                "no export '{other}': give gbrdf (gonio's spectral table) or mitsuba (a Mitsuba 3 \
+                 tensor)"
             ))),
         }
     }
 }
 
-/// The table of `coating` (described by `text`) written in `format`: the bytes and a file name.
-pub fn export(
-    coating: &Coating,
-    text: &str,
-    format: ExportFormat,
-    cancel: &Cancel,
-) -> Result<(Vec<u8>, String), ApiError> {
-    let _ = (coating, text, format, cancel);
-    Err(ApiError::Internal("export: not yet".into()))
+/// `table` (a coating's converged picture table) written in `format`: the bytes and a file name.
+pub fn export(table: &LiveTable, format: ExportFormat) -> Result<(Vec<u8>, String), ApiError> {
+    let dir =
+        tempfile::tempdir().map_err(|e| ApiError::Internal(format!("a temporary folder: {e}")))?;
+    let (name, written) = match format {
+        ExportFormat::Gbrdf => {
+            let name = "coating.gbrdf";
+            (
+                name,
+                gonio_brdf::gbrdf::write(table.table.table(), &dir.path().join(name)),
+            )
+        }
+        ExportFormat::Mitsuba => {
+            let name = "coating_mitsuba.bsdf";
+            let options = gonio_brdf::formats::mitsuba::MitsubaOptions::default();
+            (
+                name,
+                gonio_brdf::formats::mitsuba::write(
+                    table.table.table(),
+                    &dir.path().join(name),
+                    options,
+                ),
+            )
+        }
+    };
+    written.map_err(|e| ApiError::Internal(format!("writing the table: {e}")))?;
+    let bytes = std::fs::read(dir.path().join(name))
+        .map_err(|e| ApiError::Internal(format!("reading the table back: {e}")))?;
+    Ok((bytes, name.to_string()))
 }
 
 /// The statistics of an uploaded topography (ISO 25178 after levelling).

@@ -5,8 +5,10 @@
 
 use crate::compute::{self, ReadingOptions};
 use crate::error::ApiError;
+use gonio_coating::system::Coating;
 use gonio_formulation::lab_target::LabTarget;
 use gonio_io::Cancel;
+use gonio_render::panel::live::{LiveTable, Quality};
 use std::collections::{HashMap, VecDeque};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -61,6 +63,10 @@ pub struct Lab {
     /// Targets read, by upload id, standard and incidence (reading a measured BRDF imports it:
     /// seconds; a formulation's readings compare with it at every change).
     targets: Mutex<HashMap<String, Arc<LabTarget>>>,
+    /// The last pictures' tables, by formulation and table level (a change of light, a refined
+    /// picture after a preview of the same table, an export after the converged picture reuse
+    /// them), newest last.
+    tables: Mutex<VecDeque<(String, LiveTable)>>,
 }
 
 impl Lab {
@@ -73,6 +79,7 @@ impl Lab {
             uploads: Mutex::new(VecDeque::new()),
             channels: Mutex::new(HashMap::new()),
             targets: Mutex::new(HashMap::new()),
+            tables: Mutex::new(VecDeque::new()),
         })
     }
 
@@ -168,6 +175,37 @@ impl Lab {
         }
         targets.insert(key, target.clone());
         Ok(target)
+    }
+
+    /// The pictures' table of `coating` (described by `text`) at `quality`: kept from an earlier
+    /// request, or computed now (under `cancel`) and kept (the last 8).
+    pub fn table(
+        &self,
+        coating: &Coating,
+        text: &str,
+        quality: Quality,
+        cancel: &Cancel,
+    ) -> Result<LiveTable, ApiError> {
+        let key = format!(
+            "{:?} {} {}\n{text}",
+            quality.resolution(coating),
+            quality.walks(),
+            quality.bands().len()
+        );
+        let mut tables = self.tables.lock().unwrap_or_else(|p| p.into_inner());
+        if let Some(k) = tables.iter().position(|(t, _)| *t == key) {
+            let kept = tables.remove(k).expect("the position found");
+            tables.push_back(kept.clone());
+            return Ok(kept.1);
+        }
+        drop(tables);
+        let table = compute::table(coating, quality, cancel)?;
+        let mut tables = self.tables.lock().unwrap_or_else(|p| p.into_inner());
+        tables.push_back((key, table.clone()));
+        while tables.len() > 8 {
+            tables.pop_front();
+        }
+        Ok(table)
     }
 
     /// Start a computation on `channel`: the one running there is cancelled. Without a channel

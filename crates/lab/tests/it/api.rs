@@ -383,3 +383,87 @@ fn targets_give_colour_differences() {
     ));
     assert_eq!(status, 404, "{v}");
 }
+
+/// A preview picture is a PNG of the panel at the preview's size, the same bytes for the same
+/// formulation and light, another under another light; its figures come as headers. Unknown
+/// lights and qualities are refused naming the ones there are.
+#[test]
+fn pictures() {
+    let (base, agent) = (start(), client());
+    let f = example(&agent, &base, "red_solid");
+    let shot = |lighting: &str| {
+        let mut r = post(
+            &agent,
+            &format!("{base}/api/picture"),
+            &json!({ "formulation": f, "lighting": lighting, "quality": "preview" }),
+        )
+        .unwrap();
+        assert_eq!(r.status().as_u16(), 200);
+        assert_eq!(r.headers()["content-type"], "image/png");
+        assert_eq!(r.headers()["x-gonio-size"], "192x128");
+        r.body_mut().read_to_vec().unwrap()
+    };
+    let studio = shot("studio");
+    let picture = image::load_from_memory(&studio).unwrap();
+    assert_eq!((picture.width(), picture.height()), (192, 128));
+    assert_eq!(shot("studio"), studio);
+    assert_ne!(shot("booth"), studio);
+    let (_, lightings) = json(agent.get(format!("{base}/api/lightings")).call());
+    let names: Vec<&str> = lightings
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["studio", "booth"]);
+    for (field, value) in [("lighting", "sunset"), ("quality", "best")] {
+        let (status, v) = json(post(
+            &agent,
+            &format!("{base}/api/picture"),
+            &json!({ "formulation": f, field: value }),
+        ));
+        assert_eq!(status, 400, "{v}");
+        assert!(v["error"].as_str().unwrap().contains(value), "{v}");
+    }
+}
+
+/// The table exports are files the readers take: a `.gbrdf` with the coating's bands, a Mitsuba
+/// tensor that gonio's port of Mitsuba's `measured` reader opens (Mitsuba itself reads the same
+/// writer's files in crates/brdf's oracle tests).
+#[test]
+fn table_exports() {
+    let (base, agent) = (start(), client());
+    let f = example(&agent, &base, "red_solid");
+    let dir = tempfile::tempdir().unwrap();
+    for (format, name) in [
+        ("gbrdf", "coating.gbrdf"),
+        ("mitsuba", "coating_mitsuba.bsdf"),
+    ] {
+        let mut r = post(
+            &agent,
+            &format!("{base}/api/export/{format}"),
+            &json!({ "formulation": f }),
+        )
+        .unwrap();
+        assert_eq!(r.status().as_u16(), 200);
+        let disposition = r.headers()["content-disposition"]
+            .to_str()
+            .unwrap()
+            .to_string();
+        assert!(disposition.contains(name), "{disposition}");
+        let path = dir.path().join(name);
+        std::fs::write(
+            &path,
+            r.body_mut()
+                .with_config()
+                .limit(1 << 28)
+                .read_to_vec()
+                .unwrap(),
+        )
+        .unwrap();
+    }
+    let table = gonio_brdf::gbrdf::read(&dir.path().join("coating.gbrdf")).unwrap();
+    assert_eq!(table.channels().count(), 31);
+    gonio_brdf::formats::mitsuba::TensorBrdf::read(&dir.path().join("coating_mitsuba.bsdf"))
+        .unwrap();
+}
