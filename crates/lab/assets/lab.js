@@ -513,7 +513,7 @@ function showColour() {
 // ---------------------------------------------------------------- plots (SVG, drawn here)
 
 // A line plot into `svg`: series [{x, y, colour, label, dash, points}], a log y axis if `logy`.
-function plot(svg, { series, marks = [], xlabel, ylabel, logy = false, xmin, xmax }) {
+function plot(svg, { series, marks = [], xlabel, ylabel, logy = false, xmin, xmax, scaleFrom = -Infinity }) {
   const NS = 'http://www.w3.org/2000/svg';
   const W = 420, H = 280, L = 54, R = 10, T = 10, B = 58;
   const make = (tag, attrs, text) => {
@@ -523,7 +523,10 @@ function plot(svg, { series, marks = [], xlabel, ylabel, logy = false, xmin, xma
     return e;
   };
   svg.replaceChildren();
-  const ys = series.flatMap((s) => s.y.filter((v) => Number.isFinite(v) && (!logy || v > 0)));
+  // The y range from the points at x ≥ scaleFrom (the L* curve's specular peak, hundreds of
+  // units high, would flatten the flop the plot is for: it runs off the top, said in a note).
+  const ys = series.flatMap((s) => s.y.filter((v, i) => Number.isFinite(v) && (!logy || v > 0) && s.x[i] >= scaleFrom));
+  const offScale = series.some((s) => s.y.some((v, i) => s.x[i] < scaleFrom && v > Math.max(...ys)));
   if (!ys.length) return;
   let ymin = Math.min(...ys), ymax = Math.max(...ys);
   if (logy) {
@@ -531,7 +534,8 @@ function plot(svg, { series, marks = [], xlabel, ylabel, logy = false, xmin, xma
     ymin = Math.max(Math.pow(10, Math.floor(Math.log10(ymin))), ymax * 1e-5);
   } else {
     const pad = 0.05 * (ymax - ymin || 1);
-    ymin = Math.floor((ymin - pad) / 10) * 10; ymax = Math.ceil((ymax + pad) / 10) * 10;
+    const floor = ymin >= 0 ? 0 : -Infinity;
+    ymin = Math.max(floor, Math.floor((ymin - pad) / 10) * 10); ymax = Math.ceil((ymax + pad) / 10) * 10;
   }
   const X = (x) => L + (x - xmin) / (xmax - xmin) * (W - L - R);
   const Y = (y) => {
@@ -552,6 +556,7 @@ function plot(svg, { series, marks = [], xlabel, ylabel, logy = false, xmin, xma
     svg.append(make('text', { x: L - 4, y: Y(y) + 4, 'text-anchor': 'end' }, logy ? y.toExponential(0).replace('e+', 'e') : String(y)));
   }
   svg.append(make('line', { x1: L, x2: L, y1: T, y2: H - B, class: 'axis' }));
+  if (offScale) svg.append(make('text', { x: X(scaleFrom) + 4, y: T + 12 }, 'near-specular peak off scale'));
   svg.append(make('line', { x1: L, x2: W - R, y1: H - B, y2: H - B, class: 'axis' }));
   svg.append(make('text', { x: (L + W - R) / 2, y: H - B + 30, 'text-anchor': 'middle' }, xlabel));
   svg.append(make('text', { x: 12, y: (T + H - B) / 2, 'text-anchor': 'middle', transform: `rotate(-90 12 ${(T + H - B) / 2})` }, ylabel));
@@ -615,7 +620,7 @@ function showPlots() {
   }
   const inc = b?.inplane_brdf?.incidence_deg ?? Number($('incidence').value);
   plot($('plot-brdf'), { series: brdf, marks, xlabel: `scatter angle (°), specular at +${inc}°`, ylabel: 'BRDF (1/sr, luminance)', logy: true, xmin: -90, xmax: 90 });
-  plot($('plot-flop'), { series: flop, xlabel: 'aspecular angle (°)', ylabel: 'L*', xmin: -15, xmax: 110 });
+  plot($('plot-flop'), { series: flop, xlabel: 'aspecular angle (°)', ylabel: 'L*', xmin: -15, xmax: 110, scaleFrom: 10 });
 }
 
 // ---------------------------------------------------------------- files
