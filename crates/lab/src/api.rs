@@ -96,12 +96,19 @@ fn parse<T: serde::de::DeserializeOwned>(
 }
 
 /// Run `work` on a blocking thread under `cancel`, raised if this handler is dropped (the client
-/// left). A panic in `work` is an internal error with its message.
+/// left), once one of the lab's computation slots is free ([`Lab::slot`]): a computation
+/// cancelled while it waits never starts. A panic in `work` is an internal error with its
+/// message.
 async fn run<T: Send + 'static>(
+    lab: &Lab,
     cancel: Cancel,
     work: impl FnOnce(&Cancel) -> Result<T, ApiError> + Send + 'static,
 ) -> Result<T, ApiError> {
     let _stop_when_dropped = CancelOnDrop(cancel.clone());
+    let _slot = lab.slot().await;
+    if cancel.is_cancelled() {
+        return Err(ApiError::Cancelled);
+    }
     match tokio::task::spawn_blocking(move || work(&cancel)).await {
         Ok(result) => result,
         Err(e) if e.is_panic() => {
@@ -217,7 +224,7 @@ async fn readings(
         lab.uploaded(UploadKind::Target, id)?;
     }
     let cancel = lab.begin(request.channel.as_deref());
-    let value = run(cancel, move |cancel| {
+    let value = run(&lab.clone(), cancel, move |cancel| {
         let target = request
             .target
             .as_deref()
@@ -262,7 +269,7 @@ async fn picture(
     let options =
         compute::PictureOptions::parse(request.lighting.as_deref(), request.quality.as_deref())?;
     let cancel = lab.begin(request.channel.as_deref());
-    let picture = run(cancel, move |cancel| {
+    let picture = run(&lab.clone(), cancel, move |cancel| {
         let table = lab.table(&coating, &text, options.quality, cancel)?;
         compute::picture(&table, &options, cancel)
     })
@@ -285,7 +292,7 @@ async fn export(
     let request: FormulationOnly = parse(raw, &lab)?;
     let (coating, text) = coating_of(&lab, &request.formulation)?;
     let cancel = lab.begin(None);
-    let (bytes, filename) = run(cancel, move |cancel| {
+    let (bytes, filename) = run(&lab.clone(), cancel, move |cancel| {
         compute::export(
             &lab.table(&coating, &text, Quality::Converged, cancel)?,
             format,
@@ -322,7 +329,7 @@ async fn upload(
 ) -> Result<axum::Json<Value>, ApiError> {
     let bytes = body(raw, lab.limits.upload_bytes, &format!("the upload {name}"))?;
     let (id, upload) = lab.upload(kind, &name, &bytes)?;
-    let read = run(Cancel::new(), {
+    let read = run(&lab, Cancel::new(), {
         let id = id.clone();
         move |cancel| read(&id, cancel)
     })

@@ -23,16 +23,22 @@ pub struct Limits {
     pub upload_bytes: usize,
     /// Uploads kept at once; the oldest is removed beyond.
     pub uploads_kept: usize,
+    /// Computations running at once; more wait for a slot (and are cancelled while they wait
+    /// if a newer request replaces them).
+    pub computations: usize,
 }
 
 impl Default for Limits {
     /// 1 MiB of JSON (a formulation with measured spectra is a few kB), 64 MiB per upload (an
-    /// optical profiler's 2048 × 2048 map in 32-bit floats is 16 MiB), 32 uploads.
+    /// optical profiler's 2048 × 2048 map in 32-bit floats is 16 MiB), 32 uploads, 4
+    /// computations at once (the page's readings and picture of B and of a pinned A; each
+    /// computation uses every core, so more at once only share them).
     fn default() -> Limits {
         Limits {
             json_bytes: 1 << 20,
             upload_bytes: 64 << 20,
             uploads_kept: 32,
+            computations: 4,
         }
     }
 }
@@ -67,6 +73,8 @@ pub struct Lab {
     /// picture after a preview of the same table, an export after the converged picture reuse
     /// them), newest last.
     tables: Mutex<VecDeque<(String, LiveTable)>>,
+    /// The computations that may run at once ([`Lab::slot`]).
+    slots: tokio::sync::Semaphore,
 }
 
 impl Lab {
@@ -80,6 +88,7 @@ impl Lab {
             channels: Mutex::new(HashMap::new()),
             targets: Mutex::new(HashMap::new()),
             tables: Mutex::new(VecDeque::new()),
+            slots: tokio::sync::Semaphore::new(limits.computations),
         })
     }
 
@@ -206,6 +215,15 @@ impl Lab {
             tables.pop_front();
         }
         Ok(table)
+    }
+
+    /// Wait for a computation slot (see [`Limits::computations`]); the slot is free again when the
+    /// permit is dropped.
+    pub async fn slot(&self) -> tokio::sync::SemaphorePermit<'_> {
+        self.slots
+            .acquire()
+            .await
+            .expect("the lab never closes its semaphore")
     }
 
     /// Start a computation on `channel`: the one running there is cancelled. Without a channel
