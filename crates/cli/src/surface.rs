@@ -39,6 +39,8 @@ pub enum SurfaceCommand {
     Rotate(RotateArgs),
     /// Draw a false-colour height image (levelled) with a scale bar and a colour bar.
     Plot(PlotArgs),
+    /// Wave-scan bands (Wa-We, SW, LW) of the slope along x or y: rms slope per band (mrad).
+    Waviness(crate::surface_waviness::WavinessArgs),
 }
 
 #[derive(Args)]
@@ -182,6 +184,7 @@ pub fn run(cmd: SurfaceCommand) -> Result<()> {
             write(&rotated, &a.output)
         }
         SurfaceCommand::Plot(a) => plot_map(&a),
+        SurfaceCommand::Waviness(a) => crate::surface_waviness::run(&a),
     }
 }
 
@@ -197,7 +200,7 @@ pub fn choose_channel(selector: ChannelSelector) {
 
 /// Read a height map or line profile in the channel `--channel` chose, printing the reader's
 /// warnings (e.g. a checksum mismatch) to stderr.
-fn read_any(path: &Path) -> Result<HeightMap> {
+pub fn read_any(path: &Path) -> Result<HeightMap> {
     let options = io::ReadOptions {
         channel: CHANNEL.get().cloned(),
     };

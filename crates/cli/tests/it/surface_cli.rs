@@ -202,3 +202,52 @@ fn corrupt_input_exits_2_naming_the_file() {
     ]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// `surface waviness`: the FRT profilometer's 12 mm map gives its short bands in mrad (JSON equal
+/// to the library's) and says the long ones are too long for it; a line profile is read too; a
+/// missing file exits 2 naming it.
+#[test]
+fn waviness_reads_the_bands_a_file_resolves() {
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("../surface/tests/data");
+    let frt = data.join("frt-1.frt");
+    let out = ok(&["surface", "waviness", frt.to_str().unwrap(), "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let bands = v["bands"].as_array().unwrap();
+    let names: Vec<&str> = bands.iter().map(|b| b["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["Wa", "Wb", "Wc", "Wd", "We", "SW", "LW"]);
+    let map = gonio_surface::io::read(&frt).unwrap();
+    let lib =
+        gonio_surface::waviness::waviness(&map, gonio_surface::waviness::Direction::X).unwrap();
+    for (b, r) in bands.iter().zip(&lib) {
+        match (b["rms_slope_rad"].as_f64(), r.rms_slope) {
+            // JSON's shortest decimal form reads back within an ulp or two.
+            (Some(j), Some(l)) => {
+                assert!((j - l).abs() <= 1e-15 * l, "{}: {j} vs {l}", r.band.name)
+            }
+            (j, l) => assert_eq!(j, l, "{}", r.band.name),
+        }
+    }
+    assert!(
+        bands[3]["unresolved"]
+            .as_str()
+            .unwrap()
+            .contains("too short")
+    );
+    let text = ok(&["surface", "waviness", frt.to_str().unwrap()]);
+    let text = String::from_utf8(text.stdout).unwrap();
+    assert!(
+        text.contains("Wa") && text.contains("mrad") && text.contains("gonio's own scale"),
+        "{text}"
+    );
+    let profile = data.join("opdx-3.opdx");
+    let out = gonio(&["surface", "waviness", profile.to_str().unwrap(), "--json"]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = gonio(&["surface", "waviness", "missing.sdf"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("missing.sdf"));
+}
