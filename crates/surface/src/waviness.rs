@@ -123,10 +123,9 @@ fn slope_runs(map: &HeightMap, direction: Direction) -> (Vec<Vec<f64>>, f64) {
         let mut run = Vec::new();
         for i in 0..points.saturating_sub(1) {
             let (a, b) = (at(p, i), at(p, i + 1));
+            // `get` is `None` exactly where a point was not measured.
             match (map.get(a.0, a.1), map.get(b.0, b.1)) {
-                (Some(z0), Some(z1)) if map.is_valid(a.0, a.1) && map.is_valid(b.0, b.1) => {
-                    run.push((z1 - z0) / d)
-                }
+                (Some(z0), Some(z1)) => run.push((z1 - z0) / d),
                 _ => {
                     if !run.is_empty() {
                         runs.push(std::mem::take(&mut run));
