@@ -6,26 +6,14 @@
 //! docs/performance.md. A quiet machine: nothing else running.
 
 use serde_json::{Value, json};
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 fn start() -> String {
-    let (tx, rx) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        let runtime = tokio::runtime::Runtime::new().expect("a runtime");
-        runtime.block_on(async move {
-            let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
-                .await
-                .expect("a port");
-            tx.send(listener.local_addr().expect("an address"))
-                .expect("the bench waits");
-            let lab = gonio_lab::Lab::new(gonio_lab::Limits::default()).expect("a lab");
-            gonio_lab::serve(listener, Arc::new(lab), std::future::pending())
-                .await
-                .expect("serving");
-        });
-    });
-    format!("http://{}", rx.recv().expect("the address"))
+    let address = gonio_lab::spawn(
+        "127.0.0.1:0".parse().expect("an address"),
+        Default::default(),
+    );
+    format!("http://{}", address.expect("a lab on a free port"))
 }
 
 fn post(agent: &ureq::Agent, url: &str, body: &Value) -> (u16, Vec<u8>) {

@@ -11,7 +11,7 @@ use crate::compute;
 use crate::error::ApiError;
 use crate::examples;
 use crate::formulation;
-use crate::state::{CancelOnDrop, Lab, UploadKind};
+use crate::state::{CancelOnDrop, Lab, Upload, UploadKind};
 use axum::Router;
 use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
@@ -66,18 +66,22 @@ pub fn router(lab: Arc<Lab>) -> Router {
         .with_state(lab)
 }
 
-/// The body, or the client's error: too large (413, with the limit), or unreadable.
-fn body(body: Result<Bytes, BytesRejection>, limit: usize, what: &str) -> Result<Bytes, ApiError> {
+/// What a JSON body too large for the lab is told.
+const JSON_HINT: &str = "a formulation is a few kilobytes of JSON";
+
+/// The body, or the client's error: too large (413, with the limit and `hint`, how to make it
+/// fit), or unreadable.
+fn body(
+    body: Result<Bytes, BytesRejection>,
+    limit: usize,
+    what: &str,
+    hint: &str,
+) -> Result<Bytes, ApiError> {
     body.map_err(|e| {
         if e.status() == StatusCode::PAYLOAD_TOO_LARGE {
             ApiError::TooLarge(format!(
-                "{what} is larger than the lab accepts ({:.0} MiB); {}",
+                "{what} is larger than the lab accepts ({:.0} MiB); {hint}",
                 limit as f64 / (1 << 20) as f64,
-                if what.starts_with("the upload") {
-                    "crop or resample the file (gonio surface crop) before uploading it"
-                } else {
-                    "a formulation is a few kilobytes of JSON"
-                }
             ))
         } else {
             ApiError::BadRequest(format!("{what}: {e}"))
@@ -90,7 +94,7 @@ fn parse<T: serde::de::DeserializeOwned>(
     raw: Result<Bytes, BytesRejection>,
     lab: &Lab,
 ) -> Result<T, ApiError> {
-    let bytes = body(raw, lab.limits.json_bytes, "the request")?;
+    let bytes = body(raw, lab.limits.json_bytes, "the request", JSON_HINT)?;
     serde_json::from_slice(&bytes)
         .map_err(|e| ApiError::BadRequest(format!("the request's JSON: {e}")))
 }
@@ -160,7 +164,7 @@ async fn from_toml(
     State(lab): Shared,
     raw: Result<Bytes, BytesRejection>,
 ) -> Result<axum::Json<Value>, ApiError> {
-    let bytes = body(raw, lab.limits.json_bytes, "the description")?;
+    let bytes = body(raw, lab.limits.json_bytes, "the description", JSON_HINT)?;
     let text = std::str::from_utf8(&bytes)
         .map_err(|_| ApiError::BadRequest("the description is not UTF-8 text".into()))?;
     let f = formulation::from_toml(text)?;
@@ -220,20 +224,14 @@ async fn readings(
     let (coating, _) = coating_of(&lab, &request.formulation)?;
     let options =
         compute::ReadingOptions::parse(request.standard.as_deref(), request.incidence_deg)?;
-    if let Some(id) = &request.target {
-        lab.uploaded(UploadKind::Target, id)?;
-    }
+    let target = request
+        .target
+        .map(|id| Ok::<_, ApiError>((lab.uploaded(UploadKind::Target, &id)?.name, id)))
+        .transpose()?;
     let cancel = lab.begin(request.channel.as_deref());
     let value = run(&lab.clone(), cancel, move |cancel| {
-        let target = request
-            .target
-            .as_deref()
-            .map(|id| {
-                Ok::<_, ApiError>((
-                    lab.uploaded(UploadKind::Target, id)?.name,
-                    lab.target(id, &options, cancel)?,
-                ))
-            })
+        let target = target
+            .map(|(name, id)| Ok::<_, ApiError>((name, lab.target(&id, &options, cancel)?)))
             .transpose()?;
         compute::readings(
             &coating,
@@ -318,35 +316,34 @@ struct UploadQuery {
     name: String,
 }
 
-/// Keep an uploaded file and read it with `read`; a file its reader refuses is removed and the
-/// reader's message returned, naming the client's file (not the lab's copy).
+/// Keep an uploaded file and read it with `read` (given its id and the upload); a file its
+/// reader refuses is removed and the reader's message returned (which names the client's file:
+/// [`crate::state::Upload::named`]).
 async fn upload(
     lab: Arc<Lab>,
     kind: UploadKind,
     name: String,
     raw: Result<Bytes, BytesRejection>,
-    read: impl FnOnce(&str, &Cancel) -> Result<Value, ApiError> + Send + 'static,
+    read: impl FnOnce(&str, &Upload, &Cancel) -> Result<Value, ApiError> + Send + 'static,
 ) -> Result<axum::Json<Value>, ApiError> {
-    let bytes = body(raw, lab.limits.upload_bytes, &format!("the upload {name}"))?;
+    let bytes = body(
+        raw,
+        lab.limits.upload_bytes,
+        &format!("the upload {name}"),
+        "crop or resample the file (gonio surface crop) before uploading it",
+    )?;
     let (id, upload) = lab.upload(kind, &name, &bytes)?;
     let read = run(&lab, Cancel::new(), {
-        let id = id.clone();
-        move |cancel| read(&id, cancel)
+        let (id, upload) = (id.clone(), upload.clone());
+        move |cancel| read(&id, &upload, cancel)
     })
     .await;
-    let shown = upload.path.display().to_string();
-    match read {
-        Ok(value) => Ok(axum::Json(
-            json!({ "id": id, "name": upload.name, "read": value }),
-        )),
-        Err(e) => {
-            let _ = std::fs::remove_file(&upload.path);
-            Err(match e {
-                ApiError::BadRequest(m) => ApiError::BadRequest(m.replace(&shown, &upload.name)),
-                other => other,
-            })
-        }
+    if read.is_err() {
+        let _ = std::fs::remove_file(&upload.path);
     }
+    Ok(axum::Json(
+        json!({ "id": id, "name": upload.name, "read": read? }),
+    ))
 }
 
 async fn upload_topography(
@@ -354,9 +351,8 @@ async fn upload_topography(
     Query(q): Query<UploadQuery>,
     raw: Result<Bytes, BytesRejection>,
 ) -> Result<axum::Json<Value>, ApiError> {
-    let kept = lab.clone();
-    upload(lab, UploadKind::Topography, q.name, raw, move |id, _| {
-        compute::topography(&kept.uploaded(UploadKind::Topography, id)?.path)
+    upload(lab, UploadKind::Topography, q.name, raw, |_, upload, _| {
+        compute::topography(upload)
     })
     .await
 }
@@ -377,8 +373,12 @@ async fn upload_target(
 ) -> Result<axum::Json<Value>, ApiError> {
     let options = compute::ReadingOptions::parse(q.standard.as_deref(), q.incidence_deg)?;
     let kept = lab.clone();
-    upload(lab, UploadKind::Target, q.name, raw, move |id, cancel| {
-        Ok(kept.target(id, &options, cancel)?.to_json())
-    })
+    upload(
+        lab,
+        UploadKind::Target,
+        q.name,
+        raw,
+        move |id, _, cancel| Ok(kept.target(id, &options, cancel)?.to_json()),
+    )
     .await
 }

@@ -13,7 +13,6 @@ use gonio_io::Cancel;
 use gonio_render::panel::Lighting;
 use gonio_render::panel::live::{self, LiveTable, Quality};
 use serde_json::{Value, json};
-use std::path::Path;
 
 /// What the readings are asked for.
 #[derive(Clone, Debug)]
@@ -82,15 +81,7 @@ pub fn target(
         options.incidence_deg,
         cancel,
     )
-    .map_err(|e| {
-        let e = refused(cancel, e);
-        match e {
-            ApiError::BadRequest(m) => {
-                ApiError::BadRequest(m.replace(&upload.path.display().to_string(), &upload.name))
-            }
-            other => other,
-        }
-    })
+    .map_err(|e| upload.named(refused(cancel, e)))
 }
 
 /// The light settings of the pictures: `[{name, description}]`.
@@ -232,11 +223,12 @@ pub fn export(table: &LiveTable, format: ExportFormat) -> Result<(Vec<u8>, Strin
     Ok((bytes, name.to_string()))
 }
 
-/// The statistics of an uploaded topography (ISO 25178 after levelling).
-pub fn topography(path: &Path) -> Result<Value, ApiError> {
-    let map = gonio_surface::io::read(path).map_err(|e| ApiError::BadRequest(e.to_string()))?;
-    let s =
-        gonio_surface::stats::statistics(&map).map_err(|e| ApiError::BadRequest(e.to_string()))?;
+/// The statistics of an uploaded topography (ISO 25178 after levelling); the reader's errors
+/// name the client's file.
+pub fn topography(upload: &Upload) -> Result<Value, ApiError> {
+    let refused = |e: &dyn std::fmt::Display| upload.named(ApiError::BadRequest(e.to_string()));
+    let map = gonio_surface::io::read(&upload.path).map_err(|e| refused(&e))?;
+    let s = gonio_surface::stats::statistics(&map).map_err(|e| refused(&e))?;
     Ok(json!({
         "nx": map.nx(), "ny": map.ny(), "dx_um": map.dx() * 1e6, "dy_um": map.dy() * 1e6,
         "sq_um": s.sq * 1e6, "sa_um": s.sa * 1e6, "ssk": s.ssk, "sku": s.sku, "sdq": s.sdq,

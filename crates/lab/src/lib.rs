@@ -32,6 +32,32 @@ pub async fn serve(
         .await
 }
 
+/// Start a lab with `limits` on `address` (port 0: any free one) in a thread and runtime of its
+/// own, serving until the process ends; returns the address it listens on. For tests and
+/// benchmarks that talk to a lab over HTTP from the same process.
+pub fn spawn(address: SocketAddr, limits: Limits) -> std::io::Result<SocketAddr> {
+    let listener = std::net::TcpListener::bind(address)?;
+    listener.set_nonblocking(true)?;
+    let bound = listener.local_addr()?;
+    let lab = Arc::new(Lab::new(limits)?);
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()?;
+    std::thread::spawn(move || {
+        runtime.block_on(async move {
+            match tokio::net::TcpListener::from_std(listener) {
+                Ok(listener) => {
+                    if let Err(e) = serve(listener, lab, std::future::pending()).await {
+                        eprintln!("gonio lab: {e}");
+                    }
+                }
+                Err(e) => eprintln!("gonio lab: {e}"),
+            }
+        })
+    });
+    Ok(bound)
+}
+
 /// Run the lab on `address` until Ctrl-C: binds, calls `ready` with the address it listens on
 /// (port 0 picks a free one), serves. Errors: the address cannot be bound (in use: the message
 /// says how to choose another port), or the runtime cannot start.

@@ -59,6 +59,20 @@ pub struct Upload {
     pub path: PathBuf,
 }
 
+impl Upload {
+    /// `error` as the client should read it: a reader's message names the lab's copy of the
+    /// file (`/tmp/gonio-lab-…/u3.sdf`), which the client never saw; it is named by the client's
+    /// name instead.
+    pub fn named(&self, error: ApiError) -> ApiError {
+        match error {
+            ApiError::BadRequest(m) => {
+                ApiError::BadRequest(m.replace(&self.path.display().to_string(), &self.name))
+            }
+            other => other,
+        }
+    }
+}
+
 /// The server's state, shared by every request.
 pub struct Lab {
     pub limits: Limits,

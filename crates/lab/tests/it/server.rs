@@ -1,34 +1,19 @@
-//! A lab server for the tests: on an ephemeral port of 127.0.0.1, in a runtime of its own, with
+//! A lab server for the tests ([`gonio_lab::spawn`]): on an ephemeral port of 127.0.0.1, with
 //! a small upload limit (1 MiB) so that the limit can be tested cheaply.
 
-use gonio_lab::{Lab, Limits};
-use std::sync::Arc;
+use gonio_lab::Limits;
 
 /// The upload limit of the test server, bytes.
 pub const UPLOAD_LIMIT: usize = 1 << 20;
 
 /// The base URL (`http://127.0.0.1:PORT`) of a new server, running until the test process ends.
 pub fn start() -> String {
-    let (tx, rx) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        let runtime = tokio::runtime::Runtime::new().expect("a runtime");
-        runtime.block_on(async move {
-            let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
-                .await
-                .expect("a port");
-            tx.send(listener.local_addr().expect("its address"))
-                .expect("the test waits");
-            let lab = Lab::new(Limits {
-                upload_bytes: UPLOAD_LIMIT,
-                ..Limits::default()
-            })
-            .expect("a lab");
-            gonio_lab::serve(listener, Arc::new(lab), std::future::pending())
-                .await
-                .expect("serving");
-        });
-    });
-    format!("http://{}", rx.recv().expect("the server's address"))
+    let limits = Limits {
+        upload_bytes: UPLOAD_LIMIT,
+        ..Limits::default()
+    };
+    let address = gonio_lab::spawn("127.0.0.1:0".parse().expect("an address"), limits);
+    format!("http://{}", address.expect("a lab on a free port"))
 }
 
 /// An HTTP client that returns every status as a response (the tests check the statuses).
