@@ -27,6 +27,7 @@
 //! kind = "aluminium"              # or "metal" (with n and k spectra) or "interference"
 //! coverage = 0.5                  # fraction of the base covered
 //! tilt_deg = 15                   # rms tilt of the flakes
+//! diameter_um = 20                # mean flake diameter (sparkle; default 20)
 //! # kind = "interference": tio2_nm, mica_nm (default 300), mica_index (default 1.58)
 //! ```
 
@@ -84,16 +85,22 @@ enum FlakeFields {
     Aluminium {
         coverage: f64,
         tilt_deg: f64,
+        #[serde(default = "default_diameter_um")]
+        diameter_um: f64,
     },
     Metal {
         coverage: f64,
         tilt_deg: f64,
+        #[serde(default = "default_diameter_um")]
+        diameter_um: f64,
         n: SpectrumField,
         k: SpectrumField,
     },
     Interference {
         coverage: f64,
         tilt_deg: f64,
+        #[serde(default = "default_diameter_um")]
+        diameter_um: f64,
         tio2_nm: f64,
         #[serde(default = "default_mica_nm")]
         mica_nm: f64,
@@ -247,20 +254,30 @@ fn roughness(r: RoughnessFields, folder: &Path) -> Result<Microfacet> {
     )
 }
 
+fn default_diameter_um() -> f64 {
+    Flakes::DEFAULT_DIAMETER_UM
+}
+
 /// The flakes from their fields.
 fn flakes(f: FlakeFields) -> Result<Flakes> {
     Ok(match f {
-        FlakeFields::Aluminium { coverage, tilt_deg } => {
+        FlakeFields::Aluminium {
+            coverage,
+            tilt_deg,
+            diameter_um,
+        } => {
             let (n, k) = aluminium();
             Flakes {
                 pigment: FlakePigment::Metal { n, k },
                 coverage,
                 tilt_deg,
+                diameter_um,
             }
         }
         FlakeFields::Metal {
             coverage,
             tilt_deg,
+            diameter_um,
             n,
             k,
         } => Flakes {
@@ -270,10 +287,12 @@ fn flakes(f: FlakeFields) -> Result<Flakes> {
             },
             coverage,
             tilt_deg,
+            diameter_um,
         },
         FlakeFields::Interference {
             coverage,
             tilt_deg,
+            diameter_um,
             tio2_nm,
             mica_nm,
             mica_index,
@@ -285,6 +304,7 @@ fn flakes(f: FlakeFields) -> Result<Flakes> {
             },
             coverage,
             tilt_deg,
+            diameter_um,
         },
     })
 }

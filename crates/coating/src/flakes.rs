@@ -55,7 +55,8 @@ pub enum FlakePigment {
     },
 }
 
-/// A layer of flakes: their pigment, the fraction of the base they cover and their rms tilt.
+/// A layer of flakes: their pigment, the fraction of the base they cover, their rms tilt and
+/// their size.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Flakes {
     pub pigment: FlakePigment,
@@ -63,6 +64,10 @@ pub struct Flakes {
     pub coverage: f64,
     /// rms tilt of the flakes' normals from the coating's normal, degrees.
     pub tilt_deg: f64,
+    /// Mean diameter of the flakes, µm: the diameter of the circle of a flake's mean area
+    /// ([`Flakes::DEFAULT_DIAMETER_UM`] unless given). The smooth BRDF does not depend on it;
+    /// the renderer's discrete flakes (sparkle) do.
+    pub diameter_um: f64,
 }
 
 /// Aluminium's complex index at visible wavelengths: H.-J. Hagemann, W. Gudat & C. Kunz,
@@ -80,8 +85,23 @@ pub fn aluminium() -> (Spectrum, Spectrum) {
 }
 
 impl Flakes {
-    /// Check the coverage (0 to 1) and the tilt (0 to 45°), and the pigment's constants.
+    /// The flakes' mean diameter unless the description gives one, µm: aluminium effect
+    /// pigments for automotive finishes have median diameters of roughly 10 to 35 µm, the fine
+    /// "silky" grades at the low end and the coarse sparkling ones at the high end (P. Wißling,
+    /// *Metallic Effect Pigments*, Vincentz 2006, ch. 2; G. Pfaff, *Special Effect Pigments*,
+    /// 2nd ed., Vincentz 2008, ch. 2); 20 µm is a middle grade.
+    pub const DEFAULT_DIAMETER_UM: f64 = 20.0;
+
+    /// Check the coverage (0 to 1), the tilt (0 to 45°), the diameter (1 µm to 1 m) and the
+    /// pigment's constants.
     pub fn check(&self) -> Result<()> {
+        if !(1.0..=1e6).contains(&self.diameter_um) {
+            return Err(CoatingError::Invalid(format!(
+                "flake diameter {} µm: must be between 1 µm and 1 m (effect pigments are \
+                 about 10–35 µm across)",
+                self.diameter_um
+            )));
+        }
         if !(0.0..=1.0).contains(&self.coverage) {
             return Err(CoatingError::Invalid(format!(
                 "flake coverage {}: must be between 0 and 1",
@@ -229,6 +249,17 @@ fn step(len: usize, mu: f64) -> (usize, f64) {
     let x = mu.clamp(0.0, 1.0) * last as f64;
     let i = (x as usize).min(last - 1);
     (i, x - i as f64)
+}
+
+/// The rows of a table of `nb` bands side by side (one row per step of μ) on either side of
+/// `mu`, and the weight of the upper one.
+fn row(rows: &[f64], nb: usize, mu: f64) -> (&[f64], &[f64], f64) {
+    let (i, t) = step(rows.len() / nb, mu);
+    (
+        &rows[i * nb..(i + 1) * nb],
+        &rows[(i + 1) * nb..(i + 2) * nb],
+        t,
+    )
 }
 
 /// A flake's reflectance R and transmittance T against the cosine μ of the local angle, on
@@ -430,7 +461,7 @@ impl FlakeLayer {
     /// [`FlakeLayer::f`], and the pdfs of [`FlakeLayer::sample`] from `wo` choosing `wi` and
     /// from `wi` choosing `wo`: the walk's connections need all three, which share the half
     /// vector and the flakes' distribution there.
-    pub fn f_and_pdfs<'a>(&'a self, wo: DVec3, wi: DVec3, out: &mut [f64]) -> (f64, f64) {
+    pub fn f_and_pdfs(&self, wo: DVec3, wi: DVec3, out: &mut [f64]) -> (f64, f64) {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             out.fill(0.0);
             return (0.0, 0.0);
@@ -452,28 +483,74 @@ impl FlakeLayer {
         let area = |w: DVec3| FlakeOptics::lookup(&self.projected, w.z);
         let lobe = self.coverage * d / (4.0 * area(wo) * area(wi));
         let nb = self.bands();
-        let row = |rows: &'a [f64], mu: f64| {
-            let (i, t) = step(rows.len() / nb, mu);
-            (
-                &rows[i * nb..(i + 1) * nb],
-                &rows[(i + 1) * nb..(i + 2) * nb],
-                t,
-            )
-        };
-        let (r0, r1, tr) = row(&self.reflectance_rows, wo.dot(h));
-        let (i0, i1, ti) = row(&self.through_rows, wi.z);
-        let (o0, o1, to) = row(&self.through_rows, wo.z);
+        let (i0, i1, ti) = row(&self.through_rows, nb, wi.z);
+        let (o0, o1, to) = row(&self.through_rows, nb, wo.z);
         for b in 0..nb {
-            let flake = if lobe > 0.0 {
-                lobe * (r0[b] + tr * (r1[b] - r0[b]))
-            } else {
-                0.0
-            };
             let through_i = i0[b] + ti * (i1[b] - i0[b]);
             let through_o = o0[b] + to * (o1[b] - o0[b]);
-            out[b] = flake + through_i * through_o * self.diffuse[b];
+            out[b] = through_i * through_o * self.diffuse[b];
+        }
+        if lobe > 0.0 {
+            self.add_reflectance(wo.dot(h), lobe, out);
         }
         pdfs
+    }
+
+    /// The flakes' lobe of [`FlakeLayer::f`] alone, `c R(wo·h) D(h) / (4 N(wi) N(wo))` per
+    /// band into `out` (0 for a bare base): the light that one flake mirrors, without the base.
+    pub fn lobe(&self, wo: DVec3, wi: DVec3, out: &mut [f64]) {
+        out.fill(0.0);
+        let Some(m) = self.orientation else { return };
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return;
+        }
+        let h = (wo + wi).normalize();
+        let area = |w: DVec3| FlakeOptics::lookup(&self.projected, w.z);
+        let lobe = self.coverage * m.d(h) / (4.0 * area(wo) * area(wi));
+        self.add_reflectance(wo.dot(h), lobe, out);
+    }
+
+    /// One flake of normal `h` (unit, `h.z > 0`) seen from `wo`: the mirror direction `wi` about
+    /// it and, per band into `out`, the weight `R(wo·h) (wo·h) / (h.z N(wo)) · wi.z / N(wi)`;
+    /// `None` (and `out` 0) when the flake faces away from `wo` or mirrors it below the
+    /// layer's plane.
+    ///
+    /// Why this weight: a point of the layer lies on a flake with probability c, whose normal
+    /// is distributed as `D(h) h.z` over the layer's area (the plane area that flakes of
+    /// normal h cover). Seen from `wo`, a flake's share of what the viewer sees is its
+    /// projected area, `(wo·h) / h.z` per unit of plane area, over the layer's `N(wo)`; Smith's
+    /// shadowing of the light adds `wi.z / N(wi)`. The mean of `weight · L(wi)` over points is
+    /// then `c ∫ D(h) R (wo·h) wi.z / (N(wo) N(wi)) L(wi) dω_h`, and with
+    /// `dω_h = dω_i / (4 wo·h)` it is `∫ lobe(wo, wi) L(wi) wi.z dω_i`: the flakes' lobe of
+    /// the smooth layer ([`FlakeLayer::lobe`]), which the renderer's discrete flakes average to.
+    pub fn mirror(&self, wo: DVec3, h: DVec3, out: &mut [f64]) -> Option<DVec3> {
+        out.fill(0.0);
+        let cos_h = wo.dot(h);
+        if self.orientation.is_none() || wo.z <= 0.0 || h.z <= 0.0 || cos_h <= 0.0 {
+            return None;
+        }
+        let wi = 2.0 * cos_h * h - wo;
+        if wi.z <= 0.0 {
+            return None;
+        }
+        let area = |w: DVec3| FlakeOptics::lookup(&self.projected, w.z);
+        let weight = cos_h / (h.z * area(wo)) * wi.z / area(wi);
+        self.add_reflectance(cos_h, weight, out);
+        Some(wi)
+    }
+
+    /// `out[b] += scale · R_b(cos_h)`, the flake's reflectance per band at the local cosine.
+    fn add_reflectance(&self, cos_h: f64, scale: f64, out: &mut [f64]) {
+        let nb = self.bands();
+        let (r0, r1, t) = row(&self.reflectance_rows, nb, cos_h);
+        for b in 0..nb {
+            out[b] += scale * (r0[b] + t * (r1[b] - r0[b]));
+        }
+    }
+
+    /// The fraction of the base's area that flakes cover (0 for a bare base).
+    pub fn coverage(&self) -> f64 {
+        self.coverage
     }
 
     /// The rms slope of the flakes' normals (`tan σ`), `None` for a bare base.

@@ -13,6 +13,7 @@ mod compensation;
 pub mod description;
 pub mod error;
 pub mod flakes;
+pub mod glint;
 pub mod interface;
 pub mod kubelka_munk;
 pub mod layered;

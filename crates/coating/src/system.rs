@@ -11,6 +11,7 @@ use crate::cell::{self, CellWalks, luminance_weights};
 use crate::clear_coat::{self, AtWavelength, Base, ClearCoatOverBase, Coat};
 use crate::error::{CoatingError, Result};
 use crate::flakes::{FlakeLayer, Flakes};
+use crate::glint::Glint;
 use crate::interface::{Interface, Transport};
 use crate::layered::{Scratch, Walk};
 use glam::DVec3;
@@ -271,6 +272,40 @@ impl Coating {
             provenance,
             |_| true,
             cancel,
+            None,
+        )
+        .map(|(table, _)| table)
+    }
+
+    /// [`Coating::table_until`] without the flakes' glint ([`Glint`]): the table a renderer
+    /// that draws the flakes one by one ([`Glint::flake`]) adds them to. Each cell's estimate
+    /// less the glint at the cell's directions, kept at 0 where the glint exceeds it (the
+    /// glint is refracted through the mean plane of a rough top, whose estimate blurs it:
+    /// near the peak of a narrow lobe the blurred one may be the lower, by the second order of
+    /// the blur; the number of cells held at 0 is in the provenance, `glint_clipped_cells`).
+    /// `glint` must be this coating's at `wavelengths_nm`.
+    pub fn table_without_glint(
+        &self,
+        resolution: Resolution,
+        wavelengths_nm: &[f64],
+        walks: impl Into<CellWalks>,
+        provenance: Provenance,
+        cancel: &Cancel,
+        glint: &Glint,
+    ) -> Result<BrdfTable> {
+        if glint.wavelengths_nm() != wavelengths_nm {
+            return Err(CoatingError::Invalid(
+                "the glint's bands differ from the table's".into(),
+            ));
+        }
+        self.cells(
+            resolution,
+            wavelengths_nm,
+            walks.into(),
+            provenance,
+            |_| true,
+            cancel,
+            Some(glint),
         )
         .map(|(table, _)| table)
     }
@@ -295,10 +330,13 @@ impl Coating {
             provenance,
             keep,
             &cancel,
+            None,
         )
     }
 
-    /// [`Coating::table_cells`], stopped by `cancel` ([`Coating::table_until`]).
+    /// [`Coating::table_cells`], stopped by `cancel` ([`Coating::table_until`]), less `glint`
+    /// ([`Coating::table_without_glint`]).
+    #[allow(clippy::too_many_arguments)]
     fn cells(
         &self,
         resolution: Resolution,
@@ -307,6 +345,7 @@ impl Coating {
         mut provenance: Provenance,
         keep: impl Fn(usize) -> bool + Sync,
         cancel: &Cancel,
+        glint: Option<&Glint>,
     ) -> Result<(BrdfTable, Spent)> {
         let stopped = || {
             if cancel.is_cancelled() {
@@ -366,7 +405,7 @@ impl Coating {
         let se_of = |i: usize| {
             Some(f64::from_bits(first_se[i].load(Ordering::Relaxed))).filter(|s| !s.is_nan())
         };
-        let [cells, max, capped] = [0; 3].map(AtomicUsize::new);
+        let [cells, max, capped, clipped] = [0; 4].map(AtomicUsize::new);
         let total = AtomicU64::new(0);
         builder.refine(|c, out| {
             if !kept[c.index] || cancel.is_cancelled() {
@@ -387,6 +426,16 @@ impl Coating {
                 }
             };
             evaluator.refine_cell(c.wo, c.wi, &walks, count, &mut Scratch::default(), out);
+            if let Some(glint) = glint {
+                let mut g = vec![0.0; out.len()];
+                glint.eval(c.wo, c.wi, &mut g);
+                let mut held = false;
+                for (o, g) in out.iter_mut().zip(&g) {
+                    held |= *g > *o;
+                    *o = (*o - g).max(0.0);
+                }
+                clipped.fetch_add(usize::from(held), Ordering::Relaxed);
+            }
             cells.fetch_add(1, Ordering::Relaxed);
             total.fetch_add(count as u64, Ordering::Relaxed);
             max.fetch_max(count, Ordering::Relaxed);
@@ -400,6 +449,15 @@ impl Coating {
             capped: capped.into_inner(),
         };
         spent.record(&mut provenance, &walks);
+        if glint.is_some() {
+            provenance.extra.insert(
+                "glint".into(),
+                serde_json::json!({
+                    "left_out": "the flakes' glint, drawn flake by flake by the renderer",
+                    "glint_clipped_cells": clipped.into_inner(),
+                }),
+            );
+        }
         builder
             .with_provenance(provenance)
             .build()

@@ -159,6 +159,7 @@ fn an_index_matched_top_shows_the_flake_layer() {
         pigment: FlakePigment::Metal { n: al_n, k: al_k },
         coverage: 0.5,
         tilt_deg: 10.0,
+        diameter_um: Flakes::DEFAULT_DIAMETER_UM,
     };
     let layer = FlakeLayer::new(&flakes, vec![flakes.optics(1.0, 550.0).unwrap()], vec![0.4]);
     let walk = Walk {
@@ -193,6 +194,7 @@ fn reciprocal() {
         pigment: FlakePigment::Metal { n: al_n, k: al_k },
         coverage: 0.5,
         tilt_deg: 10.0,
+        diameter_um: Flakes::DEFAULT_DIAMETER_UM,
     };
     let n = 1.5;
     let walk = Walk {

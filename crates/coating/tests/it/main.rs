@@ -11,6 +11,7 @@
 
 mod clear_coat;
 mod flakes;
+mod glint;
 mod kubelka_munk;
 mod oracle;
 mod scatmech_oracle;

@@ -85,6 +85,7 @@ fn flakes_under_a_smooth_coat_agree_with_scatmech() {
             },
             coverage: 1.0,
             tilt_deg,
+            diameter_um: Flakes::DEFAULT_DIAMETER_UM,
         };
         let slope = f64::tan(tilt_deg.to_radians());
         let walk = Walk {

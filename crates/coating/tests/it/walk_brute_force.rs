@@ -396,6 +396,7 @@ fn system(
         },
         coverage,
         tilt_deg,
+        diameter_um: Flakes::DEFAULT_DIAMETER_UM,
     };
     let interface = Interface::new(n, top);
     let stack = Stack {
