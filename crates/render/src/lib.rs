@@ -17,9 +17,11 @@
 
 pub mod assets;
 pub mod camera;
+pub mod coating_material;
 pub mod denoise;
 pub mod difference;
 pub mod error;
+pub mod flakes;
 pub mod geometry;
 pub mod image;
 pub mod integrator;

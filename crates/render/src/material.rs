@@ -8,6 +8,7 @@
 //! can hold.
 
 use crate::error::{RenderError, Result};
+use crate::flakes::FlakeField;
 use gonio_brdf::formats::{astm, merl};
 use gonio_brdf::models::ModelSpec;
 use gonio_brdf::table::{BrdfTable, SampledTable};
@@ -30,6 +31,9 @@ pub struct Material {
     /// beneath it: the body table of a coating with a smooth top (`gonio coating compute`),
     /// which holds the coat's transmission both ways but not its mirror.
     pub coat: Option<f64>,
+    /// A coating's flakes drawn one by one ([`FlakeField`]), whose glint the BRDF then leaves
+    /// out; `None` for a material without discrete flakes.
+    pub flakes: Option<Arc<FlakeField>>,
 }
 
 impl Material {
@@ -39,6 +43,16 @@ impl Material {
             name: name.into(),
             brdf,
             coat: None,
+            flakes: None,
+        }
+    }
+
+    /// The same material with discrete flakes over its BRDF (which must leave their glint
+    /// out: [`gonio_coating::system::Coating::table_without_glint`]).
+    pub fn with_flakes(self, flakes: FlakeField) -> Material {
+        Material {
+            flakes: Some(Arc::new(flakes)),
+            ..self
         }
     }
 
@@ -68,6 +82,7 @@ impl std::fmt::Debug for Material {
         f.debug_struct("Material")
             .field("name", &self.name)
             .field("coat", &self.coat)
+            .field("flakes", &self.flakes.is_some())
             .finish_non_exhaustive()
     }
 }

@@ -10,6 +10,7 @@
 //! random decision takes the next dimension of the path's [`Sampler`], in the same order in both
 //! modes, so that the two modes trace the same directions from the same seed.
 
+use crate::flakes::{FlakeField, MAX_BANDS};
 use crate::geometry::{Hit, Ray};
 use crate::material::Material;
 use crate::scene::{PrimKind, Scene};
@@ -59,6 +60,11 @@ pub(crate) trait Shading {
     fn carry_rgb(&self, rgb: Rgb) -> Self::C;
     /// The material's BRDF for the pair (`wo` toward the viewer, `wi` toward the light).
     fn eval(&self, material: &Material, wo: DVec3, wi: DVec3) -> Self::C;
+    /// A spectrum given at the bands of `flakes`' glint (a flake's weights, [`Glint::flake`])
+    /// as carried.
+    ///
+    /// [`Glint::flake`]: gonio_coating::glint::Glint::flake
+    fn carry_bands(&self, flakes: &FlakeField, values: &[f64]) -> Self::C;
     /// A BRDF sample by the strategy `how`: the direction, the BRDF value and the pdf.
     fn sample(
         &self,
@@ -83,6 +89,10 @@ impl Shading for Tristimulus {
 
     fn eval(&self, material: &Material, wo: DVec3, wi: DVec3) -> Rgb {
         material.brdf.eval(wo, wi)
+    }
+
+    fn carry_bands(&self, flakes: &FlakeField, values: &[f64]) -> Rgb {
+        flakes.to_rgb(values)
     }
 
     fn sample(
@@ -214,6 +224,11 @@ struct Interaction<'a> {
     body_share: f64,
 }
 
+/// The probability of following a discrete flake's mirror, where there is one, rather than
+/// sampling the BRDF (of what a smooth coat's mirror leaves): a flake's glint and the body's
+/// reflection are of the same order.
+const GLINT_SHARE: f64 = 0.5;
+
 /// The weight of a light's emission that a BRDF sample of density `brdf_pdf` found (`None`: a
 /// camera ray, which no light sample could have found): the power heuristic against the light
 /// sample that could have, of density `light_pdf()` (called only when needed).
@@ -329,6 +344,19 @@ pub(crate) fn radiance<S: Shading>(
             break;
         }
         let mirror = material.mirror(wo.z);
+        // A discrete flake under the point: the direction it mirrors and its weight.
+        let glint = material.flakes.as_ref().and_then(|flakes| {
+            let flake = flakes.flake_at(flakes.under(hit.p, &frame, wo))?;
+            let mut weight = [0.0; MAX_BANDS];
+            let weight = &mut weight[..flakes.glint().wavelengths_nm().len()];
+            let wi = flakes.glint().flake(wo, flake.normal, weight)?;
+            Some((wi, shading.carry_bands(flakes, weight)))
+        });
+        let glint_share = if glint.is_some() {
+            GLINT_SHARE * (1.0 - mirror)
+        } else {
+            0.0
+        };
         let at = Interaction {
             p: hit.p,
             origin: offset(hit.p, ng),
@@ -336,7 +364,7 @@ pub(crate) fn radiance<S: Shading>(
             frame,
             wo,
             material,
-            body_share: 1.0 - mirror,
+            body_share: 1.0 - mirror - glint_share,
         };
         let last = bounce == opts.max_bounces;
         l += beta * sample_ld(scene, shading, &at, opts.sampling, last, sampler, rays);
@@ -346,13 +374,20 @@ pub(crate) fn radiance<S: Shading>(
 
         // Continue the path: a smooth coat's mirror with probability F (its weight F / F = 1;
         // no light sample can find a delta, so the emission it meets takes the full weight),
-        // else by sampling the BRDF beneath (its density scaled by 1 − F). Only a coated
-        // material draws the lobe's number, so other paths keep their random stream; it draws
-        // the BRDF sample's two whichever lobe it takes, so its paths stay in step.
-        let lobe = material.coat.map(|_| sampler.next());
+        // a discrete flake's mirror with probability `glint_share` (its weight over that; a
+        // delta too), else by sampling the BRDF beneath (its density scaled by the rest).
+        // Only a coated or flaked material draws the lobe's number, so other paths keep their
+        // random stream; it draws the BRDF sample's two whichever lobe it takes, so its paths
+        // stay in step.
+        let lobe = (material.coat.is_some() || material.flakes.is_some()).then(|| sampler.next());
         let u = sampler.next2();
         let (wi, pdf) = if lobe.is_some_and(|x| x < mirror) {
             (DVec3::new(-wo.x, -wo.y, wo.z), None)
+        } else if let Some((wi, weight)) =
+            glint.filter(|_| lobe.is_some_and(|x| x < mirror + glint_share))
+        {
+            beta *= weight * (1.0 / glint_share);
+            (wi, None)
         } else {
             let Some((wi, f, pdf)) = shading.sample(material, wo, u, opts.sampling) else {
                 break;

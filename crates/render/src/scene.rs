@@ -92,7 +92,8 @@ pub struct RenderDesc {
     pub denoise: Option<bool>,
 }
 
-/// `[materials.NAME]`: exactly one of `brdf`, `table`, `surface`, and optionally `coat_index`.
+/// `[materials.NAME]`: exactly one of `brdf`, `table`, `surface`, `coating`, and optionally
+/// `coat_index` (`flakes` and `flake_seed` with `coating`).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialDesc {
@@ -102,6 +103,14 @@ pub struct MaterialDesc {
     pub table: Option<PathBuf>,
     /// A height map and a scattering method.
     pub surface: Option<crate::surface::SurfaceDesc>,
+    /// A coating description (`gonio coating`'s TOML), whose table is computed on loading
+    /// (seconds; a smooth top's mirror is added by its index).
+    pub coating: Option<PathBuf>,
+    /// With `coating`: its flakes `smooth` (their average BRDF, the default) or `discrete`
+    /// (one by one: sparkle).
+    pub flakes: Option<crate::coating_material::FlakeMode>,
+    /// With `flakes = "discrete"`: the seed that places the flakes (default 1).
+    pub flake_seed: Option<u64>,
     /// The refractive index of a smooth clear coat over the BRDF, whose mirror reflection
     /// (Fresnel) is added as a delta lobe: for the body table of a coating with a smooth top
     /// (`gonio coating compute`), which leaves the mirror out. Default: no coat.
@@ -469,21 +478,42 @@ fn build_materials(
 
 /// One `[materials.NAME]` entry.
 fn build_material(name: &str, m: &MaterialDesc, file: &SceneFile) -> Result<Material> {
-    let material = match (&m.brdf, &m.table, &m.surface) {
-        (Some(spec), None, None) => {
+    if m.coating.is_none() && (m.flakes.is_some() || m.flake_seed.is_some()) {
+        return Err(file.bad(format!(
+            "material `{name}`: `flakes` and `flake_seed` go with `coating` (a coating \
+             description with [flakes])"
+        )));
+    }
+    let material = match (&m.brdf, &m.table, &m.surface, &m.coating) {
+        (Some(spec), None, None, None) => {
             Material::new(name, material::from_model(spec, file.path, name)?)
         }
-        (None, Some(table), None) => match file.assets.table(table) {
+        (None, Some(table), None, None) => match file.assets.table(table) {
             Some(held) => Material::new(name, held.clone()),
             None => Material::from_table(name, material::read_table(&file.resolve(table))?),
         },
-        (None, None, Some(surface)) => Material::from_table(
+        (None, None, Some(surface), None) => Material::from_table(
             name,
             crate::surface::table(surface, file.dir, file.path, name)?,
         ),
+        (None, None, None, Some(coating)) => {
+            if m.coat_index.is_some() {
+                return Err(file.bad(format!(
+                    "material `{name}`: a coating's smooth top gives its own coat index; \
+                     remove `coat_index`"
+                )));
+            }
+            crate::coating_material::material(
+                name,
+                &file.resolve(coating),
+                file.path,
+                m.flakes.unwrap_or_default(),
+                m.flake_seed.unwrap_or(1),
+            )?
+        }
         _ => {
             return Err(file.bad(format!(
-                "material `{name}`: give exactly one of `brdf`, `table`, `surface`"
+                "material `{name}`: give exactly one of `brdf`, `table`, `surface`, `coating`"
             )));
         }
     };

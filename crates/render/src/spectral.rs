@@ -32,6 +32,7 @@
 //!   mode; for a light of RGB c the emitted spectral radiance is `s_c(λ) · D65(λ)` on the film's
 //!   scale.
 
+use crate::flakes::FlakeField;
 use crate::material::Material;
 use crate::path::{Shading, mix, sample_brdf};
 use crate::settings::BrdfSampling;
@@ -201,6 +202,14 @@ impl Shading for SpectralPath {
 
     fn carry_rgb(&self, rgb: Rgb) -> DVec4 {
         DVec4::from_array(self.upsample.map(|w| rgb.dot(w)))
+    }
+
+    fn carry_bands(&self, flakes: &FlakeField, values: &[f64]) -> DVec4 {
+        let bands = flakes.glint().wavelengths_nm();
+        DVec4::from_array(
+            self.wavelengths_nm
+                .map(|w| gonio_brdf::table::band_value(bands, values, w)),
+        )
     }
 
     fn eval(&self, material: &Material, wo: DVec3, wi: DVec3) -> DVec4 {

@@ -27,6 +27,7 @@ pub use analysis::AlbedoCurve;
 pub use builder::{Cell, TableBuilder};
 pub use coords::{HalfDiff, Resolution};
 pub use sampler::{SampledTable, SamplerOptions, TableSampler};
+pub use spectral::band_value;
 
 use crate::bxdf::{Brdf, BrdfSample, Rgb};
 use crate::error::{BrdfError, Result};

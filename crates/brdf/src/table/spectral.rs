@@ -48,7 +48,7 @@ impl SpectralBrdf for SampledTable {
 
 /// The value at `wavelength_nm` of a spectrum given at `bands`: linear between bands, the end
 /// values held beyond them.
-fn band_value(bands: &[f64], values: &[f64], wavelength_nm: f64) -> f64 {
+pub fn band_value(bands: &[f64], values: &[f64], wavelength_nm: f64) -> f64 {
     let last = bands.len() - 1;
     if wavelength_nm <= bands[0] {
         return values[0];

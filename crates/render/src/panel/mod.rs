@@ -79,7 +79,7 @@ impl Panel {
 /// The index of `coating`'s smooth top, whose mirror the renderer adds (at the coat's index at
 /// 550 nm, its dispersion left out of the mirror); `None` for a rough top, whose reflection is
 /// in the table.
-fn coat_index(coating: &Coating) -> Option<f64> {
+pub fn coat_index(coating: &Coating) -> Option<f64> {
     coating
         .roughness
         .is_none()

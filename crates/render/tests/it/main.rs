@@ -11,6 +11,7 @@ mod camera;
 mod common;
 mod denoise;
 mod difference;
+mod flakes;
 mod geometry;
 mod image;
 mod panel;
