@@ -19,6 +19,7 @@ mod report;
 mod study;
 mod surface;
 mod surface_waviness;
+mod texture;
 mod units;
 
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
@@ -81,6 +82,10 @@ enum Command {
     /// with sliders and its readings, colour and picture follow (docs/lab.md):
     /// `gonio lab [--port 8765]`, then open http://127.0.0.1:8765/.
     Lab(lab::LabArgs),
+    /// The virtual texture camera (docs/instruments.md, "Texture"): sparkle under a lamp at
+    /// 15°, 45° and 75° and graininess under diffuse light, from pictures of a coating's flakes
+    /// drawn one by one: `gonio texture COATING.toml [--json] [-o DIR]`.
+    Texture(texture::TextureArgs),
 }
 
 fn main() -> ExitCode {
@@ -108,6 +113,7 @@ fn main() -> ExitCode {
         Command::Multiangle(args) => multiangle::run(args),
         Command::Lab(args) => lab::run(args),
         Command::Coating(cmd) => coating::run(cmd),
+        Command::Texture(args) => texture::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

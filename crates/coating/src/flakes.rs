@@ -409,8 +409,9 @@ impl FlakeLayer {
         self.rho.len()
     }
 
-    /// The fraction getting through the flakes from direction `w`, band `b`.
-    fn through(&self, b: usize, w: DVec3) -> f64 {
+    /// The fraction getting through the flakes from direction `w`, band `b`: `a(w)`, the mean
+    /// over the layer's points of 1 between flakes and the flake's transmittance on them.
+    pub fn through(&self, b: usize, w: DVec3) -> f64 {
         if self.orientation.is_none() {
             return 1.0;
         }
@@ -546,6 +547,11 @@ impl FlakeLayer {
         for b in 0..nb {
             out[b] += scale * (r0[b] + t * (r1[b] - r0[b]));
         }
+    }
+
+    /// A flake's own transmittance in band `b` at the local cosine `cos_h` (0 for metal).
+    pub fn flake_transmittance(&self, b: usize, cos_h: f64) -> f64 {
+        self.optics[b].transmittance(cos_h)
     }
 
     /// The fraction of the base's area that flakes cover (0 for a bare base).

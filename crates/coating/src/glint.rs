@@ -22,6 +22,7 @@
 
 use crate::error::Result;
 use crate::flakes::FlakeLayer;
+use crate::interface::{Interface, Transport};
 use crate::system::Coating;
 use glam::DVec3;
 use gonio_brdf::fresnel::dielectric;
@@ -38,6 +39,8 @@ pub struct Glint {
     layer: FlakeLayer,
     /// The distribution of the flakes' normals.
     orientation: Microfacet,
+    /// The top interface (its own reflection is what the flakes do not shade).
+    top: Interface,
     /// The flakes' mean diameter, m.
     diameter: f64,
     /// The coat's thickness above the flakes, m.
@@ -67,6 +70,7 @@ impl Glint {
             tau,
             layer: FlakeLayer::new(flakes, optics, vec![0.0; wavelengths_nm.len()]),
             orientation: flakes.orientation(),
+            top: Interface::new(eta, coating.roughness),
             diameter: flakes.diameter_um * 1e-6,
             depth: coating.coat.thickness_um * 1e-6,
             wavelengths_nm: wavelengths_nm.to_vec(),
@@ -137,6 +141,38 @@ impl Glint {
         let (wo_in, wi_in) = (self.inside(wo), self.inside(wi));
         self.layer.lobe(wo_in, wi_in, out);
         self.through_coat([wo, wi, wo_in, wi_in], 1.0 / (self.eta * self.eta), out);
+    }
+
+    /// The top interface's own reflection for light from `wi` to `wo` (outside), 1/sr: 0 for a
+    /// smooth top, whose mirror is a delta kept apart.
+    pub fn top_reflection(&self, wo: DVec3, wi: DVec3) -> f64 {
+        if self.top.is_smooth() {
+            0.0
+        } else {
+            self.top.f(wo, wi, Transport::Radiance)
+        }
+    }
+
+    /// What a point of the flake layer lets through towards the viewer at `wo` (outside) of
+    /// the light that has been inside the coat, relative to the layer's mean, per band into
+    /// `out`: between flakes (`normal` `None`) `1 / a(wo')`, on a flake of normal h
+    /// `T_flake(wo'·h) / a(wo')` (0 for metal), with `a(wo') = 1 − c + c T̃(wo')` the mean
+    /// ([`FlakeLayer::through`], primes: inside). Its mean over the layer's points is 1, so a
+    /// renderer that scales the coating's light from inside by it (a pixel then sees the base
+    /// between the flakes, and not through a metal flake) keeps the coating's BRDF on average;
+    /// what it scales exactly is the light that leaves through the flake layer from below
+    /// (the base's), and the rest (light the flakes send up after bouncing in the coat) is
+    /// scaled alike, an approximation of its pattern, not of its mean.
+    pub fn body_scale(&self, wo: DVec3, normal: Option<DVec3>, out: &mut [f64]) {
+        let w = self.inside(wo);
+        for (b, o) in out.iter_mut().enumerate() {
+            let a = self.layer.through(b, w);
+            let local = match normal {
+                None => 1.0,
+                Some(h) => self.layer.flake_transmittance(b, w.dot(h).max(0.0)),
+            };
+            *o = if a > 0.0 { local / a } else { 0.0 };
+        }
     }
 
     /// One flake of normal `h` (the coating's frame, `h.z > 0`) seen from `wo` outside: the

@@ -35,26 +35,33 @@ pub fn material(
     seed: u64,
 ) -> Result<Material> {
     let bad = |p: String| RenderError::scene(scene, format!("material `{name}`: {p}"));
-    let bands = default_bands();
-    let coating = gonio_coating::description::read(path, &bands)
+    let coating = gonio_coating::description::read(path, &default_bands())
         .map_err(|e| bad(format!("coating {}: {e}", path.display())))?;
+    from_coating(name, &coating, &path.display().to_string(), mode, seed)
+        .map_err(|e| bad(format!("coating {}: {e}", path.display())))
+}
+
+/// The material `name` of `coating` (described in `source`, for the table's provenance), its
+/// flakes drawn as `mode` says and placed by `seed`.
+pub fn from_coating(
+    name: &str,
+    coating: &Coating,
+    source: &str,
+    mode: FlakeMode,
+    seed: u64,
+) -> Result<Material> {
+    let bands = default_bands();
     let glint = match mode {
         FlakeMode::Smooth => None,
-        FlakeMode::Discrete => Some(
-            Glint::new(&coating, &bands)
-                .map_err(|e| bad(format!("coating {}: {e}", path.display())))?
-                .ok_or_else(|| {
-                    bad(format!(
-                        "flakes = \"discrete\" needs a coating with [flakes]; {} has none",
-                        path.display()
-                    ))
-                })?,
-        ),
+        FlakeMode::Discrete => Some(Glint::new(coating, &bands)?.ok_or_else(|| {
+            RenderError::Invalid(
+                "flakes = \"discrete\" needs a coating with [flakes]; this one has none".into(),
+            )
+        })?),
     };
-    let table = table(&coating, path, glint.as_ref())
-        .map_err(|e| bad(format!("coating {}: {e}", path.display())))?;
+    let table = table(coating, source, glint.as_ref())?;
     let mut material = Material::from_table(name, table);
-    if let Some(n) = panel::coat_index(&coating) {
+    if let Some(n) = panel::coat_index(coating) {
         material = material.with_coat(n);
     }
     if let Some(glint) = glint {
@@ -66,11 +73,10 @@ pub fn material(
 /// `coating`'s table for a picture, without `glint` when given.
 fn table(
     coating: &Coating,
-    path: &Path,
+    source: &str,
     glint: Option<&Glint>,
 ) -> gonio_coating::Result<gonio_brdf::table::BrdfTable> {
     let bands = default_bands();
-    let source = path.display().to_string();
     let provenance = coating.provenance(source, coating.method(panel::WALKS));
     let resolution = panel::resolution(coating);
     match glint {

@@ -34,6 +34,8 @@ pub mod scene;
 pub mod settings;
 pub mod spectral;
 pub mod surface;
+pub mod texture;
+pub mod texture_metrics;
 
 pub use assets::Assets;
 pub use error::{RenderError, Result};

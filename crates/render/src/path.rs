@@ -35,6 +35,8 @@ pub(crate) trait Carried:
     const ONE: Self;
     /// The largest component (for Russian roulette).
     fn max_component(self) -> f64;
+    /// Every component at least 0.
+    fn at_least_zero(self) -> Self;
 }
 
 impl Carried for Rgb {
@@ -43,6 +45,9 @@ impl Carried for Rgb {
     fn max_component(self) -> f64 {
         self.max_element()
     }
+    fn at_least_zero(self) -> Self {
+        self.max(Rgb::ZERO)
+    }
 }
 
 impl Carried for DVec4 {
@@ -50,6 +55,9 @@ impl Carried for DVec4 {
     const ONE: Self = DVec4::ONE;
     fn max_component(self) -> f64 {
         self.max_element()
+    }
+    fn at_least_zero(self) -> Self {
+        self.max(DVec4::ZERO)
     }
 }
 
@@ -206,7 +214,7 @@ fn offset(p: DVec3, n: DVec3) -> DVec3 {
 }
 
 /// What a light sample needs of the surface interaction it lights.
-struct Interaction<'a> {
+struct Interaction<'a, C> {
     /// The hit point.
     p: DVec3,
     /// The point rays leave from (off the surface on the side of `ng`).
@@ -222,6 +230,26 @@ struct Interaction<'a> {
     /// The probability that the path continues by sampling the BRDF (1 − F under a smooth
     /// coat, whose mirror takes the rest; 1 without one).
     body_share: f64,
+    /// Under discrete flakes, the share of the coating's light from inside that this point
+    /// lets through to the viewer ([`gonio_coating::glint::Glint::body_scale`]): the base
+    /// between the flakes, not through a metal flake.
+    body_scale: Option<C>,
+}
+
+impl<C: Carried> Interaction<'_, C> {
+    /// The material's BRDF `f` for the pair (`wo`, `wi`) as this point shows it: under
+    /// discrete flakes, the top's own reflection as it is and the rest scaled by
+    /// `body_scale` (kept non-negative where the table's interpolation dips under the top's
+    /// exact reflection).
+    fn shown<S: Shading<C = C>>(&self, shading: &S, f: C, wi: DVec3) -> C {
+        match (&self.body_scale, &self.material.flakes) {
+            (Some(scale), Some(flakes)) => {
+                let top = shading.carry_rgb(Rgb::splat(flakes.glint().top_reflection(self.wo, wi)));
+                ((f + top * -1.0) * *scale + top).at_least_zero()
+            }
+            _ => f,
+        }
+    }
 }
 
 /// The probability of following a discrete flake's mirror, where there is one, rather than
@@ -244,7 +272,7 @@ fn emission_weight(brdf_pdf: Option<f64>, light_pdf: impl FnOnce() -> f64) -> f6
 fn sample_ld<S: Shading>(
     scene: &Scene,
     shading: &S,
-    at: &Interaction,
+    at: &Interaction<S::C>,
     sampling: BrdfSampling,
     last: bool,
     sampler: &mut Sampler,
@@ -266,7 +294,7 @@ fn sample_ld<S: Shading>(
     if !(wi.z > 0.0 && ls.wi.dot(at.ng) > 0.0 && ls.li != Rgb::ZERO && ls.pdf > 0.0) {
         return S::C::ZERO;
     }
-    let f = shading.eval(at.material, at.wo, wi);
+    let f = at.shown(shading, shading.eval(at.material, at.wo, wi), wi);
     if f == S::C::ZERO {
         return S::C::ZERO;
     }
@@ -344,14 +372,24 @@ pub(crate) fn radiance<S: Shading>(
             break;
         }
         let mirror = material.mirror(wo.z);
-        // A discrete flake under the point: the direction it mirrors and its weight.
-        let glint = material.flakes.as_ref().and_then(|flakes| {
-            let flake = flakes.flake_at(flakes.under(hit.p, &frame, wo))?;
-            let mut weight = [0.0; MAX_BANDS];
-            let weight = &mut weight[..flakes.glint().wavelengths_nm().len()];
-            let wi = flakes.glint().flake(wo, flake.normal, weight)?;
-            Some((wi, shading.carry_bands(flakes, weight)))
-        });
+        // Discrete flakes: the flake under the point (or a gap), the direction it mirrors
+        // and its weight, and what the point lets through of the light from inside.
+        let mut glint = None;
+        let mut body_scale = None;
+        if let Some(flakes) = &material.flakes {
+            let flake = flakes.flake_at(flakes.under(hit.p, &frame, wo));
+            let mut bands = [0.0; MAX_BANDS];
+            let bands = &mut bands[..flakes.glint().wavelengths_nm().len()];
+            flakes
+                .glint()
+                .body_scale(wo, flake.map(|f| f.normal), bands);
+            body_scale = Some(shading.carry_bands(flakes, bands));
+            if let Some(flake) = flake
+                && let Some(wi) = flakes.glint().flake(wo, flake.normal, bands)
+            {
+                glint = Some((wi, shading.carry_bands(flakes, bands)));
+            }
+        }
         let glint_share = if glint.is_some() {
             GLINT_SHARE * (1.0 - mirror)
         } else {
@@ -365,6 +403,7 @@ pub(crate) fn radiance<S: Shading>(
             wo,
             material,
             body_share: 1.0 - mirror - glint_share,
+            body_scale,
         };
         let last = bounce == opts.max_bounces;
         l += beta * sample_ld(scene, shading, &at, opts.sampling, last, sampler, rays);
@@ -392,6 +431,7 @@ pub(crate) fn radiance<S: Shading>(
             let Some((wi, f, pdf)) = shading.sample(material, wo, u, opts.sampling) else {
                 break;
             };
+            let f = at.shown(shading, f, wi);
             let pdf = pdf * at.body_share;
             if pdf <= 0.0 {
                 break;

@@ -18,3 +18,4 @@ mod panel;
 mod render;
 mod scene;
 mod spectral;
+mod texture;
