@@ -2,6 +2,7 @@
 //! through the real binary.
 
 use crate::common::{gonio, ok};
+use gonio_surface::waviness::{Direction, Quantity};
 use std::path::Path;
 
 fn info_json(file: &Path) -> serde_json::Value {
@@ -217,9 +218,9 @@ fn waviness_reads_the_bands_a_file_resolves() {
     assert_eq!(names, ["Wa", "Wb", "Wc", "Wd", "We", "SW", "LW"]);
     let map = gonio_surface::io::read(&frt).unwrap();
     let lib =
-        gonio_surface::waviness::waviness(&map, gonio_surface::waviness::Direction::X).unwrap();
+        gonio_surface::waviness::waviness(&map, Direction::X, Quantity::Slope).unwrap();
     for (b, r) in bands.iter().zip(&lib) {
-        match (b["rms_slope_rad"].as_f64(), r.rms_slope) {
+        match (b["rms_slope_rad"].as_f64(), r.rms) {
             // JSON's shortest decimal form reads back within an ulp or two.
             (Some(j), Some(l)) => {
                 assert!((j - l).abs() <= 1e-15 * l, "{}: {j} vs {l}", r.band.name)
