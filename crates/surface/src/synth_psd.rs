@@ -59,19 +59,22 @@ const ABSCISSAE: [(&str, fn(f64) -> f64); 2] = [
 /// The header of the PSD column: the areal isotropic PSD in m⁴.
 const PSD_COLUMN: &str = "psd_m4";
 
+/// The format's name in errors.
+const TABLE: &str = "PSD table";
+
 impl RadialPsd {
     /// A table of `(q, C(q))` pairs (rad/m, m⁴), in any order; at least two points, each
     /// finite, `q > 0`, `C ≥ 0`, no wavenumber twice.
     pub fn new(mut points: Vec<(f64, f64)>) -> Result<RadialPsd> {
         if points.len() < 2 {
-            return Err(SurfaceError::Invalid(format!(
+            return Err(SurfaceError::Request(format!(
                 "a PSD table needs at least two points, it has {}",
                 points.len()
             )));
         }
         for &(q, c) in &points {
             if !(q.is_finite() && q > 0.0 && c.is_finite() && c >= 0.0) {
-                return Err(SurfaceError::Invalid(format!(
+                return Err(SurfaceError::Request(format!(
                     "PSD point q = {q} rad/m, C = {c} m⁴: need a positive, finite wavenumber and \
                      a finite PSD >= 0"
                 )));
@@ -79,7 +82,7 @@ impl RadialPsd {
         }
         points.sort_by(|a, b| a.0.total_cmp(&b.0));
         if let Some(w) = points.windows(2).find(|w| w[0].0 == w[1].0) {
-            return Err(SurfaceError::Invalid(format!(
+            return Err(SurfaceError::Request(format!(
                 "the PSD table gives the wavenumber {} rad/m twice",
                 w[0].0
             )));
@@ -88,10 +91,10 @@ impl RadialPsd {
         Ok(RadialPsd { q, psd })
     }
 
-    /// Parse a PSD table (the format of [`RadialPsd::read`]); `name` names the source in errors.
-    pub fn parse(text: &str, name: &str) -> Result<RadialPsd> {
+    /// Parse a PSD table (the format of [`RadialPsd::read`]); `path` names the source in errors.
+    pub fn parse(text: &str, path: &Path) -> Result<RadialPsd> {
         let err = |line: usize, what: String| {
-            SurfaceError::Invalid(format!("{name}, line {line}: {what}"))
+            SurfaceError::format(path, TABLE, format!("line {line}: {what}"))
         };
         let mut lines = text
             .lines()
@@ -106,7 +109,7 @@ impl RadialPsd {
         };
         let (hl, header) = lines
             .next()
-            .ok_or_else(|| err(0, "no header line and no data".into()))?;
+            .ok_or_else(|| err(1, "no header line and no data".into()))?;
         let header = split(header);
         let to_q = match header.as_slice() {
             [x, c] if c == PSD_COLUMN => ABSCISSAE
@@ -144,7 +147,7 @@ impl RadialPsd {
             }
             points.push((to_q(nums[0]), nums[1]));
         }
-        RadialPsd::new(points).map_err(|e| SurfaceError::Invalid(format!("{name}: {e}")))
+        RadialPsd::new(points).map_err(|e| SurfaceError::format(path, TABLE, e.to_string()))
     }
 
     /// Read a PSD table from a text file: `#` comments and blank lines are skipped; the first
@@ -152,10 +155,8 @@ impl RadialPsd {
     /// cycles per mm), then `psd_m4` (the areal isotropic PSD `C(q)` in m⁴, the module's
     /// convention); each further line two numbers separated by a comma, semicolon or spaces.
     pub fn read(path: &Path) -> Result<RadialPsd> {
-        let text = std::fs::read_to_string(path).map_err(|e| {
-            SurfaceError::Invalid(format!("{}: cannot read the PSD table: {e}", path.display()))
-        })?;
-        RadialPsd::parse(&text, &path.display().to_string())
+        let text = std::fs::read_to_string(path).map_err(|e| SurfaceError::io(path, e))?;
+        RadialPsd::parse(&text, path)
     }
 
     /// `C(q)` (m⁴): interpolated linearly in log q and log C between the tabulated points
@@ -250,7 +251,7 @@ impl PsdSurface {
         self.check()?;
         let amplitude = self.filter();
         if !amplitude.iter().any(|&a| a > 0.0) {
-            return Err(SurfaceError::Invalid(format!(
+            return Err(SurfaceError::Request(format!(
                 "the PSD has no power at the wavelengths a {} × {} mm map at {} mm spacing holds \
                  ({} to {} mm)",
                 mm(self.nx as f64 * self.dx),
@@ -298,7 +299,7 @@ impl PsdSurface {
     fn check(&self) -> Result<()> {
         for (name, v) in [("dx", self.dx), ("dy", self.dy)] {
             if !(v.is_finite() && v > 0.0) {
-                return Err(SurfaceError::Invalid(format!(
+                return Err(SurfaceError::Request(format!(
                     "{name} = {v} m must be a positive, finite length"
                 )));
             }
@@ -306,7 +307,7 @@ impl PsdSurface {
         check_grid(self.nx, self.ny)?;
         match self.target {
             Target::Sq(v) | Target::SlopeX(v) if !(v.is_finite() && v > 0.0) => {
-                return Err(SurfaceError::Invalid(format!(
+                return Err(SurfaceError::Request(format!(
                     "the requested rms height or slope {v} must be positive and finite"
                 )));
             }
@@ -319,19 +320,19 @@ impl PsdSurface {
         } = self.spectrum
         {
             if self.target == Target::AsGiven {
-                return Err(SurfaceError::Invalid(
+                return Err(SurfaceError::Request(
                     "a power-law PSD has no magnitude of its own: request an rms height or an rms \
                      slope"
                         .into(),
                 ));
             }
             if !exponent.is_finite() {
-                return Err(SurfaceError::Invalid(format!(
+                return Err(SurfaceError::Request(format!(
                     "the PSD exponent {exponent} must be finite"
                 )));
             }
             if !(short.is_finite() && long.is_finite() && short > 0.0 && short < long) {
-                return Err(SurfaceError::Invalid(format!(
+                return Err(SurfaceError::Request(format!(
                     "the wavelengths {} mm (short) and {} mm (long) must be positive with the \
                      short one below the long one",
                     mm(short),
@@ -340,7 +341,7 @@ impl PsdSurface {
             }
             let side = (self.nx as f64 * self.dx).min(self.ny as f64 * self.dy);
             if long > side * (1.0 + 1e-9) {
-                return Err(SurfaceError::Invalid(format!(
+                return Err(SurfaceError::Request(format!(
                     "the long wavelength {} mm exceeds the map's shorter side, {} mm: a periodic \
                      map holds no longer wave",
                     mm(long),
@@ -349,7 +350,7 @@ impl PsdSurface {
             }
             let spacing = self.dx.max(self.dy);
             if short < 2.0 * spacing * (1.0 - 1e-9) {
-                return Err(SurfaceError::Invalid(format!(
+                return Err(SurfaceError::Request(format!(
                     "the short wavelength {} mm is under two spacings ({} mm): the grid cannot \
                      hold it",
                     mm(short),
