@@ -28,6 +28,11 @@ pub enum SurfaceCommand {
     Info(InfoArgs),
     /// Synthesise a periodic Gaussian random surface (FFT spectral filtering): a Gaussian or
     /// exponential ACF, a power-law PSD (an orange peel), or a measured PSD table.
+    ///
+    /// `--corr-um T --sq-nm S` gives an ACF surface; `--psd FILE` a measured PSD's; otherwise a
+    /// power-law PSD C(q) ∝ q^-n between two wavelengths, by default an automotive clear coat's
+    /// orange peel: n = 4 between 0.3 and 10 mm with an rms slope along x of 1 mrad
+    /// (docs/surface.md). Lengths in the unit each flag names; the map is written in metres.
     Gen(crate::surface_gen::GenArgs),
     /// Convert a height map to another format (the output extension picks .x3p or .gsf).
     Convert(ConvertArgs),

@@ -26,9 +26,7 @@ enum AcfArg {
     Exponential,
 }
 
-/// Three kinds of surface: `--corr-um T` (with `--sq-nm`) gives an ACF surface; `--psd FILE` a
-/// measured PSD; otherwise a power-law PSD, by default an orange peel (q^-4 between 0.3 and
-/// 10 mm, rms slope along x 1 mrad).
+/// The arguments of `gonio surface gen` (the kinds of surface: [`crate::surface::SurfaceCommand`]).
 #[derive(Args)]
 pub struct GenArgs {
     /// rms height Sq in nanometres, exact after plane levelling. Required with --corr-um.
@@ -95,7 +93,8 @@ pub fn run(a: &GenArgs) -> Result<()> {
         let map = busy("synthesising", || request.generate()).context(
             "cannot synthesise the surface (check --sq-nm, --corr-um, --dx-um > 0 and --size >= 2)",
         )?;
-        (map, format!("{acf:?} ACF, T {corr_um} µm").to_lowercase())
+        let name = format!("{acf:?}").to_lowercase();
+        (map, format!("{name} ACF, T {corr_um} µm"))
     } else {
         let (spectrum, what) = match &a.psd {
             Some(path) => {
@@ -140,8 +139,8 @@ pub fn run(a: &GenArgs) -> Result<()> {
             dy: dx,
             seed: a.seed,
         };
-        let map = busy("synthesising", || request.generate())
-            .context("cannot synthesise the surface")?;
+        let map =
+            busy("synthesising", || request.generate()).context("cannot synthesise the surface")?;
         (map, what)
     };
     write(&map, &a.output)?;

@@ -83,7 +83,14 @@ impl GaussianSurface {
     /// fewer than 2 points along an axis.
     pub fn generate(&self) -> Result<HeightMap> {
         self.check()?;
-        let raw = filtered_noise(&self.filter(), self.nx, self.ny, self.dx, self.dy, self.seed)?;
+        let raw = filtered_noise(
+            &self.filter(),
+            self.nx,
+            self.ny,
+            self.dx,
+            self.dy,
+            self.seed,
+        )?;
         let rms = levelled_rms(&raw)?;
         let mut map = scaled(raw, self.sq / rms)?;
         map.meta.extra = vec![
@@ -126,7 +133,6 @@ impl GaussianSurface {
             .data
             .mapv(|s| s.re.max(0.0).sqrt())
     }
-
 }
 
 /// Check a grid of `nx × ny` points: at least 2 × 2, at most [`crate::heightmap::MAX_POINTS`].

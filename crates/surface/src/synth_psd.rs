@@ -166,7 +166,10 @@ impl RadialPsd {
         if !(q >= first && q <= last) {
             return 0.0;
         }
-        let i = self.q.partition_point(|&v| v <= q).clamp(1, self.q.len() - 1);
+        let i = self
+            .q
+            .partition_point(|&v| v <= q)
+            .clamp(1, self.q.len() - 1);
         let (q0, q1, c0, c1) = (self.q[i - 1], self.q[i], self.psd[i - 1], self.psd[i]);
         if c0 > 0.0 && c1 > 0.0 {
             let t = (q / q0).ln() / (q1 / q0).ln();
@@ -187,7 +190,11 @@ impl RadialPsd {
 pub enum Spectrum {
     /// `C(q) ∝ q^-exponent` for wavelengths between `short` and `long` (m), zero outside. It has
     /// no magnitude of its own: the surface's [`Target`] sets it.
-    PowerLaw { exponent: f64, long: f64, short: f64 },
+    PowerLaw {
+        exponent: f64,
+        long: f64,
+        short: f64,
+    },
     /// A measured radial PSD.
     Radial(RadialPsd),
 }

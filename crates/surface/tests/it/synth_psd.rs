@@ -96,7 +96,11 @@ fn a_table_of_a_power_law_gives_the_power_laws_map() {
         .collect::<Vec<_>>()
         .join("\n");
     let by_frequency = std::iter::once("frequency_per_mm psd_m4".to_string())
-        .chain(wavelengths_mm.iter().map(|l| format!("{} {:e}", 1.0 / l, c(*l))))
+        .chain(
+            wavelengths_mm
+                .iter()
+                .map(|l| format!("{} {:e}", 1.0 / l, c(*l))),
+        )
         .collect::<Vec<_>>()
         .join("\n");
     let want = law.generate().unwrap();
@@ -149,7 +153,11 @@ fn a_table_keeps_its_own_magnitude() {
     let (dq, mut sum, mut sum2) = (2.0 * PI / (nx as f64 * d), 0.0, 0.0);
     for kx in 0..=nx / 2 {
         for ky in 0..ny {
-            let fy = if ky <= ny / 2 { ky as f64 } else { ky as f64 - ny as f64 };
+            let fy = if ky <= ny / 2 {
+                ky as f64
+            } else {
+                ky as f64 - ny as f64
+            };
             if kx == 0 && ky == 0 {
                 continue;
             }
@@ -175,7 +183,10 @@ fn tables_that_cannot_be_read_say_where() {
     let path = Path::new("peel.csv");
     for (text, says) in [
         ("", "line 1"),
-        ("lambda_mm,psd_m4\n1,2\n2,3", "wavelength_mm or frequency_per_mm"),
+        (
+            "lambda_mm,psd_m4\n1,2\n2,3",
+            "wavelength_mm or frequency_per_mm",
+        ),
         ("wavelength_mm,psd\n1,2\n2,3", "expected two columns"),
         ("wavelength_mm,psd_m4\n1,2", "at least two points"),
         ("wavelength_mm,psd_m4\n1,2\n1,3", "twice"),
@@ -294,7 +305,11 @@ mod slow {
         let mut modes = Vec::new();
         for kx in 0..=nx / 2 {
             for ky in 0..ny {
-                let fy = if ky <= ny / 2 { ky as f64 } else { ky as f64 - ny as f64 };
+                let fy = if ky <= ny / 2 {
+                    ky as f64
+                } else {
+                    ky as f64 - ny as f64
+                };
                 let (qx, qy) = (kx as f64 * dqx, fy * dqy);
                 let p = c(qx.hypot(qy));
                 if p > 0.0 {
@@ -336,7 +351,11 @@ mod slow {
             let want = target * target * band / total;
             let f = (length - 2.0 * b.long_m) / length;
             if f <= 0.0 {
-                assert!(got.is_nan(), "{}: a band too long for the map reads", b.name);
+                assert!(
+                    got.is_nan(),
+                    "{}: a band too long for the map reads",
+                    b.name
+                );
                 continue;
             }
             let sd = (1.0 / (n_band * f).sqrt() + 1.0 / n_total.sqrt()) / (seeds as f64).sqrt();
@@ -398,7 +417,10 @@ mod slow {
         let sxy: f64 = (0..x.len()).map(|i| w[i] * (x[i] - xm) * (y[i] - ym)).sum();
         let slope = sxy / sxx;
         let se = 1.0 / sxx.sqrt();
-        eprintln!("log-log slope {slope:.4} ± {se:.4} over {} rings", bins.len());
+        eprintln!(
+            "log-log slope {slope:.4} ± {se:.4} over {} rings",
+            bins.len()
+        );
         assert!(
             (slope + exponent).abs() < 4.0 * se + 0.01,
             "{slope} vs {} (se {se})",

@@ -65,7 +65,9 @@ fn a_sines_curvature_reads_as_the_bands_transmission_says() {
     for r in waviness(&map, Direction::X, Quantity::Curvature).unwrap() {
         let b = r.band;
         let want = rms * (transmission(lambda, b.short_m) - transmission(lambda, b.long_m));
-        let got = r.rms.unwrap_or_else(|| panic!("{}: {:?}", b.name, r.unresolved));
+        let got = r
+            .rms
+            .unwrap_or_else(|| panic!("{}: {:?}", b.name, r.unresolved));
         assert!(
             (got - want).abs() <= 0.002 * rms + 1e-9,
             "{}: {got} vs {want} 1/m",
@@ -115,16 +117,15 @@ fn directions_gaps_and_unresolved_bands() {
             .rms
             .is_none()
     );
-    let wc = |v: &[BandReading]| {
-        v.iter()
-            .find(|r| r.band.name == "Wc")
-            .unwrap()
-            .rms
-            .unwrap()
-    };
+    let wc = |v: &[BandReading]| v.iter().find(|r| r.band.name == "Wc").unwrap().rms.unwrap();
     assert!((wc(&r) - wc(&along_x)).abs() < 0.01 * wc(&along_x));
     // 60 µm spacing: Wa (from 0.1 mm) is too fine.
-    let coarse = waviness(&sine_map(a, lambda, 1001, 60e-6, 1), Direction::X, Quantity::Slope).unwrap();
+    let coarse = waviness(
+        &sine_map(a, lambda, 1001, 60e-6, 1),
+        Direction::X,
+        Quantity::Slope,
+    )
+    .unwrap();
     assert!(
         coarse[0]
             .unresolved
@@ -145,10 +146,7 @@ fn a_measured_map_reads_where_it_can() {
     let r = waviness(&map, Direction::X, Quantity::Slope).unwrap();
     for b in &r {
         match b.band.name {
-            "Wa" | "Wb" | "SW" => assert!(
-                b.rms.is_some_and(|s| s > 0.0 && s.is_finite()),
-                "{b:?}"
-            ),
+            "Wa" | "Wb" | "SW" => assert!(b.rms.is_some_and(|s| s > 0.0 && s.is_finite()), "{b:?}"),
             "Wd" | "We" | "LW" => assert!(
                 b.unresolved
                     .as_ref()
