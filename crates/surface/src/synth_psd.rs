@@ -50,8 +50,11 @@ pub struct RadialPsd {
     psd: Vec<f64>,
 }
 
+/// A conversion of a table's abscissa to the wavenumber q, rad/m.
+type ToWavenumber = fn(f64) -> f64;
+
 /// The columns a PSD table may name: the abscissa's header and its conversion to q (rad/m).
-const ABSCISSAE: [(&str, fn(f64) -> f64); 2] = [
+const ABSCISSAE: [(&str, ToWavenumber); 2] = [
     ("wavelength_mm", |l| 2.0 * PI / (l * 1e-3)),
     ("frequency_per_mm", |f| 2.0 * PI * f * 1e3),
 ];
