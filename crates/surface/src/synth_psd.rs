@@ -393,9 +393,14 @@ impl PsdSurface {
     }
 }
 
-/// Length in mm for messages, four significant digits.
+/// Length in mm for messages, to four significant digits.
 fn mm(m: f64) -> String {
-    format!("{}", (m * 1e3 * 1e4).round() / 1e4)
+    let v = m * 1e3;
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let scale = 10f64.powi(3 - v.abs().log10().floor() as i32);
+    format!("{}", (v * scale).round() / scale)
 }
 
 /// The mean square forward-difference slope along x of `map` less the levelling plane's x slope,
