@@ -18,6 +18,7 @@ mod render;
 mod report;
 mod study;
 mod surface;
+mod surface_gen;
 mod surface_waviness;
 mod texture;
 mod units;

@@ -4,11 +4,10 @@
 
 use crate::units::length;
 use anyhow::{Context, Result, bail};
-use clap::{Args, Subcommand, ValueEnum};
+use clap::{Args, Subcommand};
 use gonio_plot::{self as plot, Raster};
 use gonio_surface::profile_stats::profile_statistics;
 use gonio_surface::stats::{self, Statistics};
-use gonio_surface::synth::{Acf, GaussianSurface};
 use gonio_surface::{ChannelSelector, HeightMap, io, ops};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -27,8 +26,14 @@ pub enum SurfaceCommand {
     /// Print the grid, metadata, the rms height as read and the ISO 25178-2 statistics after
     /// plane levelling of a file.
     Info(InfoArgs),
-    /// Synthesise a periodic Gaussian random surface (FFT spectral filtering).
-    Gen(GenArgs),
+    /// Synthesise a periodic Gaussian random surface (FFT spectral filtering): a Gaussian or
+    /// exponential ACF, a power-law PSD (an orange peel), or a measured PSD table.
+    ///
+    /// `--corr-um T --sq-nm S` gives an ACF surface; `--psd FILE` a measured PSD's; otherwise a
+    /// power-law PSD C(q) ∝ q^-n between two wavelengths, by default an automotive clear coat's
+    /// orange peel: n = 4 between 0.3 and 10 mm with an rms slope along x of 1 mrad
+    /// (docs/surface.md). Lengths in the unit each flag names; the map is written in metres.
+    Gen(crate::surface_gen::GenArgs),
     /// Convert a height map to another format (the output extension picks .x3p or .gsf).
     Convert(ConvertArgs),
     /// Subtract the least-squares plane.
@@ -50,39 +55,6 @@ pub struct InfoArgs {
     /// Print one JSON object (lengths in metres: keys ending in _m).
     #[arg(long)]
     json: bool,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum AcfArg {
-    /// sigma² exp(-r²/T²)
-    Gaussian,
-    /// sigma² exp(-r/T)
-    Exponential,
-}
-
-#[derive(Args)]
-pub struct GenArgs {
-    /// rms height Sq in nanometres (exact after levelling).
-    #[arg(long)]
-    sq_nm: f64,
-    /// Correlation length T in micrometres.
-    #[arg(long)]
-    corr_um: f64,
-    /// Shape of the autocorrelation function.
-    #[arg(long, value_enum, default_value = "gaussian")]
-    acf: AcfArg,
-    /// Points along each side (the map is size × size).
-    #[arg(long)]
-    size: usize,
-    /// Spacing between points in micrometres (both axes).
-    #[arg(long)]
-    dx_um: f64,
-    /// Seed of the random numbers (same seed, same map on any machine).
-    #[arg(long, default_value_t = 1)]
-    seed: u64,
-    /// Output file, .x3p or .gsf.
-    #[arg(short, long)]
-    output: PathBuf,
 }
 
 #[derive(Args)]
@@ -168,7 +140,7 @@ pub struct PlotArgs {
 pub fn run(cmd: SurfaceCommand) -> Result<()> {
     match cmd {
         SurfaceCommand::Info(a) => info(&a),
-        SurfaceCommand::Gen(a) => generate(&a),
+        SurfaceCommand::Gen(a) => crate::surface_gen::run(&a),
         SurfaceCommand::Convert(a) => {
             let output = a
                 .output
@@ -227,13 +199,13 @@ pub fn read(path: &Path) -> Result<HeightMap> {
     Ok(map)
 }
 
-fn write(map: &HeightMap, path: &Path) -> Result<()> {
+pub fn write(map: &HeightMap, path: &Path) -> Result<()> {
     io::write(map, path)?;
     Ok(())
 }
 
 /// Run `work` with a spinner on a terminal (nothing when stderr is a pipe).
-fn busy<T>(message: &str, work: impl FnOnce() -> T) -> T {
+pub fn busy<T>(message: &str, work: impl FnOnce() -> T) -> T {
     let bar = crate::progress::spinner(message);
     let out = work();
     bar.finish_and_clear();
@@ -476,35 +448,6 @@ fn info_text(path: &Path, map: &HeightMap, st: &Statistics, rms_as_read: f64) ->
         s += &format!("  {k}: {v}\n");
     }
     s
-}
-
-fn generate(a: &GenArgs) -> Result<()> {
-    let request = GaussianSurface {
-        sq: a.sq_nm * 1e-9,
-        corr_length: a.corr_um * 1e-6,
-        acf: match a.acf {
-            AcfArg::Gaussian => Acf::Gaussian,
-            AcfArg::Exponential => Acf::Exponential,
-        },
-        nx: a.size,
-        ny: a.size,
-        dx: a.dx_um * 1e-6,
-        dy: a.dx_um * 1e-6,
-        seed: a.seed,
-    };
-    let map = busy("synthesising", || request.generate()).context(
-        "cannot synthesise the surface (check --sq-nm, --corr-um, --dx-um > 0 and --size >= 2)",
-    )?;
-    write(&map, &a.output)?;
-    eprintln!(
-        "wrote {}: {n} × {n} points at {} µm, Sq {} nm, T {} µm",
-        a.output.display(),
-        a.dx_um,
-        a.sq_nm,
-        a.corr_um,
-        n = a.size
-    );
-    Ok(())
 }
 
 fn crop(a: &CropArgs) -> Result<()> {

@@ -28,6 +28,10 @@ pub enum SurfaceError {
     /// A height map that breaks the invariants of [`crate::HeightMap`] (bad spacing, NaN, size).
     #[error("invalid height map: {0}")]
     Invalid(String),
+    /// A request that cannot be met (e.g. synthesis parameters that contradict each other or
+    /// the grid); the message says which and why.
+    #[error("{0}")]
+    Request(String),
 }
 
 impl SurfaceError {

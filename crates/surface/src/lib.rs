@@ -20,6 +20,7 @@ pub mod profile_stats;
 pub mod spline;
 pub mod stats;
 pub mod synth;
+pub mod synth_psd;
 pub mod waviness;
 
 pub use channel::{Channel, ChannelSelector};

@@ -83,36 +83,16 @@ impl GaussianSurface {
     /// fewer than 2 points along an axis.
     pub fn generate(&self) -> Result<HeightMap> {
         self.check()?;
-        let (nx, ny) = (self.nx, self.ny);
-        let amplitude = self.filter();
-        let mut spectrum = fft2::forward(self.white_noise().view());
-        Zip::from(&mut spectrum.data)
-            .and(&amplitude)
-            .par_for_each(|s, &a| *s *= a);
-        spectrum.data[[0, 0]] = Default::default();
-        let raw = HeightMap::new(fft2::inverse(spectrum), self.dx, self.dy)?;
-        let plane = ops::fit_plane(&raw)?;
-        let (dx, dy) = (self.dx, self.dy);
-        let residual: f64 = ops::per_row(raw.heights(), |iy, row| {
-            let y = iy as f64 * dy;
-            row.iter()
-                .enumerate()
-                .map(|(ix, z)| (z - plane.height(ix as f64 * dx, y)).powi(2))
-                .sum::<f64>()
-        })
-        .into_iter()
-        .sum();
-        let rms = (residual / (nx * ny) as f64).sqrt();
-        if rms <= 0.0 {
-            return Err(SurfaceError::Invalid(format!(
-                "a {nx} × {ny} grid is too small to hold a random surface"
-            )));
-        }
-        let scale = self.sq / rms;
-        let mut heights = raw.into_heights();
-        heights.par_mapv_inplace(|z| z * scale);
-        let mut map = HeightMap::new(heights, self.dx, self.dy)?;
-        map.meta.instrument = Some("gonio synthetic".into());
+        let raw = filtered_noise(
+            &self.filter(),
+            self.nx,
+            self.ny,
+            self.dx,
+            self.dy,
+            self.seed,
+        )?;
+        let rms = levelled_rms(&raw)?;
+        let mut map = scaled(raw, self.sq / rms)?;
         map.meta.extra = vec![
             ("acf".into(), format!("{:?}", self.acf).to_lowercase()),
             ("sq_m".into(), format!("{:e}", self.sq)),
@@ -135,21 +115,7 @@ impl GaussianSurface {
                 )));
             }
         }
-        if self.nx < 2 || self.ny < 2 {
-            return Err(SurfaceError::Invalid(format!(
-                "grid {} × {} is too small: need at least 2 × 2 points",
-                self.nx, self.ny
-            )));
-        }
-        if self.nx.saturating_mul(self.ny) > crate::heightmap::MAX_POINTS {
-            return Err(SurfaceError::Invalid(format!(
-                "grid {} × {} exceeds the limit of {} points",
-                self.nx,
-                self.ny,
-                crate::heightmap::MAX_POINTS
-            )));
-        }
-        Ok(())
+        check_grid(self.nx, self.ny)
     }
 
     /// Square root of the PSD on the half spectrum: the DFT of the ACF sampled at the nearest
@@ -167,19 +133,94 @@ impl GaussianSurface {
             .data
             .mapv(|s| s.re.max(0.0).sqrt())
     }
+}
 
-    /// Independent standard normal numbers; row `iy` comes from its own PCG stream, so that rows
-    /// can be drawn in parallel and the result does not depend on the thread count.
-    fn white_noise(&self) -> Array2<f64> {
-        let (nx, ny) = (self.nx, self.ny);
-        let mut noise = vec![0.0; nx * ny];
-        noise.par_chunks_mut(nx).enumerate().for_each(|(iy, row)| {
-            let mut rng = Pcg64::new(u128::from(self.seed) << 64 | 0x5851_f42d, iy as u128);
-            row.iter_mut()
-                .for_each(|v| *v = StandardNormal.sample(&mut rng));
-        });
-        Array2::from_shape_vec((ny, nx), noise).expect("shape matches the length")
+/// Check a grid of `nx × ny` points: at least 2 × 2, at most [`crate::heightmap::MAX_POINTS`].
+pub(crate) fn check_grid(nx: usize, ny: usize) -> Result<()> {
+    if nx < 2 || ny < 2 {
+        return Err(SurfaceError::Invalid(format!(
+            "grid {nx} × {ny} is too small: need at least 2 × 2 points"
+        )));
     }
+    if nx.saturating_mul(ny) > crate::heightmap::MAX_POINTS {
+        return Err(SurfaceError::Invalid(format!(
+            "grid {nx} × {ny} exceeds the limit of {} points",
+            crate::heightmap::MAX_POINTS
+        )));
+    }
+    Ok(())
+}
+
+/// Independent standard normal numbers on an `nx × ny` grid; row `iy` comes from its own PCG
+/// stream, so that rows can be drawn in parallel and the result does not depend on the thread
+/// count.
+fn white_noise(nx: usize, ny: usize, seed: u64) -> Array2<f64> {
+    let mut noise = vec![0.0; nx * ny];
+    noise.par_chunks_mut(nx).enumerate().for_each(|(iy, row)| {
+        let mut rng = Pcg64::new(u128::from(seed) << 64 | 0x5851_f42d, iy as u128);
+        row.iter_mut()
+            .for_each(|v| *v = StandardNormal.sample(&mut rng));
+    });
+    Array2::from_shape_vec((ny, nx), noise).expect("shape matches the length")
+}
+
+/// White noise of `seed` filtered by `amplitude` (the square root of the PSD on the half
+/// spectrum, shape `(nx/2 + 1, ny)` as [`fft2::forward`] lays it out), with the zero-frequency
+/// term removed: a periodic map of mean zero, not yet scaled.
+pub(crate) fn filtered_noise(
+    amplitude: &Array2<f64>,
+    nx: usize,
+    ny: usize,
+    dx: f64,
+    dy: f64,
+    seed: u64,
+) -> Result<HeightMap> {
+    let mut spectrum = fft2::forward(white_noise(nx, ny, seed).view());
+    Zip::from(&mut spectrum.data)
+        .and(amplitude)
+        .par_for_each(|s, &a| *s *= a);
+    spectrum.data[[0, 0]] = Default::default();
+    HeightMap::new(fft2::inverse(spectrum), dx, dy)
+}
+
+/// The rms height of `raw` about its least-squares plane (Sq after levelling, as [`crate::stats`]
+/// computes it); an error when it is zero (a grid too small to hold a random surface).
+pub(crate) fn levelled_rms(raw: &HeightMap) -> Result<f64> {
+    let plane = ops::fit_plane(raw)?;
+    let (dx, dy) = (raw.dx(), raw.dy());
+    let residual: f64 = ops::per_row(raw.heights(), |iy, row| {
+        let y = iy as f64 * dy;
+        row.iter()
+            .enumerate()
+            .map(|(ix, z)| (z - plane.height(ix as f64 * dx, y)).powi(2))
+            .sum::<f64>()
+    })
+    .into_iter()
+    .sum();
+    positive_rms(residual / (raw.nx() * raw.ny()) as f64, raw)
+}
+
+/// `√mean_square`, or an error when it is zero.
+pub(crate) fn positive_rms(mean_square: f64, raw: &HeightMap) -> Result<f64> {
+    if mean_square > 0.0 {
+        Ok(mean_square.sqrt())
+    } else {
+        Err(SurfaceError::Invalid(format!(
+            "a {} × {} grid is too small to hold a random surface",
+            raw.nx(),
+            raw.ny()
+        )))
+    }
+}
+
+/// `raw` times `scale`, marked as gonio's synthetic map (the caller adds its parameters).
+pub(crate) fn scaled(raw: HeightMap, scale: f64) -> Result<HeightMap> {
+    let (dx, dy) = (raw.dx(), raw.dy());
+    let mut heights = raw.into_heights();
+    heights.par_mapv_inplace(|z| z * scale);
+    let mut map = HeightMap::new(heights, dx, dy)?;
+    map.meta.instrument = Some("gonio synthetic".into());
+    Ok(map)
 }
 
 /// Sq of the NIST epoxy roughness series, metres: 3, 50, 150, 201, 400 and 805 nm.

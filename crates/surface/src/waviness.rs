@@ -1,19 +1,32 @@
 //! The long-wave topography of a coating (orange peel) in the bands wave-scan instruments report:
-//! the slope of each profile along one direction of a map, band-pass filtered with the Gaussian
-//! filter of ISO 16610-21 ([`crate::gaussian_filter`]) between the cutoffs of each band, and its
-//! rms in each band.
+//! the slope or the curvature of each profile along one direction of a map, band-pass filtered
+//! with the Gaussian filter of ISO 16610-21 ([`crate::gaussian_filter`]) between the cutoffs of
+//! each band, and its rms in each band.
 //!
-//! Wave-scan meters scan a laser across some 10 cm of a panel and record the light it reflects,
-//! which follows the surface's slope; they report the slope's variance in bands of wavelength
+//! Slope is the forward difference `(z[i+1] − z[i]) / d` (rad), curvature the central second
+//! difference `(z[i+1] − 2 z[i] + z[i−1]) / d²` (1/m), each where all its heights are valid. For a
+//! sine of wavelength λ and amplitude a these have amplitudes `a k sinc(k d/2)` and
+//! `a k² sinc²(k d/2)` (`k = 2π/λ`, `sinc x = sin x / x`): short of the derivatives' `a k` and
+//! `a k²` by `(π d/λ)²/6` and `(π d/λ)²/3` to leading order, 0.4% and 0.8% at λ = 20 d.
+//!
+//! Wave-scan meters (BYK-Gardner's wave-scan; the "orange peel meter" of the literature) run a
+//! laser spot, incident at 60°, some 10 cm along a panel and record, point by point, the light
+//! reflected at the opposite 60° into a detector: an optical profile of the surface. A fixed
+//! aperture catches more or less of the beam as the surface under the spot focuses it (concave)
+//! or spreads it (convex), so that signal follows the profile's curvature more than its slope;
+//! the manufacturers do not publish the transfer. Rhopoint's Optimap PSD, which measures the
+//! slopes of a whole area by deflectometry, reports curvature bands Ka–Ke, Ksw, Klw (the
+//! standard deviation of the curvature in each band) and a total K over 0.1–30 mm, mapped by
+//! regression onto the wave-scan's scale. The meters report the variance in bands of wavelength
 //! (BYK-Gardner's wave-scan: Wa 0.1–0.3 mm, Wb 0.3–1, Wc 1–3, Wd 3–10, We 10–30 mm, and the
 //! older short wave 0.3–1.2 mm and long wave 1.2–12 mm) on a 0–100 scale of their own, whose
-//! calibration is not public. gonio reports the physical quantity, the rms slope in each band
-//! (mrad), and beside it a 0–100 value of its own, `100 (1 − exp(−σ / 3 mrad))` (σ the band's rms
+//! calibration is not public. gonio reports physical quantities, the rms slope in each band
+//! (mrad) or the rms curvature (1/m), and beside the slope a 0–100 value of its own, `100 (1 − exp(−σ / 3 mrad))` (σ the band's rms
 //! slope): 0 for a flat band, 28 at 1 mrad (a visible orange peel), 63 at 3 mrad, rising without
 //! reaching 100. It is monotonic with the slope, as the instruments' values are, and is not
-//! their scale.
+//! their scale. Curvature has no 0–100 value.
 //!
-//! A band is measured on every run of consecutive valid slope samples longer than twice its long
+//! A band is measured on every run of consecutive valid samples longer than twice its long
 //! cutoff (the filter needs a cutoff on either side of each point); a band whose short cutoff is
 //! below two spacings is too fine for the sampling, and one that no run is long enough for is
 //! too long for the profile: either says so instead of giving a number.
@@ -88,49 +101,96 @@ pub enum Direction {
     Y,
 }
 
+/// What is band-passed: the profile's slope or its curvature.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// dz/dx, rad.
+    Slope,
+    /// d²z/dx², 1/m.
+    Curvature,
+}
+
+impl Quantity {
+    /// Its name, as the command line and JSON write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Quantity::Slope => "slope",
+            Quantity::Curvature => "curvature",
+        }
+    }
+
+    /// The number of consecutive heights one sample needs.
+    fn stencil(self) -> usize {
+        match self {
+            Quantity::Slope => 2,
+            Quantity::Curvature => 3,
+        }
+    }
+
+    /// The sample from `stencil()` consecutive heights `z` at spacing `d`.
+    fn sample(self, z: &[f64], d: f64) -> f64 {
+        match self {
+            Quantity::Slope => (z[1] - z[0]) / d,
+            Quantity::Curvature => (z[2] - 2.0 * z[1] + z[0]) / (d * d),
+        }
+    }
+}
+
 /// One band's reading.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BandReading {
     pub band: Band,
-    /// The rms of the band-passed slope, rad; `None` when the band cannot be measured.
-    pub rms_slope: Option<f64>,
-    /// Filtered slope samples behind it.
+    /// What was band-passed.
+    pub quantity: Quantity,
+    /// The rms of the band-passed quantity (rad for slope, 1/m for curvature); `None` when the
+    /// band cannot be measured.
+    pub rms: Option<f64>,
+    /// Filtered samples behind it.
     pub samples: usize,
     /// Why the band has no number.
     pub unresolved: Option<String>,
 }
 
 impl BandReading {
-    /// gonio's 0–100 value ([`value`]).
+    /// gonio's 0–100 value ([`value`]) of a slope band; `None` for curvature, which gonio gives
+    /// no such scale.
     pub fn value(&self) -> Option<f64> {
-        self.rms_slope.map(value)
+        match self.quantity {
+            Quantity::Slope => self.rms.map(value),
+            Quantity::Curvature => None,
+        }
     }
 }
 
-/// The runs of consecutive valid slope samples of `map`'s profiles along `direction`, with the
-/// spacing along it: slope `(z[i+1] − z[i]) / d` where both heights are valid.
-fn slope_runs(map: &HeightMap, direction: Direction) -> (Vec<Vec<f64>>, f64) {
+/// The runs of consecutive valid samples of `quantity` along `map`'s profiles in `direction`,
+/// with the spacing along it: a sample where all the heights of its stencil are valid.
+fn sample_runs(map: &HeightMap, direction: Direction, quantity: Quantity) -> (Vec<Vec<f64>>, f64) {
     let (profiles, points, d) = match direction {
         Direction::X => (map.ny(), map.nx(), map.dx()),
         Direction::Y => (map.nx(), map.ny(), map.dy()),
     };
     let at = |p: usize, i: usize| match direction {
-        Direction::X => (i, p),
-        Direction::Y => (p, i),
+        Direction::X => map.get(i, p),
+        Direction::Y => map.get(p, i),
     };
+    let width = quantity.stencil();
     let mut runs = Vec::new();
+    let mut z = vec![0.0; width];
     for p in 0..profiles {
         let mut run = Vec::new();
-        for i in 0..points.saturating_sub(1) {
-            let (a, b) = (at(p, i), at(p, i + 1));
+        for i in 0..(points + 1).saturating_sub(width) {
             // `get` is `None` exactly where a point was not measured.
-            match (map.get(a.0, a.1), map.get(b.0, b.1)) {
-                (Some(z0), Some(z1)) => run.push((z1 - z0) / d),
-                _ => {
-                    if !run.is_empty() {
-                        runs.push(std::mem::take(&mut run));
-                    }
+            let valid = (0..width).all(|j| match at(p, i + j) {
+                Some(v) => {
+                    z[j] = v;
+                    true
                 }
+                None => false,
+            });
+            if valid {
+                run.push(quantity.sample(&z, d));
+            } else if !run.is_empty() {
+                runs.push(std::mem::take(&mut run));
             }
         }
         if !run.is_empty() {
@@ -140,20 +200,26 @@ fn slope_runs(map: &HeightMap, direction: Direction) -> (Vec<Vec<f64>>, f64) {
     (runs, d)
 }
 
-/// The band readings ([`BANDS`]) of `map`'s profiles along `direction` (a line profile runs
-/// along x).
-pub fn waviness(map: &HeightMap, direction: Direction) -> Result<Vec<BandReading>> {
+/// The band readings ([`BANDS`]) of `quantity` along `map`'s profiles in `direction` (a line
+/// profile runs along x).
+pub fn waviness(
+    map: &HeightMap,
+    direction: Direction,
+    quantity: Quantity,
+) -> Result<Vec<BandReading>> {
     let direction = if map.is_profile() {
         Direction::X
     } else {
         direction
     };
-    let (runs, d) = slope_runs(map, direction);
+    let (runs, d) = sample_runs(map, direction, quantity);
     let longest = runs.iter().map(Vec::len).max().unwrap_or(0);
     if longest == 0 {
-        return Err(SurfaceError::Invalid(
-            "waviness: no two neighbouring valid points along the profiles".into(),
-        ));
+        return Err(SurfaceError::Invalid(format!(
+            "waviness: no {} neighbouring valid points along the profiles for a {}",
+            quantity.stencil(),
+            quantity.name()
+        )));
     }
     let mm = |m: f64| m * 1e3;
     BANDS
@@ -162,7 +228,8 @@ pub fn waviness(map: &HeightMap, direction: Direction) -> Result<Vec<BandReading
             if band.short_m < 2.0 * d {
                 return Ok(BandReading {
                     band,
-                    rms_slope: None,
+                    quantity,
+                    rms: None,
                     samples: 0,
                     unresolved: Some(format!(
                         "too coarse: the spacing {:.4} mm resolves waves down to {:.4} mm, the \
@@ -185,7 +252,8 @@ pub fn waviness(map: &HeightMap, direction: Direction) -> Result<Vec<BandReading
             if n == 0 {
                 return Ok(BandReading {
                     band,
-                    rms_slope: None,
+                    quantity,
+                    rms: None,
                     samples: 0,
                     unresolved: Some(format!(
                         "too short: the longest valid run is {:.2} mm, the band needs more than \
@@ -197,7 +265,8 @@ pub fn waviness(map: &HeightMap, direction: Direction) -> Result<Vec<BandReading
             }
             Ok(BandReading {
                 band,
-                rms_slope: Some((sum / n as f64).sqrt()),
+                quantity,
+                rms: Some((sum / n as f64).sqrt()),
                 samples: n,
                 unresolved: None,
             })

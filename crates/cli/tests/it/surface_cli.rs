@@ -2,6 +2,7 @@
 //! through the real binary.
 
 use crate::common::{gonio, ok};
+use gonio_surface::waviness::{Direction, Quantity};
 use std::path::Path;
 
 fn info_json(file: &Path) -> serde_json::Value {
@@ -216,10 +217,9 @@ fn waviness_reads_the_bands_a_file_resolves() {
     let names: Vec<&str> = bands.iter().map(|b| b["name"].as_str().unwrap()).collect();
     assert_eq!(names, ["Wa", "Wb", "Wc", "Wd", "We", "SW", "LW"]);
     let map = gonio_surface::io::read(&frt).unwrap();
-    let lib =
-        gonio_surface::waviness::waviness(&map, gonio_surface::waviness::Direction::X).unwrap();
+    let lib = gonio_surface::waviness::waviness(&map, Direction::X, Quantity::Slope).unwrap();
     for (b, r) in bands.iter().zip(&lib) {
-        match (b["rms_slope_rad"].as_f64(), r.rms_slope) {
+        match (b["rms_slope_rad"].as_f64(), r.rms) {
             // JSON's shortest decimal form reads back within an ulp or two.
             (Some(j), Some(l)) => {
                 assert!((j - l).abs() <= 1e-15 * l, "{}: {j} vs {l}", r.band.name)
@@ -250,4 +250,169 @@ fn waviness_reads_the_bands_a_file_resolves() {
     let out = gonio(&["surface", "waviness", "missing.sdf"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("missing.sdf"));
+}
+
+/// `surface gen` with no spectrum flags makes the default orange peel (q^-4, 0.3-10 mm, rms
+/// slope along x 1 mrad): the map read back is the library's for the same request (X3P keeps
+/// doubles), and `waviness` reads its slope bands and, with `--quantity curvature`, curvature
+/// bands in 1/m. A band's curvature over its slope is its waves' 2π/λ, so it lies between
+/// 2π/λc and 2π/λs of the band, with a factor 2 of room either way for the Gaussian bands'
+/// tails (they pass 0.03 of a wave at λs/2 or 2 λc).
+#[test]
+fn gen_makes_an_orange_peel_that_waviness_reads() {
+    use gonio_surface::synth_psd::{PsdSurface, Spectrum, Target};
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("peel.x3p");
+    let p = path.to_str().unwrap();
+    let out = ok(&[
+        "surface", "gen", "--size", "1024", "--dx-um", "20", "--seed", "2", "-o", p,
+    ]);
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        said.contains("q^-4 between 0.3 and 10 mm")
+            && said.contains("rms slope along x 1.0000 mrad"),
+        "{said}"
+    );
+    let map = gonio_surface::io::read(&path).unwrap();
+    let want = PsdSurface {
+        spectrum: Spectrum::PowerLaw {
+            exponent: 4.0,
+            long: 10e-3,
+            short: 0.3e-3,
+        },
+        target: Target::SlopeX(1e-3),
+        nx: 1024,
+        ny: 1024,
+        dx: 20e-6,
+        dy: 20e-6,
+        seed: 2,
+    }
+    .generate()
+    .unwrap();
+    let peak = want.heights().iter().fold(0.0f64, |m, z| m.max(z.abs()));
+    assert!(
+        map.heights()
+            .iter()
+            .zip(want.heights())
+            .all(|(a, b)| (a - b).abs() <= 1e-12 * peak)
+    );
+    let bands = |quantity: &str| -> Vec<serde_json::Value> {
+        let out = ok(&["surface", "waviness", p, "--quantity", quantity, "--json"]);
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(v["quantity"].as_str(), Some(quantity));
+        v["bands"].as_array().unwrap().clone()
+    };
+    let (slope, curvature) = (bands("slope"), bands("curvature"));
+    for (s, c) in slope.iter().zip(&curvature).take(3) {
+        let name = s["name"].as_str().unwrap();
+        let sr = s["rms_slope_rad"].as_f64().unwrap();
+        let cr = c["rms_curvature_per_m"].as_f64().unwrap();
+        assert!(sr > 0.0 && sr < 1e-3, "{name}: {sr}");
+        assert!(
+            c["value"].is_null() && s["value"].as_f64().is_some(),
+            "{name}"
+        );
+        let (short, long) = (
+            s["short_m"].as_f64().unwrap(),
+            s["long_m"].as_f64().unwrap(),
+        );
+        let k = cr / sr;
+        assert!(
+            k > 2.0 * std::f64::consts::PI / long / 2.0
+                && k < 2.0 * std::f64::consts::PI / short * 2.0,
+            "{name}: curvature / slope {k} 1/m"
+        );
+    }
+    let text = ok(&["surface", "waviness", p, "--quantity", "curvature"]);
+    let text = String::from_utf8(text.stdout).unwrap();
+    assert!(
+        text.contains("1/m") && !text.contains("gonio's own scale"),
+        "{text}"
+    );
+}
+
+/// A measured PSD table: read from the file and scaled to the requested slope; a table that
+/// cannot be read, a missing one, and impossible or contradictory requests exit 2 with a
+/// message that says why, and write nothing; `--help` names the units and the defaults.
+#[test]
+fn gen_from_a_psd_table_and_its_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let table = dir.path().join("psd.csv");
+    std::fs::write(
+        &table,
+        "# measured\nwavelength_mm,psd_m4\n8,1e-17\n2,4e-19\n0.5,1.6e-21\n",
+    )
+    .unwrap();
+    let out_path = dir.path().join("t.gsf");
+    let o = out_path.to_str().unwrap();
+    let t = table.to_str().unwrap();
+    let out = ok(&[
+        "surface",
+        "gen",
+        "--size",
+        "512",
+        "--dx-um",
+        "20",
+        "--psd",
+        t,
+        "--slope-mrad",
+        "0.5",
+        "-o",
+        o,
+    ]);
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("rms slope along x 0.5000 mrad"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let bad = dir.path().join("bad.csv");
+    std::fs::write(&bad, "wavelength_mm,psd_m4\n8,1e-17\n2,oops\n").unwrap();
+    let b = bad.to_str().unwrap();
+    let missing = dir.path().join("missing.csv");
+    let m = missing.to_str().unwrap();
+    let never = dir.path().join("never.x3p");
+    let n = never.to_str().unwrap();
+    let base = ["surface", "gen", "--size", "256", "--dx-um", "20", "-o", n];
+    for (extra, says) in [
+        (
+            vec!["--long-mm", "8"],
+            "exceeds the map's shorter side, 5.12 mm",
+        ),
+        (
+            vec!["--long-mm", "5", "--short-mm", "0.03"],
+            "under two spacings",
+        ),
+        (
+            vec!["--long-mm", "5", "--short-mm", "6"],
+            "below the long one",
+        ),
+        (vec!["--psd", b], "line 3"),
+        (vec!["--psd", m], "missing.csv"),
+        (vec!["--psd", t, "--long-mm", "3"], "cannot be used with"),
+        (
+            vec!["--corr-um", "3", "--slope-mrad", "1"],
+            "cannot be used with",
+        ),
+        (vec!["--acf", "exponential"], "--corr-um"),
+    ] {
+        let args: Vec<&str> = base.iter().copied().chain(extra.iter().copied()).collect();
+        let out = gonio(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{extra:?}: {err}");
+        assert!(err.contains(says), "{extra:?}: {err}");
+        assert!(!never.exists(), "{extra:?} wrote a file");
+    }
+    let help = ok(&["surface", "gen", "--help"]);
+    let help = String::from_utf8(help.stdout).unwrap();
+    for needle in [
+        "[default: 4]",
+        "[default: 10]",
+        "[default: 0.3]",
+        "in mrad",
+        "psd_m4",
+        "micrometres",
+        "1 mrad",
+    ] {
+        assert!(help.contains(needle), "--help lacks {needle:?}");
+    }
 }

@@ -22,5 +22,6 @@ mod profiler_formats;
 mod real_world_variants;
 mod surfacetopography;
 mod synth;
+mod synth_psd;
 mod turns;
 mod waviness;
