@@ -5,9 +5,11 @@
 //! method (see [`crate::scene`]). A spectral table is seen at the path's wavelengths in the
 //! spectral colour mode through its [`gonio_brdf::SpectralBrdf`] view. Any of them may lie under
 //! a smooth clear coat ([`Material::coat`]), whose mirror reflection is a delta lobe no table
-//! can hold.
+//! can hold. Any of them may carry a mesoscale height map ([`Material::mesoscale`], orange
+//! peel), which tilts the shading normal over the BRDF ([`crate::mesoscale`]).
 
 use crate::error::{RenderError, Result};
+use crate::mesoscale::Mesoscale;
 use gonio_brdf::formats::{astm, merl};
 use gonio_brdf::models::ModelSpec;
 use gonio_brdf::table::{BrdfTable, SampledTable};
@@ -30,6 +32,9 @@ pub struct Material {
     /// beneath it: the body table of a coating with a smooth top (`gonio coating compute`),
     /// which holds the coat's transmission both ways but not its mirror.
     pub coat: Option<f64>,
+    /// A mesoscale height map whose slope tilts the shading normal ([`crate::mesoscale`]), or
+    /// `None`.
+    pub mesoscale: Option<Arc<Mesoscale>>,
 }
 
 impl Material {
@@ -39,6 +44,7 @@ impl Material {
             name: name.into(),
             brdf,
             coat: None,
+            mesoscale: None,
         }
     }
 
@@ -68,6 +74,7 @@ impl std::fmt::Debug for Material {
         f.debug_struct("Material")
             .field("name", &self.name)
             .field("coat", &self.coat)
+            .field("mesoscale", &self.mesoscale.as_ref().map(|m| m.repeat()))
             .finish_non_exhaustive()
     }
 }
