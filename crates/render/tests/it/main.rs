@@ -13,6 +13,7 @@ mod denoise;
 mod difference;
 mod geometry;
 mod image;
+mod mesoscale;
 mod panel;
 mod render;
 mod scene;
