@@ -13,6 +13,39 @@
 //! wander of the reflected edge at the light, 2 × slope × distance. The small-angle error is
 //! about `(2 h_x)²` relative plus `HC tx²/D`: below 1e-5 here.
 
+/// A bad mesoscale description is refused, naming the scene (or the map's file) and the
+/// problem; a synthetic map builds, wrapped.
+#[test]
+fn mesoscale_descriptions_are_checked() {
+    let scene = |meso: &str| {
+        gonio_render::Scene::from_toml(
+            &format!(
+                "[camera]\nposition = [0.0, 1.0, 0.0]\nlook_at = [0.0, 0.0, 0.0]\nup = [0.0, 0.0, -1.0]\n\
+                 fov_deg = 6.0\nwidth = 4\nheight = 4\n\n[materials.m]\n\
+                 brdf = {{ model = \"lambert\", albedo = 0.5 }}\nmesoscale = {meso}\n\n\
+                 [[shapes]]\ntype = \"rectangle\"\nmaterial = \"m\"\n"
+            ),
+            std::path::Path::new("peel.toml"),
+        )
+    };
+    let err = |meso: &str| scene(meso).err().expect("refused").to_string();
+    let both = err("{ file = \"x.x3p\", sq_um = 1.0, corr_mm = 2.0 }");
+    assert!(
+        both.contains("peel.toml") && both.contains("either `file`"),
+        "{both}"
+    );
+    let missing = err("{ file = \"missing.x3p\" }");
+    assert!(missing.contains("missing.x3p"), "{missing}");
+    let half = err("{ sq_um = 1.0 }");
+    assert!(half.contains("`sq_um` and `corr_mm`"), "{half}");
+    let scale = err("{ sq_um = 1.0, corr_mm = 2.0, points = 32, scale = -2.0 }");
+    assert!(scale.contains("scale"), "{scale}");
+    let built = scene("{ sq_um = 1.0, corr_mm = 2.0, points = 32 }").unwrap();
+    let meso = built.materials[0].mesoscale.as_ref().unwrap();
+    assert_eq!(meso.repeat(), gonio_render::mesoscale::Repeat::Wrap);
+    assert!(built.projections.get(0).is_some());
+}
+
 /// The renders take seconds each.
 mod slow {
     use glam::DVec2;
