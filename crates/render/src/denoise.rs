@@ -29,7 +29,8 @@
 
 use crate::error::{RenderError, Result};
 use crate::image::Image;
-use crate::path::{facing_frame, sample_brdf};
+use crate::mesoscale::shading_frame;
+use crate::path::sample_brdf;
 use crate::scene::{PrimKind, Scene};
 use crate::settings::BrdfSampling;
 use glam::{DVec2, DVec3};
@@ -108,7 +109,7 @@ fn pixel_features(scene: &Scene, x: usize, y: usize) -> PixelFeatures {
             a += DVec3::ONE;
             continue;
         };
-        let (_, frame) = facing_frame(&hit, ray.dir);
+        let (_, frame) = shading_frame(scene, &scene.materials[m], &hit, ray.dir);
         n += frame.n;
         let wo = frame.to_local(-ray.dir);
         if wo.z <= 0.0 {

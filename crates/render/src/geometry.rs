@@ -185,7 +185,7 @@ impl Shape {
     }
 
     /// Axis-aligned bounds, padded so that the f32 traversal never misses a hit.
-    fn bounds(&self) -> (DVec3, DVec3) {
+    pub(crate) fn bounds(&self) -> (DVec3, DVec3) {
         let (lo, hi) = match self {
             Shape::Sphere { centre, radius } => (*centre - *radius, *centre + *radius),
             Shape::Planar { origin, u, v, .. } => {

@@ -28,6 +28,7 @@ pub mod integrator;
 pub mod light;
 pub mod material;
 pub mod mesh;
+pub mod mesoscale;
 pub mod panel;
 mod path;
 pub mod scene;

@@ -5,10 +5,12 @@
 //! method (see [`crate::scene`]). A spectral table is seen at the path's wavelengths in the
 //! spectral colour mode through its [`gonio_brdf::SpectralBrdf`] view. Any of them may lie under
 //! a smooth clear coat ([`Material::coat`]), whose mirror reflection is a delta lobe no table
-//! can hold.
+//! can hold. Any of them may carry a mesoscale height map ([`Material::mesoscale`], orange
+//! peel), which tilts the shading normal over the BRDF ([`crate::mesoscale`]).
 
 use crate::error::{RenderError, Result};
 use crate::flakes::FlakeField;
+use crate::mesoscale::Mesoscale;
 use gonio_brdf::formats::{astm, merl};
 use gonio_brdf::models::ModelSpec;
 use gonio_brdf::table::{BrdfTable, SampledTable};
@@ -34,6 +36,9 @@ pub struct Material {
     /// A coating's flakes drawn one by one ([`FlakeField`]), whose glint the BRDF then leaves
     /// out; `None` for a material without discrete flakes.
     pub flakes: Option<Arc<FlakeField>>,
+    /// A mesoscale height map whose slope tilts the shading normal ([`crate::mesoscale`]), or
+    /// `None`.
+    pub mesoscale: Option<Arc<Mesoscale>>,
 }
 
 impl Material {
@@ -44,6 +49,7 @@ impl Material {
             brdf,
             coat: None,
             flakes: None,
+            mesoscale: None,
         }
     }
 
@@ -83,6 +89,7 @@ impl std::fmt::Debug for Material {
             .field("name", &self.name)
             .field("coat", &self.coat)
             .field("flakes", &self.flakes.is_some())
+            .field("mesoscale", &self.mesoscale.as_ref().map(|m| m.repeat()))
             .finish_non_exhaustive()
     }
 }

@@ -366,7 +366,7 @@ pub(crate) fn radiance<S: Shading>(
             }
             PrimKind::Surface(m) => &scene.materials[m],
         };
-        let (ng, frame) = facing_frame(&hit, ray.dir);
+        let (ng, frame) = crate::mesoscale::shading_frame(scene, material, &hit, ray.dir);
         let wo = frame.to_local(-ray.dir);
         if wo.z <= 0.0 {
             break;

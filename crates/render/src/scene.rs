@@ -13,6 +13,7 @@ use crate::image::{Display, Image, ToneCurve};
 use crate::light::{EnvMap, Light};
 use crate::material::{self, Material};
 use crate::mesh::read_obj;
+use crate::mesoscale::{Axis, MesoscaleDesc, Projection, Projections};
 use glam::{DAffine3, DQuat, DVec3};
 use gonio_brdf::models::{ModelSpec, Reflectance};
 use rayon::prelude::*;
@@ -115,6 +116,9 @@ pub struct MaterialDesc {
     /// (Fresnel) is added as a delta lobe: for the body table of a coating with a smooth top
     /// (`gonio coating compute`), which leaves the mirror out. Default: no coat.
     pub coat_index: Option<f64>,
+    /// A mesoscale height map (orange peel) tilting the shading normal over the BRDF
+    /// ([`crate::mesoscale`]). Default: none.
+    pub mesoscale: Option<MesoscaleDesc>,
 }
 
 /// Where a shape or a planar light is placed: scale, then rotations about x, y and z, then the
@@ -342,6 +346,8 @@ pub struct Scene {
     pub materials: Vec<Material>,
     /// The lights.
     pub lights: Vec<Light>,
+    /// Per primitive, where it lies on its material's mesoscale map.
+    pub projections: Projections,
 }
 
 impl Scene {
@@ -376,7 +382,7 @@ impl Scene {
         let camera = build_camera(&desc.camera, &file)?;
         let (materials, material_index) = build_materials(&desc.materials, &file)?;
         let mut prims = Prims::default();
-        build_shapes(&desc.shapes, &material_index, &file, &mut prims)?;
+        build_shapes(&desc.shapes, &materials, &material_index, &file, &mut prims)?;
         let lights = build_lights(&desc.lights, &file, &mut prims)?;
         Ok(Scene {
             camera,
@@ -389,6 +395,7 @@ impl Scene {
             prims: prims.kinds,
             materials,
             lights,
+            projections: prims.projections,
         })
     }
 }
@@ -421,12 +428,16 @@ impl SceneFile<'_> {
 struct Prims {
     shapes: Vec<Shape>,
     kinds: Vec<PrimKind>,
+    projections: Projections,
 }
 
 impl Prims {
-    fn push(&mut self, shape: Shape, kind: PrimKind) {
+    /// Add a primitive, with its projection onto a mesoscale map (an index from
+    /// [`Projections::add`]) if its material has one.
+    fn push(&mut self, shape: Shape, kind: PrimKind, projection: Option<u32>) {
         self.shapes.push(shape);
         self.kinds.push(kind);
+        self.projections.push_prim(projection);
     }
 }
 
@@ -517,19 +528,32 @@ fn build_material(name: &str, m: &MaterialDesc, file: &SceneFile) -> Result<Mate
             )));
         }
     };
-    match m.coat_index {
+    let material = match m.coat_index {
+        None => material,
+        Some(n) if n.is_finite() && n >= 1.0 => material.with_coat(n),
+        Some(n) => {
+            return Err(file.bad(format!(
+                "material `{name}`: coat_index {n} must be a refractive index of at least 1 \
+                 (1.5 for a typical clear coat)"
+            )));
+        }
+    };
+    match &m.mesoscale {
         None => Ok(material),
-        Some(n) if n.is_finite() && n >= 1.0 => Ok(material.with_coat(n)),
-        Some(n) => Err(file.bad(format!(
-            "material `{name}`: coat_index {n} must be a refractive index of at least 1 \
-             (1.5 for a typical clear coat)"
-        ))),
+        Some(desc) => {
+            let meso = crate::mesoscale::load(desc, file.dir, file.path, name)?;
+            Ok(Material {
+                mesoscale: Some(std::sync::Arc::new(meso)),
+                ..material
+            })
+        }
     }
 }
 
 /// `[[shapes]]`: each shape's primitives, transformed, with its material.
 fn build_shapes(
     descs: &[ShapeDesc],
+    materials: &[Material],
     material_index: &BTreeMap<String, usize>,
     file: &SceneFile,
     prims: &mut Prims,
@@ -577,14 +601,28 @@ fn build_shapes(
             },
         };
         let transform = s.transform.matrix();
+        let projection = materials[mi].mesoscale.as_ref().map(|meso| {
+            let axis = meso.axis().unwrap_or_else(|| thinnest_axis(&local));
+            prims.projections.add(Projection::new(&transform, axis))
+        });
         for shape in local {
             let shape = shape
                 .transformed(&transform)
                 .ok_or_else(|| bad("a sphere needs a uniform scale (one number)"))?;
-            prims.push(shape, PrimKind::Surface(mi));
+            prims.push(shape, PrimKind::Surface(mi), projection);
         }
     }
     Ok(())
+}
+
+/// The object axis along which the shapes `local` (before their transform) are thinnest.
+fn thinnest_axis(local: &[Shape]) -> Axis {
+    let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+    for shape in local {
+        let (a, b) = shape.bounds();
+        (lo, hi) = (lo.min(a), hi.max(b));
+    }
+    Axis::thinnest(lo, hi)
 }
 
 /// `[[lights]]`; area lights add their primitives.
@@ -620,7 +658,7 @@ fn build_lights(descs: &[LightDesc], file: &SceneFile, prims: &mut Prims) -> Res
                     centre: DVec3::from_array(*center),
                     radius: *radius,
                 };
-                prims.push(sphere, PrimKind::Emitter(lights.len()));
+                prims.push(sphere, PrimKind::Emitter(lights.len()), None);
                 Light::Area {
                     prim: prims.shapes.len() - 1,
                     radiance: rgb(radiance, "radiance")?,
@@ -644,7 +682,7 @@ fn build_lights(descs: &[LightDesc], file: &SceneFile, prims: &mut Prims) -> Res
                 if shape.area().is_nan() || shape.area() <= 0.0 {
                     return Err(bad("the rectangle has no area"));
                 }
-                prims.push(shape, PrimKind::Emitter(lights.len()));
+                prims.push(shape, PrimKind::Emitter(lights.len()), None);
                 Light::Area {
                     prim: prims.shapes.len() - 1,
                     radiance: rgb(radiance, "radiance")?,

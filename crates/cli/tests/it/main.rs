@@ -16,6 +16,7 @@ mod inplane_cli;
 mod isotropy_cli;
 mod kirchhoff_cli;
 mod multiangle_cli;
+mod orange_peel;
 mod outputs;
 mod render_cli;
 mod surface_cli;

@@ -14,6 +14,7 @@ mod difference;
 mod flakes;
 mod geometry;
 mod image;
+mod mesoscale;
 mod panel;
 mod render;
 mod scene;
