@@ -5,10 +5,14 @@
 use serde_json::{Value, json};
 
 /// Each example's name (its file's stem) and text.
-pub const EXAMPLES: [(&str, &str); 8] = [
+pub const EXAMPLES: [(&str, &str); 9] = [
     (
         "silver_metallic",
         include_str!("../../../examples/coatings/silver_metallic.toml"),
+    ),
+    (
+        "silver_coarse",
+        include_str!("../../../examples/coatings/silver_coarse.toml"),
     ),
     (
         "pearl_interference",
