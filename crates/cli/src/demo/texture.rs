@@ -173,7 +173,11 @@ fn sparkle_blocks(dir: &Path, plan: &Plan) -> Result<Vec<Block>> {
         });
         readings.push((d, reading));
     }
-    let mut blocks = vec![Block::Text(sparkle_text(camera, &readings))];
+    // The text's paragraphs, one block each.
+    let mut blocks: Vec<Block> = sparkle_text(camera, &readings)
+        .split('\n')
+        .map(|p| Block::Text(p.to_string()))
+        .collect();
     blocks.extend(pictures);
     blocks.push(Block::Table {
         headers: [
@@ -198,8 +202,13 @@ fn sparkle_blocks(dir: &Path, plan: &Plan) -> Result<Vec<Block>> {
                         format!("{}", p.spots),
                         format!("{:.1}", p.density_per_mm2),
                         format!("{:.3}", p.area_percent),
-                        format!("{:.0}", p.intensity),
-                        format!("{:.2}", p.grade),
+                        // The mean peak contrast of no spot is none.
+                        if p.spots > 0 {
+                            format!("{:.0}", p.intensity)
+                        } else {
+                            "—".into()
+                        },
+                        format!("{:.1}", p.grade),
                     ]
                 })
             })
@@ -218,38 +227,51 @@ fn sparkle_blocks(dir: &Path, plan: &Plan) -> Result<Vec<Block>> {
     Ok(blocks)
 }
 
-/// What the sparkle readings mean, with this run's numbers.
+/// What the sparkle readings mean, with this run's numbers: paragraphs separated by newlines.
 fn sparkle_text(camera: &TextureCamera, readings: &[(f64, TextureReading)]) -> String {
     let at15 = |k: usize| &readings[k].1.sparkle[0].sparkle;
     let (fine, coarse) = (at15(0), at15(1));
     format!(
         "Up close a metallic sparkles: single flakes that face the lamp flash, and under \
          diffuse light the finish looks grainy. gonio's virtual texture camera draws the flakes \
-         of a coating one by one (positions, sizes and tilts from the description: coverage, \
-         rms tilt, mean diameter; docs/render.md), in the geometry of the multi-angle texture \
-         cameras: the camera along the normal, a lamp {LAMP_RADIUS_DEG}° in radius at 15°, 45° \
-         and 75° from it, then a uniform hemisphere. Here the silver metallic of the coatings \
-         section (aluminium, 60% coverage, 12° rms tilt) with fine flakes {} µm across and \
-         coarse ones {} µm across, at the same coverage, over a {} mm field. A spot is a group \
-         of pixels at least ten times as bright as the surround; density counts spots per mm², \
-         area is the share of the field in spots, intensity their mean peak contrast to the \
-         surround, and the grade how much they raise the field's mean luminance (area and \
-         intensity in one number). Graininess is the coefficient of variation of the diffuse \
-         picture, the renders' own noise taken out. These are gonio's own scales, defined from \
-         the published descriptions of the CIE work (docs/instruments.md, \"Texture\"): they \
-         rank coatings as the instruments do, but their numbers are not an instrument's \
-         readings. At constant coverage the coarse flakes are fewer and each brighter: under the \
-         lamp at 15° {} spots against {} ({:.1} and {:.1} per mm²), intensity {:.0} against \
-         {:.0}, grade {:.2}% against {:.2}%; graininess {:.2}% against {:.2}%. Sparkle also falls \
-         as the flakes' tilt spreads (fewer face the lamp) and as the lamp moves away from the \
-         specular direction of the flat flakes (45°, 75°). Limits: the flakes lie at one depth \
-         under a flat coat (no flakes stacked, no waviness of the coat), their sizes follow one \
-         distribution, the lamp is a disc of fixed size (a larger lamp lights more flakes), and \
-         one field of a few mm² holds tens to hundreds of spots: their count varies by its \
-         square root from field to field.",
+         of a coating one by one (positions, sizes and tilts drawn from the description's \
+         coverage, rms tilt and mean diameter; docs/render.md) in the geometry of the \
+         multi-angle texture cameras: the camera along the normal, a lamp {LAMP_RADIUS_DEG}° in \
+         radius at 15°, 45° and 75° from it, then a uniform hemisphere. Here the silver \
+         metallic of the coatings section (aluminium flakes covering 60% of a grey base, 12° rms \
+         tilt, under a glossy clear coat) with fine flakes {} µm across and coarse ones {} µm \
+         across at the same coverage, in a {} mm field at {} µm per pixel.\n\
+         What the readings mean (gonio's own scales, defined from the published descriptions of \
+         the CIE work on sparkle and graininess: docs/instruments.md, section \"Texture\"; they \
+         are not a commercial instrument's numbers and do not convert to them). A spot is a \
+         group of pixels at least ten times as bright as the surround (the mean of the pixels \
+         outside spots). Density: spots per mm². Area: the share of the field in spots, %. \
+         Intensity: the spots' mean peak contrast to the surround; a flake that mirrors the \
+         lamp is thousands of times as bright as the base around it, hence the large numbers. \
+         Grade: by how much the spots raise the field's mean luminance over the surround, % \
+         (area and intensity in one number, so it exceeds 100% when a fraction of a percent of \
+         the field shines thousands of times brighter). Graininess: the coefficient of \
+         variation of the luminance under diffuse light, %, with the renders' own noise taken \
+         out; at this pixel the flakes are resolved, so it is the contrast between flakes and \
+         the gaps between them (tens of %), and it falls as a coarser pixel averages more \
+         flakes.\n\
+         What grows with what. At constant coverage coarse flakes are fewer and each brighter: \
+         under the lamp at 15° {} spots against {} ({:.1} against {:.1} per mm²), intensity \
+         {:.0} against {:.0}, grade {:.1}% against {:.1}%, and graininess {:.2}% against {:.2}%, \
+         coarse against fine. As the lamp moves to 45° and 75° a flake must tilt by half that \
+         angle to mirror it into the camera, and fewer of the 12° spread do: the spots thin out, \
+         while each stands out more against a base that the oblique lamp lights less. A wider \
+         tilt spread puts fewer flakes near the normal: fewer spots and a lower grade at 15° \
+         (the texture camera's tests at 6°, 12° and 24°, crates/render/tests/it/texture.rs).\n\
+         Limits: the flakes lie flat at one depth under a flat coat (no stacking, no \
+         orientation from the spray), the lamp is a disc of fixed size (a larger lamp lights \
+         more flakes), the readings use the pictures' luminance only (not the sparkle's colour), and a \
+         field of a few mm² holds tens to hundreds of spots, so their count varies by about its \
+         square root from one field to the next.",
         DIAMETERS_UM[0],
         DIAMETERS_UM[1],
         camera.field_mm,
+        camera.pixel_um,
         coarse.spots,
         fine.spots,
         coarse.density_per_mm2,
@@ -311,6 +333,16 @@ fn peel_scene(plan: &Plan, map_file: &str) -> String {
     )
 }
 
+/// One orange-peel map: its rms slope, what the meters read, and its picture.
+struct PeelLevel {
+    slope_mrad: f64,
+    bands: Vec<BandReading>,
+    gloss: gonio_instrument::gloss::GlossReport,
+    image: Image,
+    display: Display,
+    stats: gonio_render::RenderStats,
+}
+
 fn orange_peel_blocks(dir: &Path, plan: &Plan) -> Result<Vec<Block>> {
     let mut levels = Vec::new();
     let mut commands = Vec::new();
@@ -320,7 +352,7 @@ fn orange_peel_blocks(dir: &Path, plan: &Plan) -> Result<Vec<Block>> {
         let map_file = format!("{stem}.x3p");
         gonio_surface::io::write(&map, &dir.join(&map_file))?;
         let bands = waviness::waviness(&map, Direction::X, Quantity::Slope)?;
-        let doi = read_height_map(&map, MapMethod::Ray, COAT_INDEX)?.report.doi;
+        let gloss = read_height_map(&map, MapMethod::Ray, COAT_INDEX)?.report;
         let scene_file = format!("orange_peel_{slope}mrad.toml");
         let text = peel_scene(plan, &map_file);
         crate::output::write_atomic(&dir.join(&scene_file), |w| {
@@ -340,22 +372,37 @@ fn orange_peel_blocks(dir: &Path, plan: &Plan) -> Result<Vec<Block>> {
             n = plan.peel_points,
             dx = plan.peel_dx_um,
         ));
-        levels.push((slope, bands, doi, image, scene.display, estimate.stats));
+        levels.push(PeelLevel {
+            slope_mrad: slope,
+            bands,
+            gloss,
+            image,
+            display: scene.display,
+            stats: estimate.stats,
+        });
     }
     let png = dir.join("orange_peel.png");
     let panels: Vec<(String, &Image, Display)> = levels
         .iter()
-        .map(|(slope, _, doi, image, display, _)| {
-            (format!("{slope} mrad rms, DOI {doi:.0}"), image, *display)
+        .map(|l| {
+            (
+                format!("{} mrad rms slope, DOI {:.0}", l.slope_mrad, l.gloss.doi),
+                &l.image,
+                l.display,
+            )
         })
         .collect();
     side_by_side(&png, &panels, None)?;
     let side = plan.peel_points as f64 * plan.peel_dx_um * 1e-3;
-    let rays: f64 = levels.iter().map(|l| l.5.rays as f64).sum();
-    let seconds: f64 = levels.iter().map(|l| l.5.seconds).sum();
+    let rays: f64 = levels.iter().map(|l| l.stats.rays as f64).sum();
+    let seconds: f64 = levels.iter().map(|l| l.stats.seconds).sum();
     let mut headers = vec!["band".to_string(), "wavelengths (mm)".to_string()];
-    for (slope, _, doi, ..) in &levels {
-        headers.push(format!("rms slope (mrad), {slope} mrad map (DOI {doi:.1})"));
+    for l in &levels {
+        headers.push(format!(
+            "rms slope (mrad), {} mrad map (DOI {})",
+            l.slope_mrad,
+            super::doi_text(&l.gloss)
+        ));
     }
     let rows = waviness::BANDS
         .iter()
@@ -365,7 +412,7 @@ fn orange_peel_blocks(dir: &Path, plan: &Plan) -> Result<Vec<Block>> {
                 band.name.to_string(),
                 format!("{}–{}", band.short_m * 1e3, band.long_m * 1e3),
             ];
-            row.extend(levels.iter().map(|l| band_cell(&l.1[k])));
+            row.extend(levels.iter().map(|l| band_cell(&l.bands[k])));
             row
         })
         .collect();
