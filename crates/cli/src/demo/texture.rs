@@ -156,10 +156,10 @@ fn sparkle_blocks(dir: &Path, plan: &Plan) -> Result<Vec<Block>> {
             caption: format!(
                 "Silver metallic, flakes {d} µm across: the camera's {} mm field ({} × {} \
                  pixels of {} µm, {} samples each) under the lamp at {}° (left; {} spots, \
-                 sparkle grade {:.2}%), exposed so that the surround between the spots is dark \
-                 grey ({SURROUND_SHOWN} of white before the filmic curve) and every spot, ten \
-                 times as bright or more, shows near white; and under diffuse light (right; \
-                 graininess {:.2}%), its median shown mid-grey",
+                 sparkle grade {:.1}%), exposed so that the base between the spots shows dark \
+                 grey and every spot, ten times as bright or more, near white; and under diffuse \
+                 light (right; graininess {:.2}%), exposed so that its median shows mid-grey. \
+                 The bar is 1 mm",
                 camera.field_mm,
                 camera.pixels(),
                 camera.pixels(),
@@ -422,12 +422,12 @@ fn orange_peel_blocks(dir: &Path, plan: &Plan) -> Result<Vec<Block>> {
          orange peel: a periodic Gaussian height map whose power spectral density falls as \
          q^-{DEFAULT_EXPONENT} (equal mean square slope in every octave) between {DEFAULT_SHORT_MM} \
          and {DEFAULT_LONG_MM} mm, {n} × {n} points at {dx} µm ({side:.1} mm square), scaled \
-         to an rms slope along x of {a} mrad (`gonio surface gen`'s default, a smooth finish) \
+         to an rms slope along x of {a} mrad (gonio surface gen's default, a smooth finish) \
          and of {b} mrad (a visible orange peel). Its wave-scan bands: the profiles' slope \
          filtered by ISO 16610 Gaussian filters into the wavelength bands of the scanning wave \
          meters (Wa–We, short wave SW and long wave LW), the rms of each band in mrad \
          (docs/surface.md, \"Waviness\"; the meters' 0–100 scales are not public, gonio's own \
-         is `gonio surface waviness`'s value column). A band the map cannot hold says why. \
+         is the value column of gonio surface waviness). A band the map cannot hold says why. \
          The DOI (ASTM E430, docs/instruments.md) is the virtual meter's reading of the map's \
          mirror-like coat (the ray method on the map, index {COAT_INDEX}): the side slits 0.3° \
          off the specular direction collect the light the map's slopes spread, so DOI falls \
@@ -448,9 +448,10 @@ fn orange_peel_blocks(dir: &Path, plan: &Plan) -> Result<Vec<Block>> {
                 "A dark glossy panel (a clear coat of index {COAT_INDEX}, GGX α 0.0005, over a \
                  dark base) carrying each map as its mesoscale height map, mirroring five \
                  fluorescent tubes 2 m in front of it (examples/orange_peel.toml, framed \
-                 closer). The tubes' straight edges come back wavy: each point's reflection \
-                 moves by twice its slope times the distance to the tube, a few millimetres at \
-                 1 mrad. The map ({side:.1} mm) repeats across the 0.5 m panel without a seam \
+                 closer). The tubes' straight edges come back ragged and wavy: each point's \
+                 reflection moves by twice its slope times the distance to the tube (4 mm rms \
+                 at 1 mrad, 2 m away); the waves under a millimetre, a pixel or two here, fray \
+                 the edge, the longer ones bend it. The map ({side:.1} mm) repeats across the 0.5 m panel without a seam \
                  (it is periodic). {} × {} pixels, {} samples per pixel, denoised; {rays:.2e} \
                  rays in {seconds:.0} s",
                 plan.panel_px.0, plan.panel_px.1, plan.panel_spp
