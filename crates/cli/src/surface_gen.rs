@@ -13,10 +13,10 @@ use std::path::PathBuf;
 
 /// The default orange peel: `C(q) ∝ q^-4` (equal mean square slope in every octave) between
 /// 0.3 mm and 10 mm, rms slope along x 1 mrad (docs/surface.md gives the sources of the scales).
-const DEFAULT_EXPONENT: f64 = 4.0;
-const DEFAULT_LONG_MM: f64 = 10.0;
-const DEFAULT_SHORT_MM: f64 = 0.3;
-const DEFAULT_SLOPE_MRAD: f64 = 1.0;
+pub(crate) const DEFAULT_EXPONENT: f64 = 4.0;
+pub(crate) const DEFAULT_LONG_MM: f64 = 10.0;
+pub(crate) const DEFAULT_SHORT_MM: f64 = 0.3;
+pub(crate) const DEFAULT_SLOPE_MRAD: f64 = 1.0;
 
 #[derive(Clone, Copy, ValueEnum)]
 enum AcfArg {

@@ -1,11 +1,13 @@
 //! `gonio demo`: the whole pipeline on embedded default data, written up as one HTML report
 //! (`out/report.html`): the synthetic epoxy roughness series, a real instrument file and its
-//! isotropy, the roughness study by both scattering methods, and the gloss readings.
+//! isotropy, the roughness study by both scattering methods, the gloss readings, coatings and
+//! their colour, pictures, and texture (sparkle, graininess, orange peel).
 
 mod coatings;
 mod formulation;
 mod pictures;
 mod summary;
+mod texture;
 
 use crate::report::{Block, Report, Section};
 use crate::study::{self, StudyOutputs};
@@ -76,7 +78,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
         .with_context(|| format!("{}: cannot create directory", dir.display()))?;
     let started = Instant::now();
     let mut sections = Vec::new();
-    let steps = if args.quick { 5 } else { 7 };
+    let steps = if args.quick { 6 } else { 8 };
     let mut step = 0;
     let mut announce = |what: &str| {
         step += 1;
@@ -136,6 +138,12 @@ pub fn run(args: DemoArgs) -> Result<()> {
         section.seconds = seconds;
         sections.push(section);
     }
+
+    announce("texture: the sparkle of a silver metallic and the orange peel of a clear coat");
+    let (section, seconds) = timed(|| texture::texture_section(dir, args.quick));
+    let mut section = section?;
+    section.seconds = seconds;
+    sections.push(section);
 
     let report = Report {
         title: "gonio demo report".into(),

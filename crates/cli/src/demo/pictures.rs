@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 
 /// The options of the report's renders: colour mode `colour`, seed `seed` (`None`: the
 /// scene's), a progress bar.
-fn options(colour: ColourMode, seed: Option<u32>) -> RenderOptions {
+pub(super) fn options(colour: ColourMode, seed: Option<u32>) -> RenderOptions {
     RenderOptions {
         progress: crate::progress::reporting(&crate::progress::bar(0)),
         colour,
