@@ -350,6 +350,10 @@ pub struct FlakeLayer {
     /// evaluation of the layer, band by band through `optics`, was half of a table's time).
     reflectance_rows: Vec<f64>,
     through_rows: Vec<f64>,
+    /// Whether the walks over this layer leave out the flakes' glint (light that meets the
+    /// layer once and is mirrored by a flake: [`crate::glint`]), for a renderer that draws it
+    /// flake by flake ([`FlakeLayer::without_glint`]).
+    glint_left_out: bool,
 }
 
 impl FlakeLayer {
@@ -366,6 +370,7 @@ impl FlakeLayer {
             diffuse,
             reflectance_rows: Vec::new(),
             through_rows: Vec::new(),
+            glint_left_out: false,
         }
     }
 
@@ -397,6 +402,7 @@ impl FlakeLayer {
             optics,
             rho,
             diffuse,
+            glint_left_out: false,
         };
         layer.share = (0..Tilts::STEPS)
             .map(|i| layer.share_at(Tilts::mu(i)))
@@ -552,6 +558,21 @@ impl FlakeLayer {
     /// A flake's own transmittance in band `b` at the local cosine `cos_h` (0 for metal).
     pub fn flake_transmittance(&self, b: usize, cos_h: f64) -> f64 {
         self.optics[b].transmittance(cos_h)
+    }
+
+    /// The same layer, its walks leaving out the flakes' glint: where a path meets the layer
+    /// once, the layer's BRDF there is taken without the flakes' lobe ([`FlakeLayer::lobe`]);
+    /// paths that meet it more than once keep it.
+    pub fn without_glint(self) -> Self {
+        FlakeLayer {
+            glint_left_out: true,
+            ..self
+        }
+    }
+
+    /// Whether the walks over this layer leave out the flakes' glint.
+    pub fn glint_left_out(&self) -> bool {
+        self.glint_left_out
     }
 
     /// The fraction of the base's area that flakes cover (0 for a bare base).

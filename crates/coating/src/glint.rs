@@ -18,7 +18,9 @@
 //! for every band. A rough top blurs the glint a little further (its microfacets tilt the
 //! refracted ray by about `α (n − 1)/n` rad: 0.6° for the silver metallic's α 0.03) and a
 //! dispersive coat splits it by `Δn/n` of the refraction angle; both are left out of the
-//! glint, and both stay in the rest of the table, which is computed with them.
+//! glint. The rest of the table ([`crate::system::Coating::table_without_glint`]) leaves out
+//! the glint as the walks see it, through the rough top: a discrete picture's average differs
+//! from the full table by the top's blur of the glint, second order in the blur.
 
 use crate::error::Result;
 use crate::flakes::FlakeLayer;

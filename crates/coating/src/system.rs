@@ -11,7 +11,6 @@ use crate::cell::{self, CellWalks, luminance_weights};
 use crate::clear_coat::{self, AtWavelength, Base, ClearCoatOverBase, Coat};
 use crate::error::{CoatingError, Result};
 use crate::flakes::{FlakeLayer, Flakes};
-use crate::glint::Glint;
 use crate::interface::{Interface, Transport};
 use crate::layered::{Scratch, Walk};
 use glam::DVec3;
@@ -272,18 +271,18 @@ impl Coating {
             provenance,
             |_| true,
             cancel,
-            None,
+            false,
         )
         .map(|(table, _)| table)
     }
 
-    /// [`Coating::table_until`] without the flakes' glint ([`Glint`]): the table a renderer
-    /// that draws the flakes one by one ([`Glint::flake`]) adds them to. Each cell's estimate
-    /// less the glint at the cell's directions, kept at 0 where the glint exceeds it (the
-    /// glint is refracted through the mean plane of a rough top, whose estimate blurs it:
-    /// near the peak of a narrow lobe the blurred one may be the lower, by the second order of
-    /// the blur; the number of cells held at 0 is in the provenance, `glint_clipped_cells`).
-    /// `glint` must be this coating's at `wavelengths_nm`.
+    /// [`Coating::table_until`] without the flakes' glint ([`crate::glint::Glint`]): the
+    /// table a renderer that draws the flakes one by one ([`crate::glint::Glint::flake`]) adds
+    /// them to. The walks leave out the light that meets the flake layer once and is mirrored
+    /// by a flake (the layer's BRDF at such a single visit taken without the flakes' lobe,
+    /// [`FlakeLayer::without_glint`]), so that the rest carries none of the glint's noise; under
+    /// a smooth top the table and this one differ by the glint exactly (each walk's single
+    /// visit is exact there). The provenance says what was left out (`glint`).
     pub fn table_without_glint(
         &self,
         resolution: Resolution,
@@ -291,13 +290,7 @@ impl Coating {
         walks: impl Into<CellWalks>,
         provenance: Provenance,
         cancel: &Cancel,
-        glint: &Glint,
     ) -> Result<BrdfTable> {
-        if glint.wavelengths_nm() != wavelengths_nm {
-            return Err(CoatingError::Invalid(
-                "the glint's bands differ from the table's".into(),
-            ));
-        }
         self.cells(
             resolution,
             wavelengths_nm,
@@ -305,7 +298,7 @@ impl Coating {
             provenance,
             |_| true,
             cancel,
-            Some(glint),
+            true,
         )
         .map(|(table, _)| table)
     }
@@ -330,12 +323,12 @@ impl Coating {
             provenance,
             keep,
             &cancel,
-            None,
+            false,
         )
     }
 
-    /// [`Coating::table_cells`], stopped by `cancel` ([`Coating::table_until`]), less `glint`
-    /// ([`Coating::table_without_glint`]).
+    /// [`Coating::table_cells`], stopped by `cancel` ([`Coating::table_until`]), without the
+    /// flakes' glint when `glint_left_out` ([`Coating::table_without_glint`]).
     #[allow(clippy::too_many_arguments)]
     fn cells(
         &self,
@@ -345,7 +338,7 @@ impl Coating {
         mut provenance: Provenance,
         keep: impl Fn(usize) -> bool + Sync,
         cancel: &Cancel,
-        glint: Option<&Glint>,
+        glint_left_out: bool,
     ) -> Result<(BrdfTable, Spent)> {
         let stopped = || {
             if cancel.is_cancelled() {
@@ -365,7 +358,12 @@ impl Coating {
                 "samples: at least one random walk per cell is needed".into(),
             ));
         }
-        let evaluator = self.evaluator(wavelengths_nm)?;
+        let mut evaluator = self.evaluator(wavelengths_nm)?;
+        if glint_left_out && let Evaluator::Walks(groups) = &mut evaluator {
+            for (_, walk) in groups.iter_mut() {
+                walk.bottom = walk.bottom.clone().without_glint();
+            }
+        }
         let luminance = luminance_weights(wavelengths_nm)?;
         let channels = Channels::Spectral {
             wavelengths_nm: wavelengths_nm.to_vec(),
@@ -405,7 +403,7 @@ impl Coating {
         let se_of = |i: usize| {
             Some(f64::from_bits(first_se[i].load(Ordering::Relaxed))).filter(|s| !s.is_nan())
         };
-        let [cells, max, capped, clipped] = [0; 4].map(AtomicUsize::new);
+        let [cells, max, capped] = [0; 3].map(AtomicUsize::new);
         let total = AtomicU64::new(0);
         builder.refine(|c, out| {
             if !kept[c.index] || cancel.is_cancelled() {
@@ -426,16 +424,6 @@ impl Coating {
                 }
             };
             evaluator.refine_cell(c.wo, c.wi, &walks, count, &mut Scratch::default(), out);
-            if let Some(glint) = glint {
-                let mut g = vec![0.0; out.len()];
-                glint.eval(c.wo, c.wi, &mut g);
-                let mut held = false;
-                for (o, g) in out.iter_mut().zip(&g) {
-                    held |= *g > *o;
-                    *o = (*o - g).max(0.0);
-                }
-                clipped.fetch_add(usize::from(held), Ordering::Relaxed);
-            }
             cells.fetch_add(1, Ordering::Relaxed);
             total.fetch_add(count as u64, Ordering::Relaxed);
             max.fetch_max(count, Ordering::Relaxed);
@@ -449,12 +437,11 @@ impl Coating {
             capped: capped.into_inner(),
         };
         spent.record(&mut provenance, &walks);
-        if glint.is_some() {
+        if glint_left_out {
             provenance.extra.insert(
                 "glint".into(),
                 serde_json::json!({
                     "left_out": "the flakes' glint, drawn flake by flake by the renderer",
-                    "glint_clipped_cells": clipped.into_inner(),
                 }),
             );
         }

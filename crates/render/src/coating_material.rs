@@ -81,13 +81,12 @@ fn table(
     let resolution = panel::resolution(coating);
     match glint {
         None => coating.table(resolution, &bands, panel::WALKS, provenance),
-        Some(glint) => coating.table_without_glint(
+        Some(_) => coating.table_without_glint(
             resolution,
             &bands,
             panel::WALKS,
             provenance,
             &Cancel::default(),
-            glint,
         ),
     }
 }

@@ -69,6 +69,8 @@ pub struct Scratch {
     light_beta: Vec<f64>,
     /// The light's throughput as its walk goes.
     carried: Vec<f64>,
+    /// The flakes' lobe at a single visit, left out of the estimate without the glint.
+    lobe: Vec<f64>,
 }
 
 /// A visit of the flake layer by the light's walk ([`Walk::light_walk`]): the light arrives
@@ -215,8 +217,9 @@ impl Walk {
         scratch.light_beta.clear();
         let (top, bottom) = (&self.top, &self.bottom);
         let up = -wis.wi;
-        let (f, beta) = (&mut scratch.f, &mut scratch.carried);
+        let (f, beta, lobe) = (&mut scratch.f, &mut scratch.carried, &mut scratch.lobe);
         beta.resize(nb, 0.0);
+        lobe.resize(nb, 0.0);
         for (k, x) in beta.iter_mut().enumerate() {
             *x = wis.weight() * self.across(k, up.z);
         }
@@ -229,6 +232,12 @@ impl Walk {
             let Some((b, pdf_b, _)) = bottom.sample(from, rng.next(), rng.next2(), f) else {
                 break;
             };
+            // A path that leaves here to wo meets the layer once: without the glint, the
+            // layer's BRDF there is taken without the flakes' lobe.
+            let single = visit == 0 && bottom.glint_left_out();
+            if single {
+                bottom.lobe(from, b, lobe);
+            }
             for (k, x) in beta.iter_mut().enumerate() {
                 *x *= f[k] * b.z / pdf_b * self.across(k, b.z);
             }
@@ -246,8 +255,13 @@ impl Walk {
                 if f_exit > 0.0 {
                     let through_top = kappa * top.pdf(wo, -b, Lobes::Transmission);
                     let mis = 1.0 / (1.0 + (through_top / pdf_b).powi(2) * (1.0 + tail));
-                    for (o, x) in out.iter_mut().zip(beta.iter()) {
-                        *o += x * f_exit * mis;
+                    for (k, (o, x)) in out.iter_mut().zip(beta.iter()).enumerate() {
+                        let kept = if single {
+                            without_lobe(f[k], lobe[k])
+                        } else {
+                            1.0
+                        };
+                        *o += x * kept * f_exit * mis;
                     }
                 }
             }
@@ -426,8 +440,10 @@ impl Walk {
                     f,
                     light,
                     light_beta,
+                    lobe,
                     ..
                 } = &mut *scratch;
+                lobe.resize(nb, 0.0);
                 beta.fill(wos.weight());
                 let mut w = wos.wi;
                 // The walk's visits of the flake layer so far, and what it keeps of the last. At
@@ -475,6 +491,15 @@ impl Walk {
                     // (next-event estimation), and through each of the light's visits that keeps
                     // the path within the walks' reach.
                     let (to_up, from_up) = bottom.f_and_pdfs(a, up, f);
+                    // The path that ends here at its first visit meets the layer once: without
+                    // the glint, the layer's BRDF there is taken without the flakes' lobe.
+                    let single = visit == 1 && bottom.glint_left_out();
+                    if single {
+                        bottom.lobe(a, up, lobe);
+                        for (fb, l) in f.iter_mut().zip(lobe.iter()) {
+                            *fb = (*fb - l).max(0.0);
+                        }
+                    }
                     let light_side = if rough {
                         (to_up / (kappa * wis.pdf)).powi(2)
                     } else {
@@ -504,6 +529,9 @@ impl Walk {
                     let Some((next, pdf, back)) = bottom.sample(a, uc, rng.next2(), f) else {
                         break;
                     };
+                    if single {
+                        bottom.lobe(a, next, lobe);
+                    }
                     for b in 0..nb {
                         beta[b] *= f[b] * next.z / pdf;
                     }
@@ -519,7 +547,12 @@ impl Walk {
                             let mis = 1.0 / (1.0 + (through_top / pdf).powi(2) * (1.0 + sum));
                             let mu = w.z.abs();
                             for b in 0..nb {
-                                out[b] += beta[b] * self.across(b, mu) * f_exit * mis;
+                                let kept = if single {
+                                    without_lobe(f[b], lobe[b])
+                                } else {
+                                    1.0
+                                };
+                                out[b] += beta[b] * kept * self.across(b, mu) * f_exit * mis;
                             }
                         }
                     }
@@ -529,6 +562,16 @@ impl Walk {
                 values[k - first] += weighted(w, out) - before;
             }
         }
+    }
+}
+
+/// The share of a layer's BRDF value `f` left without the flakes' lobe `lobe` (0 where `f`
+/// is 0).
+fn without_lobe(f: f64, lobe: f64) -> f64 {
+    if f > 0.0 {
+        ((f - lobe) / f).max(0.0)
+    } else {
+        0.0
     }
 }
 

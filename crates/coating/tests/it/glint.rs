@@ -145,12 +145,14 @@ fn frame(w: DVec3) -> (DVec3, DVec3) {
     (t, w.cross(t))
 }
 
-/// The table without the glint plus the glint is the table, cell by cell (the same walks: the
-/// same seeds), where the glint does not exceed the estimate; under a smooth top it never
-/// does (the glint is then exactly part of every walk's estimate), and the provenance says
-/// what was left out.
+/// The table without the glint: its walks drop the single visits' flake lobe, so each cell is
+/// at most the full table's (the same walks, fewer contributions). Under a smooth top each
+/// walk's single visit is exact, so the difference is the glint to rounding; under a rough
+/// top (α 0.03) it is the glint seen through the rough top, estimated by 64 walks a cell:
+/// within 15% of the mean-plane glint where the glint is over half its peak (the walks'
+/// noise there, about 4% at 64 walks, and the top's blur of the lobe, under 1%).
 #[test]
-fn table_without_glint_plus_glint_is_the_table() {
+fn table_without_glint_leaves_out_the_glint() {
     let resolution = Resolution::isotropic(8, 8, 4);
     for top in [
         "",
@@ -159,50 +161,56 @@ fn table_without_glint_plus_glint_is_the_table() {
         let coating = silver(top, 0.25, 0.0);
         let glint = Glint::new(&coating, &WL).unwrap().unwrap();
         let full = coating
-            .table(resolution, &WL, 4, Provenance::default())
+            .table(resolution, &WL, 64, Provenance::default())
             .unwrap();
         let rest = coating
             .table_without_glint(
                 resolution,
                 &WL,
-                4,
+                64,
                 Provenance::default(),
                 &Cancel::default(),
-                &glint,
             )
             .unwrap();
-        let extra = &rest.provenance().extra["glint"];
-        let clipped = extra["glint_clipped_cells"].as_u64().unwrap();
-        if top.is_empty() {
-            assert_eq!(clipped, 0);
-        }
+        assert!(rest.provenance().extra.contains_key("glint"));
         let mut g = [0.0; 3];
-        let (mut checked, mut largest) = (0, 0.0f64);
+        let mut peak = 0.0f64;
+        for cell in 0..resolution.cell_count() {
+            let (wi, wo) = resolution.cell_angles(cell).to_dirs();
+            glint.eval(wo, wi, &mut g);
+            peak = peak.max(g[1]);
+        }
+        let (mut checked, mut worst) = (0, 0.0f64);
         for cell in 0..resolution.cell_count() {
             let (wi, wo) = resolution.cell_angles(cell).to_dirs();
             let (a, b) = (full.cell_values(cell), rest.cell_values(cell));
             if a[0].is_nan() {
                 continue;
             }
-            let (a, b): (Vec<f64>, Vec<f64>) =
-                (0..3).map(|k| (f64::from(a[k]), f64::from(b[k]))).unzip();
             glint.eval(wo, wi, &mut g);
             for k in 0..3 {
-                if g[k] <= a[k] {
+                let (a, b) = (f64::from(a[k]), f64::from(b[k]));
+                assert!(
+                    b >= 0.0 && b <= a * (1.0 + 1e-6),
+                    "{top}: rest {b} over full {a}"
+                );
+                if top.is_empty() {
                     assert!(
-                        (b[k] + g[k] - a[k]).abs() <= 1e-5 * a[k].max(1.0),
-                        "{top}: {} + {} vs {}",
-                        b[k],
-                        g[k],
-                        a[k]
+                        (a - b - g[k]).abs() <= 1e-5 * a.max(1.0),
+                        "smooth top: {a} - {b} against the glint {}",
+                        g[k]
                     );
+                } else if g[k] > 0.5 * peak {
+                    worst = worst.max(((a - b) / g[k] - 1.0).abs());
                     checked += 1;
-                    largest = largest.max(g[k]);
-                } else {
-                    assert_eq!(b[k], 0.0);
                 }
             }
         }
-        assert!(checked > 100 && largest > 0.2, "{checked} {largest}");
+        if !top.is_empty() {
+            assert!(
+                checked > 3 && worst < 0.15,
+                "{checked} cells, worst {worst}"
+            );
+        }
     }
 }
