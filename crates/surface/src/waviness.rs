@@ -152,6 +152,17 @@ pub struct BandReading {
 }
 
 impl BandReading {
+    /// A band the data cannot measure, and why.
+    fn unresolved(band: Band, quantity: Quantity, why: String) -> BandReading {
+        BandReading {
+            band,
+            quantity,
+            rms: None,
+            samples: 0,
+            unresolved: Some(why),
+        }
+    }
+
     /// gonio's 0–100 value ([`value`]) of a slope band; `None` for curvature, which gonio gives
     /// no such scale.
     pub fn value(&self) -> Option<f64> {
@@ -226,19 +237,17 @@ pub fn waviness(
         .iter()
         .map(|&band| {
             if band.short_m < 2.0 * d {
-                return Ok(BandReading {
+                return Ok(BandReading::unresolved(
                     band,
                     quantity,
-                    rms: None,
-                    samples: 0,
-                    unresolved: Some(format!(
+                    format!(
                         "too coarse: the spacing {:.4} mm resolves waves down to {:.4} mm, the \
                          band starts at {} mm",
                         mm(d),
                         mm(2.0 * d),
                         mm(band.short_m)
-                    )),
-                });
+                    ),
+                ));
             }
             let (mut sum, mut n) = (0.0, 0usize);
             for run in runs
@@ -250,18 +259,16 @@ pub fn waviness(
                 n += b.values.len();
             }
             if n == 0 {
-                return Ok(BandReading {
+                return Ok(BandReading::unresolved(
                     band,
                     quantity,
-                    rms: None,
-                    samples: 0,
-                    unresolved: Some(format!(
+                    format!(
                         "too short: the longest valid run is {:.2} mm, the band needs more than \
                          {} mm (twice its long cutoff)",
                         mm((longest as f64 - 1.0) * d),
                         mm(2.0 * band.long_m)
-                    )),
-                });
+                    ),
+                ));
             }
             Ok(BandReading {
                 band,
