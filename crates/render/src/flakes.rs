@@ -99,11 +99,6 @@ impl FlakeField {
         &self.glint
     }
 
-    /// The spacing of the flakes' sites, m.
-    pub fn spacing(&self) -> f64 {
-        self.spacing
-    }
-
     /// The linear sRGB of a spectrum given at the glint's bands.
     pub fn to_rgb(&self, values: &[f64]) -> Rgb {
         self.rgb_weights
