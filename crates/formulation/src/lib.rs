@@ -17,6 +17,7 @@ pub mod match_objective;
 mod match_reader;
 pub mod match_report;
 pub mod matching;
+pub mod search;
 pub mod sensitivity;
 pub mod sensitivity_report;
 pub mod target;

@@ -10,16 +10,8 @@
 //! the constituents rather than one with independent noise at every point (checked in
 //! `tests/it/matching.rs`, `objective_is_smooth_along_a_line`, and docs/formulation.md).
 //!
-//! Optimiser: Nelder–Mead (argmin's; Nelder & Mead, Comput. J. 7, 308, 1965), derivative-free,
-//! on unbounded parameters `u` mapped into the bounds by MINUIT's sine transform
-//! `x = lo + (hi − lo)(1 + sin u)/2` (F. James & M. Roos, "MINUIT", Comput. Phys. Commun. 10,
-//! 343, 1975; James, MINUIT Reference Manual, CERN D506, §1.3.1 "parameter limits"): every
-//! simplex vertex is a valid formulation, and the map is smooth with no saturation. Runs start
-//! from the start formulation and from `starts − 1` points of a scrambled Sobol sequence over
-//! the bounds (deterministic; low discrepancy fills the box better than random starts with so
-//! few points); the best result is run once more from a fresh simplex (restarting at a claimed
-//! minimum guards against Nelder–Mead's false convergence, Press et al., Numerical Recipes,
-//! 3rd ed., §10.5).
+//! Optimiser: multi-start Nelder–Mead within the bounds ([`crate::search`], where its method and
+//! sources are given).
 //!
 //! Uncertainty: Gauss–Newton at the optimum (Bates & Watts, *Nonlinear Regression Analysis and
 //! Its Applications*, 1988, §2.3): `cov = s² (JᵀJ)⁻¹`, `s² = Σr²/(m − p)`, with `r` the
@@ -30,20 +22,19 @@
 //! there the estimate is least squares proper — and `J`
 //! its Jacobian in the constituents by central differences (steps of 1% of each range).
 
-use crate::bounds::{from_bounds, rounded, to_bounds};
+use crate::bounds::rounded;
 use crate::coating_sensitivity::Varied;
 use crate::error::{FormulationError, Result};
 pub use crate::match_objective::Objective;
 use crate::match_objective::spectra_of;
 use crate::match_reader::Reader;
+pub use crate::search::Run;
+use crate::search::{Search, best_run, minimise};
 use crate::target::GlossTarget;
-use argmin::core::{CostFunction, Executor, State};
-use argmin::solver::neldermead::NelderMead;
 use gonio_coating::system::Coating;
 use gonio_instrument::gloss::GlossReport;
 use gonio_instrument::multiangle::{Geometry, MultiangleReading};
 use gonio_instrument::multiangle_target::Target;
-use std::cell::RefCell;
 use std::time::Instant;
 
 /// How a match reads each formulation and searches.
@@ -97,17 +88,6 @@ impl Default for Settings {
             objective: Objective::default(),
         }
     }
-}
-
-/// One Nelder–Mead run.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Run {
-    /// Where it started and where it ended, in the constituents' units.
-    pub from: Vec<f64>,
-    pub to: Vec<f64>,
-    /// The objective where it ended.
-    pub objective: f64,
-    pub evaluations: usize,
 }
 
 /// What one formulation reads against the target.
@@ -168,58 +148,6 @@ impl Match {
     }
 }
 
-/// The objective as argmin sees it: the unbounded parameters, the first error kept (argmin's
-/// error type carries only a message), the evaluations counted, a progress line every ~10 s.
-struct Cost<'a, 'b> {
-    reader: &'a Reader<'a>,
-    state: &'a RefCell<ObjectiveState<'b>>,
-}
-
-struct ObjectiveState<'b> {
-    error: Option<FormulationError>,
-    evaluations: usize,
-    best: f64,
-    last_report: Instant,
-    progress: &'b mut dyn FnMut(&str),
-}
-
-impl CostFunction for Cost<'_, '_> {
-    type Param = Vec<f64>;
-    type Output = f64;
-
-    fn cost(&self, u: &Vec<f64>) -> std::result::Result<f64, argmin::core::Error> {
-        let x: Vec<f64> = self
-            .reader
-            .varied
-            .iter()
-            .zip(u)
-            .map(|(v, &u)| to_bounds(v, u))
-            .collect();
-        let result = self.reader.objective(&x);
-        let mut state = self.state.borrow_mut();
-        state.evaluations += 1;
-        match result {
-            Ok(f) => {
-                state.best = state.best.min(f);
-                if state.last_report.elapsed().as_secs_f64() > 10.0 {
-                    let line = format!(
-                        "  {} readings, best objective so far {:.3}",
-                        state.evaluations, state.best
-                    );
-                    (state.progress)(&line);
-                    state.last_report = Instant::now();
-                }
-                Ok(f)
-            }
-            Err(e) => {
-                let message = e.to_string();
-                state.error.get_or_insert(e);
-                Err(argmin::core::Error::msg(message))
-            }
-        }
-    }
-}
-
 /// The objective a match minimises, at the values `x` of `varied` (in their units): mean ΔE00
 /// from `target` over its geometries plus the weighted gloss differences, the formulation read
 /// with seed 0 as every evaluation of [`run`] is.
@@ -258,11 +186,6 @@ pub fn run(
             "a match needs at least one constituent to vary".into(),
         ));
     }
-    if settings.starts == 0 {
-        return Err(FormulationError::Invalid(
-            "a match needs at least one start".into(),
-        ));
-    }
     if settings.objective == Objective::Spectral {
         spectra_of(target)?;
     }
@@ -293,117 +216,21 @@ pub fn run(
         .iter()
         .map(|v| Ok(v.constituent.value(start)?.clamp(v.lo, v.hi)))
         .collect::<Result<_>>()?;
-    let d = varied.len();
-    let mut starts = vec![x0.clone()];
-    for k in 1..settings.starts {
-        starts.push(
-            varied
-                .iter()
-                .enumerate()
-                .map(|(i, v)| {
-                    let s = sobol_burley::sample(k as u32, i as u32, 0) as f64;
-                    v.lo + s * (v.hi - v.lo)
-                })
-                .collect(),
-        );
-    }
-    let mut evaluations = 0;
-    let mut runs: Vec<Run> = Vec::new();
-    let mut nelder_mead = |from: &[f64], step: f64, label: &str| -> Result<Run> {
-        let u0: Vec<f64> = varied
-            .iter()
-            .zip(from)
-            .map(|(v, &x)| from_bounds(v, x))
-            .collect();
-        // The initial simplex: u0 and u0 moved by `step` along each axis, away from the
-        // nearer bound (where the sine map is flat).
-        let mut simplex = vec![u0.clone()];
-        for i in 0..d {
-            let mut u = u0.clone();
-            u[i] += if u0[i] > 0.0 { -step } else { step };
-            simplex.push(u);
-        }
-        let state = RefCell::new(ObjectiveState {
-            error: None,
-            evaluations: 0,
-            best: f64::INFINITY,
-            last_report: Instant::now(),
-            progress: &mut *progress,
-        });
-        let objective = Cost {
-            reader: &reader,
-            state: &state,
-        };
-        let solver = NelderMead::new(simplex)
-            .with_sd_tolerance(settings.tolerance * settings.objective.per_de00())
-            .map_err(|e| FormulationError::Invalid(e.to_string()))?;
-        let result = Executor::new(objective, solver)
-            .configure(|s| s.max_iters(settings.iterations))
-            .run()
-            .map(|r| {
-                (
-                    r.state().get_best_param().cloned(),
-                    r.state().get_best_cost(),
-                )
-            });
-        let state = state.into_inner();
-        if let Some(e) = state.error {
-            return Err(e);
-        }
-        let (best, cost) = result.map_err(|e| FormulationError::Invalid(e.to_string()))?;
-        let best =
-            best.ok_or_else(|| FormulationError::Invalid("Nelder-Mead found no point".into()))?;
-        let to: Vec<f64> = varied
-            .iter()
-            .zip(&best)
-            .map(|(v, &u)| to_bounds(v, u))
-            .collect();
-        let run = Run {
-            from: from.to_vec(),
-            to,
-            objective: cost,
-            evaluations: state.evaluations,
-        };
-        (state.progress)(&format!(
-            "{label}: objective {:.3} at {} ({} readings, {:.0} s so far)",
-            run.objective,
-            reader.describe(&run.to),
-            run.evaluations,
-            clock.elapsed().as_secs_f64()
-        ));
-        Ok(run)
+    let search = Search {
+        starts: settings.starts,
+        iterations: settings.iterations,
+        tolerance: settings.tolerance * settings.objective.per_de00(),
     };
-    for (k, from) in starts.iter().enumerate() {
-        let label = if k == 0 {
-            format!("run 1 of {} (from the start formulation)", starts.len() + 1)
-        } else {
-            format!("run {} of {} (from a Sobol point)", k + 1, starts.len() + 1)
-        };
-        let r = nelder_mead(from, 0.5, &label)?;
-        evaluations += r.evaluations;
-        runs.push(r);
-    }
-    let best = runs
-        .iter()
-        .min_by(|a, b| a.objective.total_cmp(&b.objective))
-        .expect("at least one run")
-        .to
-        .clone();
-    let last = nelder_mead(
-        &best,
-        0.1,
-        &format!(
-            "run {} of {} (again from the best)",
-            runs.len() + 1,
-            runs.len() + 1
-        ),
+    let runs = minimise(
+        varied,
+        &x0,
+        &search,
+        &|x| reader.objective(x),
+        &|x| reader.describe(x),
+        progress,
     )?;
-    evaluations += last.evaluations;
-    runs.push(last);
-    let best = runs
-        .iter()
-        .min_by(|a, b| a.objective.total_cmp(&b.objective))
-        .expect("at least one run");
+    let mut evaluations: usize = runs.iter().map(|r| r.evaluations).sum();
+    let best = best_run(&runs);
     let fitted_x: Vec<f64> = varied
         .iter()
         .zip(&best.to)

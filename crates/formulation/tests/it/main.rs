@@ -9,5 +9,6 @@ mod lab_target;
 mod matching;
 mod oracle;
 mod salib;
+mod search;
 mod sensitivity;
 mod spectral_matching;
