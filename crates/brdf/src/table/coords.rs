@@ -218,6 +218,32 @@ impl Resolution {
         node - pd + (pd + self.phi_d / 2) % self.phi_d
     }
 
+    /// The node whose `phi_d` is `node`'s reflected through 0 (`2π − phi_d`): in an isotropic
+    /// table, the pair mirrored through the plane of incidence (`phi_h` is 0, so `h` lies in the
+    /// x–z plane, and the mirror y → −y turns `d`'s azimuth to its negative).
+    #[inline]
+    pub fn mirror_cell(&self, node: usize) -> usize {
+        let pd = node % self.phi_d;
+        node - pd + (self.phi_d - pd) % self.phi_d
+    }
+
+    /// The node whose values stand for `node` in a table of a reciprocal BRDF: the lower of
+    /// `node` and its [`Resolution::reciprocal_cell`] and, in an isotropic table when `mirror`
+    /// (a BRDF also symmetric about the plane of incidence: any isotropic surface without a
+    /// handedness), of their [`Resolution::mirror_cell`]s. `phi_d` nodes
+    /// `k, k + N/2, N − k, N/2 − k` make one class, so a table computed on its representatives
+    /// alone costs half the cells (reciprocity), or about a quarter with the mirror.
+    #[inline]
+    pub fn representative_cell(&self, node: usize, mirror: bool) -> usize {
+        let r = self.reciprocal_cell(node);
+        let lowest = node.min(r);
+        if mirror && self.is_isotropic() {
+            lowest.min(self.mirror_cell(node)).min(self.mirror_cell(r))
+        } else {
+            lowest
+        }
+    }
+
     /// Interpolation stencil of a point: for each of (phi_h, theta_h, theta_d, phi_d) the two
     /// bracketing node indices and the weight of the second.
     #[inline]

@@ -55,3 +55,41 @@ fn stencil_hits_nodes_exactly() {
         }
     }
 }
+
+/// The mirror image of a node is the pair reflected through the plane of incidence (y → −y:
+/// the cosines and the angle between the directions kept, the azimuths negated); a node's
+/// representative is the lowest of its class `{node, reciprocal, mirror, mirror of the
+/// reciprocal}`, the same for every member, and an isotropic grid of phi_d = 4m nodes has
+/// m + 1 representatives per (theta_h, theta_d) row (phi_d nodes 0..=m), an anisotropic one
+/// half its cells (reciprocity only).
+#[test]
+fn mirror_cells_and_symmetry_classes() {
+    let r = Resolution::isotropic(5, 4, 16);
+    let mut representatives = 0;
+    for node in 0..r.cell_count() {
+        let m = r.mirror_cell(node);
+        assert_eq!(r.mirror_cell(m), node);
+        let (wi, wo) = r.cell_angles(node).to_dirs();
+        let (mi, mo) = r.cell_angles(m).to_dirs();
+        for (a, b) in [(wi, mi), (wo, mo)] {
+            assert!((a.x - b.x).abs() < 1e-12 && (a.y + b.y).abs() < 1e-12);
+            assert!((a.z - b.z).abs() < 1e-12);
+        }
+        let rep = r.representative_cell(node, true);
+        assert!(rep <= node);
+        for member in [node, r.reciprocal_cell(node), m, r.reciprocal_cell(m)] {
+            assert_eq!(r.representative_cell(member, true), rep);
+        }
+        assert_eq!(
+            r.representative_cell(node, false),
+            node.min(r.reciprocal_cell(node))
+        );
+        representatives += usize::from(rep == node);
+    }
+    assert_eq!(representatives, 5 * 4 * (16 / 4 + 1));
+    let a = Resolution::anisotropic(3, 3, 8, 4);
+    let halves = (0..a.cell_count())
+        .filter(|&n| a.representative_cell(n, true) == n)
+        .count();
+    assert_eq!(halves, a.cell_count() / 2);
+}
