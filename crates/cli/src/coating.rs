@@ -203,7 +203,9 @@ pub struct ComputeArgs {
     /// the target takes more walks, in multiples of --samples (the error falls as
     /// 1/sqrt(walks)), at most 16 times --samples. A reading interpolates up to eight cells
     /// with weights that sum to 1, so cells within 1/3 L* keep a reading within 1/3 L* (1 L*
-    /// is then three standard deviations). 0 or inf: --samples walks in every cell.
+    /// is then three standard deviations). Cells with a direction more than 70° from the
+    /// normal, which no multi-angle geometry reads (E2194/E2539 view at most 65° off it), are
+    /// held to three times the target. 0 or inf: --samples walks in every cell.
     /// [default: 1/3]
     #[arg(long, value_name = "L*", default_value_t = TARGET_DL, hide_default_value = true)]
     target_dl: f64,

@@ -101,6 +101,38 @@ impl CellWalks {
     }
 }
 
+/// The largest angle from the normal, degrees, of a direction that the multi-angle readings take
+/// from a table: ASTM E2194 and E2539 view at most 65° off the normal (45as110 and 15as80), and
+/// a reading at 65° interpolates cells within about 1.6° more (the theta_h spacing there on the
+/// default 90-node grid; theta_d's is 1°). Cells with both directions within this angle are held
+/// to the target; cells beyond it, which no standard geometry reads, to
+/// [`GRAZING_TARGET_FACTOR`] times it ([`CellWalks::target_at`]).
+pub const READ_LIMIT_DEG: f64 = 70.0;
+
+/// How much looser the target is in a cell with a direction beyond [`READ_LIMIT_DEG`]: three
+/// times, 1 L* for the default 1/3. There the walks' noise is largest (a dark flank, where the
+/// slope of L* is steep, and heavy tails): on the silver metallic at 1/3 L* everywhere, the
+/// cells with a direction beyond 63° took 71% of the table's walks and half of them stopped at
+/// the cap still above the target, while no multi-angle reading needs them. The readings at
+/// E2194/E2539 interpolate only cells within [`READ_LIMIT_DEG`], which keep their walks.
+pub const GRAZING_TARGET_FACTOR: f64 = 3.0;
+
+impl CellWalks {
+    /// The target in L* of the table cell of the pair `(wo, wi)`: the target within
+    /// [`READ_LIMIT_DEG`] of the normal, [`GRAZING_TARGET_FACTOR`] times it beyond; `None`
+    /// for a fixed number of walks.
+    pub fn target_at(&self, wo: DVec3, wi: DVec3) -> Option<f64> {
+        let limit = READ_LIMIT_DEG.to_radians().cos();
+        self.target_dl.map(|t| {
+            if wo.z.min(wi.z) >= limit {
+                t
+            } else {
+                t * GRAZING_TARGET_FACTOR
+            }
+        })
+    }
+}
+
 /// `base` walks in every cell ([`CellWalks::fixed`]): what a number of walks meant before they
 /// were added where the noise is (the pictures' tables still take them so).
 impl From<usize> for CellWalks {
@@ -109,13 +141,13 @@ impl From<usize> for CellWalks {
     }
 }
 
-/// The walks a cell takes when its first walks' standard error in L* is expected to be `se_dl`:
-/// the error falls as 1/√n, so `first · (se_dl / target)²`, rounded up to a multiple of the
-/// first walks and kept within [`CellWalks::first`] and [`CellWalks::most`]. Without a target,
-/// the first walks.
-pub fn walks_needed(walks: &CellWalks, se_dl: f64) -> usize {
+/// The walks a cell takes when its first walks' standard error in L* is expected to be `se_dl`
+/// and its target is `target` ([`CellWalks::target_at`]): the error falls as 1/√n, so
+/// `first · (se_dl / target)²`, rounded up to a multiple of the first walks and kept within
+/// [`CellWalks::first`] and [`CellWalks::most`]. Without a target, the first walks.
+pub fn walks_needed(walks: &CellWalks, target: Option<f64>, se_dl: f64) -> usize {
     let first = walks.first();
-    let Some(target) = walks.target_dl else {
+    let Some(target) = target else {
         return first;
     };
     // A NaN error casts to 0 batches, an infinite one to usize::MAX: both kept within bounds.
@@ -440,13 +472,30 @@ mod tests {
     fn walks_follow_the_expected_error() {
         let walks = CellWalks::adaptive(32, 0.5);
         assert_eq!(walks.most(), 512);
-        assert_eq!(walks_needed(&walks, 0.2), 32);
-        assert_eq!(walks_needed(&walks, 0.5), 32);
-        assert_eq!(walks_needed(&walks, 1.0), 128);
-        assert_eq!(walks_needed(&walks, 0.55), 64);
-        assert_eq!(walks_needed(&walks, 50.0), 512);
-        assert_eq!(walks_needed(&walks, f64::NAN), 32);
-        assert_eq!(walks_needed(&CellWalks::fixed(32), 50.0), 32);
+        assert_eq!(walks_needed(&walks, walks.target_dl, 0.2), 32);
+        assert_eq!(walks_needed(&walks, walks.target_dl, 0.5), 32);
+        assert_eq!(walks_needed(&walks, walks.target_dl, 1.0), 128);
+        assert_eq!(walks_needed(&walks, walks.target_dl, 0.55), 64);
+        assert_eq!(walks_needed(&walks, walks.target_dl, 50.0), 512);
+        assert_eq!(walks_needed(&walks, walks.target_dl, f64::NAN), 32);
+        assert_eq!(walks_needed(&CellWalks::fixed(32), None, 50.0), 32);
+        // The target loosens beyond the readings' angles: a cell with a direction at 75°.
+        let (near, far) = (
+            DVec3::new(0.0, 0.0, 1.0),
+            DVec3::new(75f64.to_radians().sin(), 0.0, 75f64.to_radians().cos()),
+        );
+        let inside = DVec3::new(65f64.to_radians().sin(), 0.0, 65f64.to_radians().cos());
+        assert_eq!(walks.target_at(near, inside), Some(0.5));
+        assert_eq!(
+            walks.target_at(far, near),
+            Some(0.5 * GRAZING_TARGET_FACTOR)
+        );
+        assert_eq!(
+            walks.target_at(near, far),
+            Some(0.5 * GRAZING_TARGET_FACTOR)
+        );
+        assert_eq!(walks_needed(&walks, walks.target_at(near, far), 1.0), 32);
+        assert_eq!(CellWalks::fixed(32).target_at(near, far), None);
         assert_eq!(CellWalks::adaptive(32, 0.0), CellWalks::fixed(32));
         assert_eq!(CellWalks::adaptive(32, f64::INFINITY), CellWalks::fixed(32));
         assert_eq!(CellWalks::fixed(5).first(), 6);

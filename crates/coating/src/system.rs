@@ -203,9 +203,12 @@ impl Coating {
             None => format!("{} walks per cell", walks.base),
             Some(target) => format!(
                 "{} walks per cell and more (up to {}) where the walks of the cell's \
-                 neighbourhood put its standard error above {target:.3} L*",
+                 neighbourhood put its standard error above {target:.3} L* ({:.3} L* where a \
+                 direction is more than {}° from the normal)",
                 walks.base,
-                walks.most()
+                walks.most(),
+                target * cell::GRAZING_TARGET_FACTOR,
+                cell::READ_LIMIT_DEG
             ),
         };
         provenance.description = Some(format!(
@@ -376,16 +379,25 @@ impl Coating {
         let first_se: Vec<AtomicU64> = (0..resolution.cell_count())
             .map(|_| AtomicU64::new(f64::NAN.to_bits()))
             .collect();
-        let kept: Vec<bool> = (0..resolution.cell_count()).map(&keep).collect();
+        // The coating is reciprocal (each cell's estimate is, [`Evaluator::eval_cell`]) and,
+        // isotropic, symmetric about the plane of incidence: the walks run in one cell of each
+        // class of cells these relate ([`Resolution::representative_cell`]), which stands for
+        // the class and whose values the others take. A class is kept (wanted) when any of its
+        // cells is.
+        let representative = |i: usize| resolution.representative_cell(i, true);
+        let mut kept = vec![false; resolution.cell_count()];
+        for i in (0..resolution.cell_count()).filter(|&i| keep(i)) {
+            kept[representative(i)] = true;
+        }
         let mut wanted = kept.clone();
         if adaptive && wanted.contains(&false) {
-            for (i, _) in kept.iter().enumerate().filter(|(_, k)| **k) {
+            for i in (0..resolution.cell_count()).filter(|&i| kept[representative(i)]) {
                 for n in cell::neighbours(&resolution, i, cell::NEIGHBOURHOOD) {
-                    wanted[n] = true;
+                    wanted[representative(n)] = true;
                 }
             }
         }
-        builder.fill(|c, out| {
+        builder.fill_symmetric(true, |c, out| {
             if wanted[c.index] && !cancel.is_cancelled() {
                 let se = evaluator.eval_cell(
                     c.wo,
@@ -401,22 +413,24 @@ impl Coating {
         stopped()?;
         // Second pass: the cells kept take the walks their neighbourhood asks for.
         let se_of = |i: usize| {
+            let i = representative(i);
             Some(f64::from_bits(first_se[i].load(Ordering::Relaxed))).filter(|s| !s.is_nan())
         };
         let [cells, max, capped] = [0; 3].map(AtomicUsize::new);
         let total = AtomicU64::new(0);
-        builder.refine(|c, out| {
+        builder.refine_symmetric(true, |c, out| {
             if !kept[c.index] || cancel.is_cancelled() {
                 out.fill(0.0);
                 return;
             }
-            let (count, short) = match walks.target_dl {
+            let target = walks.target_at(c.wo, c.wi);
+            let (count, short) = match target {
                 None => (walks.first(), false),
                 Some(target) => {
                     let se = cell::neighbourhood_se(&resolution, c.index, se_of)
                         .or_else(|| se_of(c.index))
                         .unwrap_or(0.0);
-                    let count = cell::walks_needed(&walks, se);
+                    let count = cell::walks_needed(&walks, Some(target), se);
                     (
                         count,
                         se * (walks.first() as f64 / count as f64).sqrt() > target,

@@ -207,11 +207,11 @@ fn cells(
             let c = builder.cell(i);
             let (own, values) = first[&i].clone();
             let pooled = neighbourhood_se(&res, i, |j| first.get(&j).map(|f| f.0)).unwrap_or(own);
-            let count = walks_needed(&w, pooled);
+            let count = walks_needed(&w, w.target_at(c.wo, c.wi), pooled);
             let mut f = values.clone();
             evaluator.refine_cell(c.wo, c.wi, &w, count, &mut Scratch::default(), &mut f);
             let mut by_own = values.clone();
-            let own_count = walks_needed(&w, own);
+            let own_count = walks_needed(&w, w.target_at(c.wo, c.wi), own);
             evaluator.refine_cell(
                 c.wo,
                 c.wi,

@@ -124,7 +124,8 @@ impl Coating {
     }
 
     /// The coating's spectral table as `gonio coating compute` makes it: `resolution` (theta_h,
-    /// theta_d, phi_d) nodes, `bands` in nm, `samples` walks per cell first, then more where a
+    /// cell's L* is less certain than `target_dl` (three times it where a direction is more than
+    /// 70° from the normal; 0 or infinite: `samples` in every cell).
     /// cell's L* is less certain than `target_dl` (0 or infinite: `samples` in every cell).
     #[pyo3(signature = (resolution, bands, samples, target_dl))]
     fn compute(
