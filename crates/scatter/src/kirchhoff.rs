@@ -20,13 +20,15 @@
 //! must keep the neglected phase `|vz| C/(8 r²)` below [`KirchhoffOptions::phase_tolerance`].
 //! A detector's reading sums `|E|²` over the wave vectors its cone holds, on the lattice the spot
 //! resolves (see `aperture`); pointwise BRDFs use the direct sum; full-hemisphere maps use FFTs
-//! (see `hemisphere`). Method and accuracy: `docs/kirchhoff.md`.
+//! (see `hemisphere`). Shadowing and masking: Smith's function of the spot's own slopes, a
+//! factor `G2(wi, wo)` on the BRDF (see `shadowing`). Method and accuracy: `docs/kirchhoff.md`.
 
 mod aperture;
 mod facets;
 mod geometric;
 mod hemisphere;
 mod kernel;
+mod shadowing;
 
 pub use geometric::{GEOMETRIC_ABOVE_G, MethodSplit};
 pub use hemisphere::{BUILD_CELL_NS, FACET_NS, NODE_CELL_NS};
@@ -42,6 +44,7 @@ use gonio_io::Progress;
 use gonio_surface::HeightMap;
 use gonio_surface::spline::BicubicSpline;
 use rayon::prelude::*;
+use shadowing::Shadowing;
 use std::f64::consts::{PI, TAU};
 use std::sync::OnceLock;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -129,6 +132,12 @@ pub struct KirchhoffOptions {
     /// the integral instead of the integral (default [`GEOMETRIC_ABOVE_G`]; infinite: the
     /// integral everywhere). See [`MethodSplit`].
     pub geometric_above: f64,
+    /// Shadowing and masking by the surface (default on): the BRDF times Smith's
+    /// height-correlated `G2 = 1/(1 + Λ(wi) + Λ(wo))` with `Λ` from the spot's own slopes (see
+    /// `docs/kirchhoff.md`, "Shadowing and masking"). Off: the integral as it stands, which
+    /// lights and sees every point and so reflects more light than falls on a rough sample
+    /// toward grazing incidence.
+    pub shadowing: bool,
 }
 
 impl KirchhoffOptions {
@@ -140,6 +149,7 @@ impl KirchhoffOptions {
             phase_tolerance: 0.3,
             max_facets: MAX_FACETS,
             geometric_above: GEOMETRIC_ABOVE_G,
+            shadowing: true,
         }
     }
 }
@@ -153,9 +163,12 @@ pub struct Kirchhoff {
     phase_tolerance: f64,
     max_facets: usize,
     geometric_above: f64,
+    shadowing: bool,
     curvature: f64,
     slope: f64,
     grids: Vec<OnceLock<FacetGrid>>,
+    /// Smith's `Λ` of the facets of each grid of [`Kirchhoff::grids`], made on first use.
+    shadowings: Vec<OnceLock<Shadowing>>,
     height_stats: OnceLock<(f64, f64)>,
 }
 
@@ -219,9 +232,11 @@ impl Kirchhoff {
             phase_tolerance: options.phase_tolerance,
             max_facets: options.max_facets,
             geometric_above: options.geometric_above,
+            shadowing: options.shadowing,
             curvature,
             slope,
             grids: (0..MAX_REFINEMENT).map(|_| OnceLock::new()).collect(),
+            shadowings: (0..MAX_REFINEMENT).map(|_| OnceLock::new()).collect(),
             height_stats: OnceLock::new(),
         })
     }
@@ -229,6 +244,12 @@ impl Kirchhoff {
     /// The illuminated spot.
     pub fn spot(&self) -> Spot {
         self.spot
+    }
+
+    /// Whether the BRDF includes shadowing and masking ([`KirchhoffOptions::shadowing`]);
+    /// tables record it in their provenance as `kirchhoff_shadowing`.
+    pub fn shadowing_enabled(&self) -> bool {
+        self.shadowing
     }
 
     /// Refinement (cells per map cell along each axis) for a wave vector of z component `vz`:
@@ -305,6 +326,21 @@ impl Kirchhoff {
         self.grids[r - 1].get_or_init(|| FacetGrid::build(&self.spline, &self.spot, r))
     }
 
+    /// Smith's `Λ` of the facets of a grid of refinement `r` (every `r`-th cell along each axis:
+    /// as many facets as the map has points over the spot), or none when shadowing is off.
+    fn shadowing_of(&self, grid: &FacetGrid, r: usize) -> Shadowing {
+        if self.shadowing {
+            Shadowing::of(grid, r)
+        } else {
+            Shadowing::none()
+        }
+    }
+
+    /// [`Kirchhoff::shadowing_of`] the engine's own grid of refinement `r`, made once.
+    fn shadowing(&self, r: usize) -> &Shadowing {
+        self.shadowings[r - 1].get_or_init(|| self.shadowing_of(self.grid(r), r))
+    }
+
     /// The facet grid for wave vectors within `reach` of `v`.
     fn grid_for(&self, v: DVec3, reach: f64) -> Result<&FacetGrid> {
         Ok(self.grid(self.facet_refinement(v, reach)?))
@@ -334,8 +370,10 @@ impl Kirchhoff {
         let v = -k * (wi + wo);
         let grid = self.grid_for(v, 0.0)?;
         let e = grid.field([v.x, v.y, v.z], [v.x, v.y, v.z]);
+        let shadowing = self.shadowing(1);
+        let g2 = 1.0 / (1.0 + shadowing.lambda_exact(wi) + shadowing.lambda_exact(wo));
         Ok(
-            aperture::brdf_factor(self.ior, wi, wo) * k * k * wi.z * e.norm_sqr()
+            g2 * aperture::brdf_factor(self.ior, wi, wo) * k * k * wi.z * e.norm_sqr()
                 / (4.0 * PI * PI * wo.z * grid.w2_area),
         )
     }
@@ -352,7 +390,11 @@ impl Kirchhoff {
         }
         let k = TAU / wavelength;
         let grid = self.detector_grid(k, wi, detector)?;
-        aperture::cone_reflectance(grid, self.ior, k, wi, detector)
+        let shadowing = self.shadowing(1);
+        let lambda_wi = shadowing.lambda_exact(wi);
+        aperture::cone_reflectance(grid, self.ior, k, wi, detector, |wo| {
+            shadowing.g2(lambda_wi, wo)
+        })
     }
 
     /// In-plane curves for every wavelength (metres) and incidence (radians), in that order, with
@@ -382,6 +424,7 @@ impl Kirchhoff {
         for &(l, ti, ts) in &jobs {
             self.detector_grid(TAU / l, incidence_direction(ti), &detector(ts))?;
         }
+        self.shadowing(1);
         let done = AtomicU64::new(0);
         let readings: Vec<f64> = jobs
             .par_iter()

@@ -410,6 +410,10 @@ pub fn kirchhoff_table(
     provenance
         .extra
         .insert("kirchhoff_methods".into(), serde_json::json!(methods));
+    provenance.extra.insert(
+        "kirchhoff_shadowing".into(),
+        serde_json::json!(engine.shadowing_enabled()),
+    );
     let hemisphere = HemisphereGrid::with_step_deg(KIRCHHOFF_STEP_DEG)?;
     let grid = options.slice_grid();
     let incidences = options.incidences();

@@ -23,13 +23,15 @@ use gonio_brdf::Ior;
 use num_complex::Complex64;
 use std::f64::consts::{PI, TAU};
 
-/// Reflectance collected by `detector` for light of wave number `k` arriving from `wi`.
+/// Reflectance collected by `detector` for light of wave number `k` arriving from `wi`, each
+/// lattice direction `wo` weighted by `visible(wo)` (the shadowing and masking factor).
 pub(crate) fn cone_reflectance(
     grid: &FacetGrid,
     ior: Ior,
     k: f64,
     wi: DVec3,
     detector: &Detector,
+    visible: impl Fn(DVec3) -> f64,
 ) -> Result<f64> {
     let axis = detector.direction.normalize();
     let v0 = -k * (wi + axis);
@@ -77,7 +79,7 @@ pub(crate) fn cone_reflectance(
                 continue;
             }
             let e = column[q.rem_euclid(grid.ny as isize) as usize];
-            sum += brdf_factor(ior, wi, wo) * e.norm_sqr() / wo.z;
+            sum += visible(wo) * brdf_factor(ior, wi, wo) * e.norm_sqr() / wo.z;
         }
     }
     Ok(sum * dvx * dvy * wi.z / (4.0 * PI * PI * grid.w2_area))

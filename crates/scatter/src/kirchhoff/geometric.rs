@@ -6,12 +6,13 @@
 //! becomes `(2π)² ∫∫ W² dx dy · p(-v⊥/vz)/vz²` with `p` the (`W²`-weighted) distribution of the
 //! surface's slopes (Beckmann & Spizzichino 1963, ch. 5 §3; J. A. Ogilvy, *Theory of Wave
 //! Scattering from Random Rough Surfaces*, 1991, §4.4). Put into the BRDF of the parent module
-//! this is the facet model `f = R(iota) D(h)/(4 cos ti cos to)` without shadowing, with
-//! `D(h) = p/cos⁴ θh`: each facet `j` of the spot mirrors `wi` into `wo = 2 (wi·n) n - wi` and
-//! carries the share `R(wi·n) (wi·n)/(n_z cos ti) · W_j²/Σ W²` of the reflectance, the ray
-//! method's share (`docs/ray-method.md`, "Method") with the window's weights and no shadowing or
-//! masking, as the Kirchhoff integral has none. Facets facing away from the source, or whose
-//! mirror direction lies below the horizon, send nothing into the hemisphere.
+//! this is the facet model `f = R(iota) D(h) G2/(4 cos ti cos to)`, with `D(h) = p/cos⁴ θh` and
+//! the shadowing-masking `G2` the integral is given (`shadowing`; 1 when off): each facet `j` of
+//! the spot mirrors `wi` into `wo = 2 (wi·n) n - wi` and carries the share
+//! `R(wi·n) (wi·n)/(n_z cos ti) · W_j²/Σ W² · G2(wi, wo)` of the reflectance, the ray method's
+//! share (`docs/ray-method.md`, "Method") with the window's weights and Smith's statistical
+//! shadowing and masking in place of the ray method's marching. Facets facing away from the
+//! source, or whose mirror direction lies below the horizon, send nothing into the hemisphere.
 //!
 //! The coherent part of the field is `e^(-g)` of the mirror's and the corrections to the diffuse
 //! lobe are `O(1/g)`: for a Gaussian surface the Beckmann-Spizzichino series exceeds its limit by
@@ -23,6 +24,7 @@
 
 use super::Kirchhoff;
 use super::facets::FacetGrid;
+use super::shadowing::Shadowing;
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -122,10 +124,12 @@ impl Kirchhoff {
 
     /// The light scattered from `wi` in the stationary-phase limit into the directions `keep`
     /// accepts: one ray per facet of `grid` (the map's own cells over a spot, refinement 1),
-    /// with its share of the reflectance (see the module's documentation).
+    /// with its share of the reflectance times `G2(wi, wo)` of `shadowing`, the grid's own (see
+    /// the module's documentation).
     pub(crate) fn geometric_on(
         &self,
         grid: &FacetGrid,
+        shadowing: &Shadowing,
         wi: DVec3,
         keep: &(impl Fn(DVec3) -> bool + Sync),
     ) -> Vec<(DVec3, f64)> {
@@ -134,6 +138,7 @@ impl Kirchhoff {
             return Vec::new();
         }
         let scale = 1.0 / (sum_w2 * wi.z);
+        let lambda_wi = shadowing.lambda_exact(wi);
         grid.w
             .par_iter()
             .zip(&grid.hx)
@@ -151,7 +156,8 @@ impl Kirchhoff {
                 if wo.z <= 0.0 || !keep(wo) {
                     return None;
                 }
-                Some((wo, self.ior.reflectance(c) * c / n.z * w * w * scale))
+                let g2 = shadowing.g2(lambda_wi, wo);
+                Some((wo, self.ior.reflectance(c) * c / n.z * w * w * scale * g2))
             })
             .collect()
     }

@@ -22,6 +22,7 @@
 use super::aperture::{brdf_factor, lattice_spacing, outgoing};
 use super::facets::FacetGrid;
 use super::kernel::fill_row_sampled;
+use super::shadowing::Shadowing;
 use super::{Kirchhoff, MAX_REFINEMENT, Spot};
 use crate::error::{Result, ScatterError};
 use crate::geometry::Detector;
@@ -230,15 +231,15 @@ impl Kirchhoff {
             let mut out = Vec::new();
             let mut lit = false;
             if let Some(r) = refinement {
-                self.with_grid(spot, r, |grid| {
+                self.with_grid(spot, r, |grid, shadowing| {
                     lit |= grid.w2_area > 0.0;
-                    out.extend(self.scattered_on(grid, k, wi, &integral_part));
+                    out.extend(self.scattered_on(grid, shadowing, k, wi, &integral_part));
                 });
             }
             if geometric {
-                self.with_grid(spot, 1, |grid| {
+                self.with_grid(spot, 1, |grid, shadowing| {
                     lit |= grid.w2_area > 0.0;
-                    out.extend(self.geometric_on(grid, wi, &limit_part));
+                    out.extend(self.geometric_on(grid, shadowing, wi, &limit_part));
                 });
             }
             lit.then_some(out)
@@ -276,14 +277,20 @@ impl Kirchhoff {
         out
     }
 
-    /// `f` of the facet grid of refinement `r` over `spot`: the engine's own grid (built once)
-    /// for its own spot, else a grid built for this call and dropped after it, so that memory
-    /// holds one grid of the smaller spots at a time.
-    fn with_grid<T>(&self, spot: &Spot, r: usize, f: impl FnOnce(&FacetGrid) -> T) -> T {
+    /// `f` of the facet grid of refinement `r` over `spot` and its shadowing: the engine's own
+    /// grid (built once) for its own spot, else a grid built for this call and dropped after
+    /// it, so that memory holds one grid of the smaller spots at a time.
+    fn with_grid<T>(
+        &self,
+        spot: &Spot,
+        r: usize,
+        f: impl FnOnce(&FacetGrid, &Shadowing) -> T,
+    ) -> T {
         if *spot == self.spot {
-            f(self.grid(r))
+            f(self.grid(r), self.shadowing(r))
         } else {
-            f(&FacetGrid::build(&self.spline, spot, r))
+            let grid = FacetGrid::build(&self.spline, spot, r);
+            f(&grid, &self.shadowing_of(&grid, r))
         }
     }
 
@@ -344,17 +351,18 @@ impl Kirchhoff {
         self.check_refinement(r, wavelength)?;
         let keep = |wo: DVec3| wo.dot(axis) >= cos_alpha;
         Ok(self.spot_mean(&self.sampling_spots(r), |spot| {
-            self.with_grid(spot, r, |grid| {
-                (grid.w2_area > 0.0).then(|| self.scattered_on(grid, k, wi, &keep))
+            self.with_grid(spot, r, |grid, shadowing| {
+                (grid.w2_area > 0.0).then(|| self.scattered_on(grid, shadowing, k, wi, &keep))
             })
         }))
     }
 
     /// The lattice of outgoing directions that `keep` accepts, with their shares of the
-    /// reflectance, from the sampled grid `facets`.
+    /// reflectance (times `G2(wi, wo)` of `shadowing`), from the sampled grid `facets`.
     fn scattered_on(
         &self,
         facets: &FacetGrid,
+        shadowing: &Shadowing,
         k: f64,
         wi: DVec3,
         keep: &(impl Fn(DVec3) -> bool + Sync),
@@ -405,6 +413,7 @@ impl Kirchhoff {
         let nodes = (((hi - lo) * height / 0.5).ceil() as usize + 1).max(4);
         let step = (hi - lo) / (nodes - 1) as f64;
         let norm = dvx * dvy * wi.z / (4.0 * PI * PI * facets.w2_area);
+        let lambda_wi = shadowing.lambda_exact(wi);
         let mut bins: Vec<Bin> = points
             .iter()
             .map(|&(p, q, wo)| {
@@ -419,7 +428,8 @@ impl Kirchhoff {
                     wo,
                     node,
                     t: x - node as f64,
-                    weight: brdf_factor(self.ior, wi, wo) * norm / wo.z,
+                    weight: shadowing.g2(lambda_wi, wo) * brdf_factor(self.ior, wi, wo) * norm
+                        / wo.z,
                 }
             })
             .collect();

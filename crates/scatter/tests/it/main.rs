@@ -11,6 +11,7 @@ mod analytic;
 mod cache;
 mod geometry;
 mod kirchhoff_rough;
+mod kirchhoff_shadowing;
 mod kirchhoff_vs_models;
 mod ray_model;
 mod ray_transmission;
