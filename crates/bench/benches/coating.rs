@@ -1,12 +1,14 @@
 //! Benchmarks of the coating optics: the spectral body table of the example red coating at
 //! the default resolution (90 × 90 × 48, 31 bands), a layered table by random walks (the
-//! silver metallic), the thin-film reflectance of an interference flake, and a finite
+//! silver metallic, with a fixed number of walks and with walks added to the L* target), the thin-film reflectance of an interference flake, and a finite
 //! Kubelka-Munk layer.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use gonio_brdf::formats::astm;
 use gonio_brdf::table::{Provenance, Resolution};
+use gonio_coating::cell::CellWalks;
 use gonio_coating::description;
+use gonio_coating::system::TARGET_DL;
 use gonio_coating::kubelka_munk::Coefficients;
 use gonio_coating::thin_film::{Polarisation, interference_flake};
 use std::hint::black_box;
@@ -47,6 +49,24 @@ fn benches(c: &mut Criterion) {
                         Resolution::isotropic(45, 45, 24),
                         black_box(&bands),
                         32,
+                        Provenance::default(),
+                    )
+                    .unwrap()
+            })
+        },
+    );
+    // The same eighth of the default table with the walks added where a cell's L* is noisier
+    // than the default target (what `gonio coating compute` does; the whole default table is
+    // timed through the command in docs/performance.md).
+    group.bench_function(
+        "layered table 45x45x24, 31 bands, 32 walks and more to 1/3 L* (silver_metallic.toml)",
+        |b| {
+            b.iter(|| {
+                silver
+                    .table(
+                        Resolution::isotropic(45, 45, 24),
+                        black_box(&bands),
+                        CellWalks::adaptive(32, TARGET_DL),
                         Provenance::default(),
                     )
                     .unwrap()

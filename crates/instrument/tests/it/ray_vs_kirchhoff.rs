@@ -23,9 +23,11 @@
 //! Averaging R realisations divides the sum by R. Systematic differences: plane-fit normals (the
 //! ray method's default, as the study uses) see the slopes `ε` ≈ 1.2% lower than the bicubic
 //! spline the Kirchhoff integral follows, which changes a Gaussian lobe's `ln rho` at the level
-//! `q` of its peak by `2ε(1 − ln(1/q))`, at most `2.6ε` above a tenth of the peak; the ray method's
-//! shadowing and masking (Smith `Λ` for rms slope 0.27) removes at most 3% below 75° at these
-//! incidences. Their sum `b` is added to every tolerance.
+//! `q` of its peak by `2ε(1 − ln(1/q))`, at most `2.6ε` above a tenth of the peak; shadowing and
+//! masking (Smith `Λ` for rms slope 0.27) removes at most 3% below 75° at these incidences; both
+//! methods now apply it (the ray method by tracing the map, the Kirchhoff integral by Smith's
+//! `Λ` of the spot's slopes), so their difference in it is at most that whole 3%, kept as the
+//! bound. Their sum `b` is added to every tolerance.
 //!
 //! Tolerances (3σ): the RMS over the `m` lobe points (ray reading above a tenth of its peak) of
 //! `log10` ratios with variances `s_j²` has `E[rms²] = mean s²`, with a relative spread
