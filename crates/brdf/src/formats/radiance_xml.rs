@@ -33,6 +33,17 @@
 //!   upper half holds zeros), and `l` turned about z by `-atan2(-v.y, -v.x)`, which puts the
 //!   view at azimuth 180°: the tree holds the view in the x-z plane at x ≤ 0.
 //!
+//! **Which rank.** A monochrome isotropic table is written as a `TensorTree3`; a colour table,
+//! isotropic or not, as a `TensorTree4`. Radiance (6.0a, as PyPI's pyradiance 1.3.1 ships it)
+//! splits off the least colour of a coloured tree as a diffuse part (`subtract_min_RGB`) and
+//! rebuilds the u′ and v′ trees voxel by voxel, skipping the unused half of a `TensorTree3`
+//! (`adjust_utree`, `adjust_vtree`); the rebuilt trees keep empty branches there, which
+//! `SDsimplifyTre` refuses, so the u′ v′ trees are dropped and everything above the diffuse
+//! part takes the colour of the first of its sharpened primaries, a red (x, y = 0.69, 0.32;
+//! measured: a table of x, y = 0.455, 0.407 came back 0.675, 0.326). This is the red shift of
+//! the PAB-Opto route's colour trees (docs/brdf-tables.md). A `TensorTree4` has no unused half
+//! and keeps its colour (tested).
+//!
 //! **Values.** Each cell holds the mean of the table over its sub-cells' centres
 //! ([`SUBSAMPLES_ISOTROPIC`], [`SUBSAMPLES_ANISOTROPIC`] per axis of each dimension), uniform
 //! in the tree's coordinates: over the light's projected solid angle, which keeps the table's
@@ -42,9 +53,9 @@
 //! §8.1), which Radiance turns back into x, y (`SDyuv2rgb`); a black cell has the white's u′ v′.
 //!
 //! **Resolution.** A tree of order k has 2^k cells per side: the light's cells are π/4^k of
-//! projected solid angle (k = 6: 1.8° across at the pole); an isotropic tree has 2^(k-1) view
-//! cells, even steps of 2^(1-k) in sin θ_v (k = 6: 0-1.8° at the normal, 3.6° wide at 60°, the
-//! last one 75.5-90°), an anisotropic one 2^k × 2^k like the light's. A cell's value is its
+//! projected solid angle (k = 6: 1.8° across at the pole, k = 5: 3.6°); a `TensorTree3` has
+//! 2^(k-1) view cells, even steps of 2^(1-k) in sin θ_v (k = 6: 0-1.8° at the normal, 3.6°
+//! wide at 60°, the last one 75.5-90°), a `TensorTree4` 2^k × 2^k like the light's. A cell's value is its
 //! mean, so lobes narrower than a cell are spread over it, and a value varies by the table's
 //! change across a cell from the pair at the cell's centre (docs/brdf-tables.md).
 
@@ -59,36 +70,44 @@ use std::f64::consts::{FRAC_PI_4, PI};
 use std::io::Write;
 use std::path::Path;
 
-/// Tree order (2^order cells per side) of an isotropic table by default: 32 view cells, 64 × 64
-/// light cells, 131 072 values per component (about 1.5 MB of text each).
-pub const DEFAULT_ORDER_ISOTROPIC: u32 = 6;
+/// Tree order (2^order cells per side) of a `TensorTree3` by default: 32 view cells, 64 × 64
+/// light cells, 131 072 values (about 1.5 MB of text).
+pub const DEFAULT_ORDER_RANK3: u32 = 6;
 
-/// Tree order of an anisotropic table by default: 32^4 cells, about 1 million values per
-/// component (12 MB of text each); order 6 would write 16 million.
-pub const DEFAULT_ORDER_ANISOTROPIC: u32 = 5;
+/// Tree order of a `TensorTree4` by default: 32^4 cells, about 1 million values per component
+/// (12 MB of text each); order 6 would write 16 million.
+pub const DEFAULT_ORDER_RANK4: u32 = 5;
 
-/// Largest order of an isotropic tree (2^23 values per component) and of an anisotropic one
-/// (2^24).
-pub const MAX_ORDER_ISOTROPIC: u32 = 8;
-/// See [`MAX_ORDER_ISOTROPIC`].
-pub const MAX_ORDER_ANISOTROPIC: u32 = 6;
+/// Largest order of a `TensorTree3` (2^23 values) and of a `TensorTree4` (2^24 per component).
+pub const MAX_ORDER_RANK3: u32 = 8;
+/// See [`MAX_ORDER_RANK3`].
+pub const MAX_ORDER_RANK4: u32 = 6;
 
-/// Sub-cells per axis of each of the three dimensions of an isotropic tree's cell (27 table
+/// Sub-cells per axis of each of the three dimensions of a `TensorTree3`'s cell (27 table
 /// evaluations per cell).
-pub const SUBSAMPLES_ISOTROPIC: usize = 3;
+pub const SUBSAMPLES_RANK3: usize = 3;
 
-/// Sub-cells per axis of each of the four dimensions of an anisotropic tree's cell (16).
-pub const SUBSAMPLES_ANISOTROPIC: usize = 2;
+/// Sub-cells per axis of each of the four dimensions of a `TensorTree4`'s cell (16).
+pub const SUBSAMPLES_RANK4: usize = 2;
 
 /// CIE 1976 u′, v′ of the equal-energy white (x = y = 1/3): 4/19, 9/19.
 const WHITE_UV: [f64; 2] = [4.0 / 19.0, 9.0 / 19.0];
 
-/// The default order for `table`: [`DEFAULT_ORDER_ISOTROPIC`] or [`DEFAULT_ORDER_ANISOTROPIC`].
-pub fn default_order(table: &BrdfTable) -> u32 {
-    if table.resolution().is_isotropic() {
-        DEFAULT_ORDER_ISOTROPIC
+/// The rank of `table`'s tree: 3 for a monochrome isotropic table, else 4 (see "Which rank").
+pub fn rank(table: &BrdfTable) -> usize {
+    if table.resolution().is_isotropic() && matches!(table.channels(), Channels::Mono) {
+        3
     } else {
-        DEFAULT_ORDER_ANISOTROPIC
+        4
+    }
+}
+
+/// The default order for `table`: [`DEFAULT_ORDER_RANK3`] or [`DEFAULT_ORDER_RANK4`].
+pub fn default_order(table: &BrdfTable) -> u32 {
+    if rank(table) == 3 {
+        DEFAULT_ORDER_RANK3
+    } else {
+        DEFAULT_ORDER_RANK4
     }
 }
 
@@ -96,43 +115,34 @@ pub fn default_order(table: &BrdfTable) -> u32 {
 #[derive(Debug, Clone)]
 pub struct TensorTree {
     order: u32,
-    isotropic: bool,
-    /// Y (1/sr) of the cells in use: an isotropic tree's lower half of the view axis, an
-    /// anisotropic tree's every cell; row-major, the last coordinate fastest.
+    /// 3 (`TensorTree3`) or 4.
+    rank: usize,
+    /// Y (1/sr) of the cells in use: a `TensorTree3`'s lower half of the view axis, a
+    /// `TensorTree4`'s every cell; row-major, the last coordinate fastest.
     y: Vec<f32>,
     /// u′, v′ of the same cells (colour tables).
     uv: Option<Vec<[f32; 2]>>,
 }
 
 impl TensorTree {
-    /// The tree of `table` at `order` (2^order cells per side; from 2 to
-    /// [`MAX_ORDER_ISOTROPIC`] or [`MAX_ORDER_ANISOTROPIC`]).
+    /// The tree of `table` at `order` (2^order cells per side; from 2 to [`MAX_ORDER_RANK3`]
+    /// for a `TensorTree3`, [`MAX_ORDER_RANK4`] for a `TensorTree4`; [`rank`] says which).
     pub fn from_table(table: &BrdfTable, order: u32) -> Result<TensorTree> {
-        let isotropic = table.resolution().is_isotropic();
-        let max = if isotropic {
-            MAX_ORDER_ISOTROPIC
+        let rank = rank(table);
+        let (max, n) = if rank == 3 {
+            (MAX_ORDER_RANK3, SUBSAMPLES_RANK3)
         } else {
-            MAX_ORDER_ANISOTROPIC
+            (MAX_ORDER_RANK4, SUBSAMPLES_RANK4)
         };
         if !(2..=max).contains(&order) {
             return Err(BrdfError::Invalid(format!(
-                "tensor tree order {order} outside 2 to {max} for an {} table",
-                if isotropic {
-                    "isotropic"
-                } else {
-                    "anisotropic"
-                }
+                "tensor tree order {order} outside 2 to {max} for this table (a TensorTree{rank})"
             )));
         }
         let xyz = xyz_table(table)?;
         let res = 1usize << order;
-        let n = if isotropic {
-            SUBSAMPLES_ISOTROPIC
-        } else {
-            SUBSAMPLES_ANISOTROPIC
-        };
         let lights = light_samples(res, n);
-        let views: Vec<Vec<DVec3>> = if isotropic {
+        let views: Vec<Vec<DVec3>> = if rank == 3 {
             (0..res / 2).map(|i| iso_view_samples(i, res, n)).collect()
         } else {
             (0..res * res)
@@ -169,12 +179,7 @@ impl TensorTree {
             .map(|c| if colour { c[1] } else { c[0] } as f32)
             .collect();
         let uv = colour.then(|| cells.iter().map(|&c| uv_of(c).map(|v| v as f32)).collect());
-        Ok(TensorTree {
-            order,
-            isotropic,
-            y,
-            uv,
-        })
+        Ok(TensorTree { order, rank, y, uv })
     }
 
     /// 2^order cells per side.
@@ -182,9 +187,9 @@ impl TensorTree {
         self.order
     }
 
-    /// A `TensorTree3` (isotropic) rather than a `TensorTree4`.
-    pub fn is_isotropic(&self) -> bool {
-        self.isotropic
+    /// 3 for a `TensorTree3`, 4 for a `TensorTree4`.
+    pub fn rank(&self) -> usize {
+        self.rank
     }
 
     /// With `CIE-u` and `CIE-v` components.
@@ -202,7 +207,7 @@ impl TensorTree {
         }
         let res = 1usize << self.order;
         let cell = |t: f64| ((t * res as f64) as usize).min(res - 1);
-        let index = if self.isotropic {
+        let index = if self.rank == 3 {
             let sin_v = view.x.hypot(view.y);
             let i0 = cell(0.5 - 0.5 * sin_v).min(res / 2 - 1);
             let turn = -(-view.y).atan2(-view.x);
@@ -233,7 +238,7 @@ impl TensorTree {
 
     /// Write the XML to `path` (atomically), `name` as the material's name.
     pub fn write(&self, path: &Path, name: &str) -> Result<()> {
-        let rank = if self.isotropic { 3 } else { 4 };
+        let rank = self.rank;
         write_atomic(path, |w| {
             writeln!(w, r#"<?xml version="1.0" encoding="UTF-8"?>"#)?;
             writeln!(
@@ -297,7 +302,7 @@ impl TensorTree {
         writeln!(w, "\t\t\t<ScatteringDataType>BRDF</ScatteringDataType>")?;
         writeln!(w, "\t\t\t<ScatteringData>")?;
         let res = 1usize << self.order;
-        if self.isotropic {
+        if self.rank == 3 {
             // Eight children, each a grid of half the resolution; those covering the upper half
             // of the view axis (bit 0) are unused and hold one zero.
             let h = res / 2;
@@ -419,7 +424,7 @@ fn light_samples(res: usize, n: usize) -> Vec<Vec<DVec3>> {
         .collect()
 }
 
-/// The views of `n` sub-cells of view cell `i` of an isotropic tree of `res` cells per side:
+/// The views of `n` sub-cells of view cell `i` of a `TensorTree3` of `res` cells per side:
 /// `sin θ = 1 - 2 t` for `t` the sub-cells' centres in the tree coordinate, at azimuth 180°.
 fn iso_view_samples(i: usize, res: usize, n: usize) -> Vec<DVec3> {
     sub_cells(n)
@@ -430,7 +435,7 @@ fn iso_view_samples(i: usize, res: usize, n: usize) -> Vec<DVec3> {
         .collect()
 }
 
-/// The views of `n` × `n` sub-cells of view cell (`i`, `j`) of an anisotropic tree: the
+/// The views of `n` × `n` sub-cells of view cell (`i`, `j`) of a `TensorTree4`: the
 /// mirror image through the normal of the square's directions (`disk2square(-v.x, -v.y)`).
 fn aniso_view_samples(i: usize, j: usize, res: usize, n: usize) -> Vec<DVec3> {
     sub_cells(n)
@@ -514,7 +519,7 @@ mod tests {
             o[0] = 0.5 / PI
         });
         let tree = TensorTree::from_table(&t, 4).unwrap();
-        assert!(tree.is_isotropic() && !tree.has_colour());
+        assert!(tree.rank() == 3 && !tree.has_colour());
         for tl in [0.0f64, 30.0, 70.0, 80.0, 89.0] {
             for tv in [0.0f64, 45.0, 85.0] {
                 for pv in [0.0f64, 100.0, 250.0] {
@@ -536,7 +541,7 @@ mod tests {
 
     /// The cell of a pair is the one whose values were computed for it: at the centres of cells
     /// (of the view's and the light's coordinates), a table that depends on both angles, the
-    /// relative azimuth and, for the anisotropic one, the view's azimuth comes back as the
+    /// relative azimuth and, for the anisotropic one (a `TensorTree4`), the view's azimuth comes back as the
     /// table there. A cell holds the mean over its sub-cells, which differs from the value at
     /// its centre by the second order of the cell's size (the functions are smooth: measured
     /// 0.45% at worst for order 6, 1.8% for order 4, whose cells are four times as wide and
@@ -578,7 +583,7 @@ mod tests {
             let mut worst = 0.0f64;
             for _ in 0..300 {
                 let light = hemisphere(concentric_disk(centre(next(res), next(res), res)));
-                let (view, light) = if tree.is_isotropic() {
+                let (view, light) = if tree.rank() == 3 {
                     // The tree's view is at azimuth 180°: turn both by any angle.
                     let sin = 1.0 - 2.0 * (next(res / 2) as f64 + 0.5) / res as f64;
                     let turn = crate::table::coords::TurnAboutZ::new(next(360) as f64);
@@ -626,7 +631,7 @@ mod tests {
     /// The written tree has the shape Radiance's `load_tree_data` requires: a root of eight
     /// children for TensorTree3, the four covering the upper half of the view axis a single
     /// zero and the others (2^(order-1))³ values; one grid of 2^(4 order) values for
-    /// TensorTree4. A grid's value count must be a power of 2^rank.
+    /// TensorTree4, which colour tables get. A grid's value count must be a power of 2^rank.
     #[test]
     fn the_xml_holds_trees_of_the_shape_radiance_reads() {
         let grey = table(Resolution::isotropic(8, 8, 8), Channels::Mono, |_, _, o| {
@@ -656,11 +661,11 @@ mod tests {
             .map(|g| g.split('{').nth(1).unwrap().split_whitespace().count())
             .collect();
         assert_eq!(grids, [512, 1, 512, 1, 512, 1, 512, 1]);
-        let aniso = table(
-            Resolution::anisotropic(8, 8, 8, 8),
-            Channels::Rgb,
-            |_, _, o| o.fill(0.2),
-        );
+        // A colour table, isotropic too, is a TensorTree4 (see "Which rank").
+        let aniso = table(Resolution::isotropic(8, 8, 8), Channels::Rgb, |_, _, o| {
+            o.fill(0.2)
+        });
+        assert_eq!(rank(&aniso), 4);
         let path = dir_out.path().join("a.xml");
         write(&aniso, &path, "a", Some(3)).unwrap();
         let text = std::fs::read_to_string(&path).unwrap();
