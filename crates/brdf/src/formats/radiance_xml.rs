@@ -6,7 +6,7 @@
 //! **Format** (G. Ward, Radiance `src/common/bsdf_t.c`: `SDloadTre`, `load_bsdf_data`,
 //! `load_tree_data`, `SDqueryTre`; `src/cv/bsdf2ttree.c`, `eval_isotropic`,
 //! `eval_anisotropic`). A WINDOW 6 XML `WindowElement` whose `DataDefinition` says
-//! `IncidentDataStructure` `TensorTree3` (isotropic) or `TensorTree4` (anisotropic), with one
+//! `IncidentDataStructure` `TensorTree3` (isotropic) or `TensorTree4` (any), with one
 //! `WavelengthData` per component: `Visible` (CIE Y, 1/sr) and, for colour, `CIE-u` and
 //! `CIE-v` (the CIE 1976 chromaticity u′ v′ of each cell; Radiance reads no X or Z). Each holds
 //! one `WavelengthDataBlock` with `AngleBasis` `LBNL/Shirley-Chiu` (required) and
@@ -45,7 +45,7 @@
 //! and keeps its colour (tested).
 //!
 //! **Values.** Each cell holds the mean of the table over its sub-cells' centres
-//! ([`SUBSAMPLES_ISOTROPIC`], [`SUBSAMPLES_ANISOTROPIC`] per axis of each dimension), uniform
+//! ([`SUBSAMPLES_RANK3`], [`SUBSAMPLES_RANK4`] per axis of each dimension), uniform
 //! in the tree's coordinates: over the light's projected solid angle, which keeps the table's
 //! reflectance, and over the view's cell. Colour as the PAB-Opto export writes it
 //! ([`super::pabopto::xyz_weights`], relative to Radiance's equal-energy white), each cell's
@@ -55,9 +55,9 @@
 //! **Resolution.** A tree of order k has 2^k cells per side: the light's cells are π/4^k of
 //! projected solid angle (k = 6: 1.8° across at the pole, k = 5: 3.6°); a `TensorTree3` has
 //! 2^(k-1) view cells, even steps of 2^(1-k) in sin θ_v (k = 6: 0-1.8° at the normal, 3.6°
-//! wide at 60°, the last one 75.5-90°), a `TensorTree4` 2^k × 2^k like the light's. A cell's value is its
-//! mean, so lobes narrower than a cell are spread over it, and a value varies by the table's
-//! change across a cell from the pair at the cell's centre (docs/brdf-tables.md).
+//! wide at 60°, the last one 75.5-90°), a `TensorTree4` 2^k × 2^k like the light's. A cell's
+//! value is its mean, so lobes narrower than a cell are spread over it, and a value differs from
+//! the table at a pair by the table's change across the cell (docs/brdf-tables.md).
 
 use super::pabopto::xyz_weights;
 use crate::error::{BrdfError, Result};
@@ -250,7 +250,11 @@ impl TensorTree {
             )?;
             writeln!(
                 w,
-                r#"<WindowElement xmlns="http://windows.lbl.gov" xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xsi:schemaLocation="http://windows.lbl.gov/BSDF-v1.4.xsd">"#
+                concat!(
+                    r#"<WindowElement xmlns="http://windows.lbl.gov" "#,
+                    r#"xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" "#,
+                    r#"xsi:schemaLocation="http://windows.lbl.gov/BSDF-v1.4.xsd">"#
+                )
             )?;
             writeln!(w, "<WindowElementType>System</WindowElementType>")?;
             writeln!(w, "<FileType>BSDF</FileType>")?;
@@ -286,7 +290,8 @@ impl TensorTree {
         writeln!(w, "\t\t<Wavelength unit=\"Integral\">{name}</Wavelength>")?;
         writeln!(
             w,
-            "\t\t<SourceSpectrum>CIE Illuminant E</SourceSpectrum>\n\t\t<DetectorSpectrum>{}</DetectorSpectrum>",
+            "\t\t<SourceSpectrum>CIE Illuminant E</SourceSpectrum>\n\t\t\
+             <DetectorSpectrum>{}</DetectorSpectrum>",
             if name == "Visible" {
                 "ASTM E308 1931 Y.dsp"
             } else {
@@ -541,7 +546,8 @@ mod tests {
 
     /// The cell of a pair is the one whose values were computed for it: at the centres of cells
     /// (of the view's and the light's coordinates), a table that depends on both angles, the
-    /// relative azimuth and, for the anisotropic one (a `TensorTree4`), the view's azimuth comes back as the
+    /// relative azimuth and, for the anisotropic one (a `TensorTree4`), the view's azimuth
+    /// comes back as the
     /// table there. A cell holds the mean over its sub-cells, which differs from the value at
     /// its centre by the second order of the cell's size (the functions are smooth: measured
     /// 0.45% at worst for order 6, 1.8% for order 4, whose cells are four times as wide and

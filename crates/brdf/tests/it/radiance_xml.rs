@@ -175,7 +175,8 @@ mod slow {
             }
             worst_table.sort_by(|a, b| a.abs().total_cmp(&b.abs()));
             println!(
-                "TensorTree{}: Radiance vs tree: {worst:.1e}; tree vs table: median {:+.4}, worst {:+.4}",
+                "TensorTree{}: Radiance vs tree: {worst:.1e}; tree vs table: median {:+.4}, \
+                 worst {:+.4}",
                 tree.rank(),
                 worst_table[worst_table.len() / 2],
                 worst_table[worst_table.len() - 1]
