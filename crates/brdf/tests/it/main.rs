@@ -29,6 +29,7 @@ mod models;
 mod quadrature;
 mod radiance;
 mod radiance_grazing;
+mod radiance_tree;
 mod radiance_xml;
 mod sampler;
 mod sampling;
