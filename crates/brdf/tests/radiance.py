@@ -18,7 +18,12 @@ with angles in degrees, and optionally
       holding v (written into DIR/floor, on a 2.5 degree grid): it lowers the BSDF minimum that
       pabopto2bsdf takes from the first percentile of all values (below);
   "function": "expr": no files; bsdf2ttree tabulates bsdf(ix,iy,iz,ox,oy,oz) = expr itself
-      (its -t3 -e input, e.g. "0.5/PI"), which skips pabopto2bsdf's interpolant.
+      (its -t3 -e input, e.g. "0.5/PI"), which skips pabopto2bsdf's interpolant;
+  "xml": path: no files and no conversion: the XML BSDF gonio wrote itself
+      (formats::radiance_xml, a tensor tree), read as it is;
+  "picture": {"scene": text, "view": [rpict view options], "resolution": n, "output": path}:
+      the Radiance scene (text of a .rad file, which names the XML) rendered by rpict, n x n
+      pixels, direct light only (-ab 0), into the Radiance picture `output`.
 The script runs `pabopto2bsdf DIR/*.dat > DIR/radiance.sir` and `bsdf2ttree DIR/radiance.sir >
 DIR/radiance.xml` (by default a 64 x 64 tensor tree per incidence, 90% culling) and prints one
 JSON object:
@@ -37,6 +42,9 @@ JSON object:
        (theta_view, phi_view), in the order Radiance's renderer passes them (below);
   "query_xy": per pair, the chromaticity that pyradiance.bsdf.query reports;
   "rendered": per "render" pair, the BSDF (Y, 1/sr) that rtrace renders (below);
+  "rendered_xyz": per "render" pair, the same as CIE XYZ: rtrace's RGB turned into XYZ by
+       Radiance's own primaries (src/common/color.h: CIE_x_r 0.640, CIE_y_r 0.330, green
+       0.290, 0.600, blue 0.150, 0.060, white the equal-energy x = y = 1/3);
   "dhr": per dhr_theta, the directional-hemispherical reflectance (Y) of the tensor tree for
          the tree's incidence at (theta, 0) (SDdirectHemi, all reflection components): the
          integral over the tree's outgoing directions, which the renderer takes for the lights.
@@ -115,7 +123,11 @@ def grid(step, max_theta):
 ttree = [os.path.join(binpath, "bsdf2ttree"), *queries.get("bsdf2ttree", [])]
 sir = os.path.join(directory, "radiance.sir")
 xml = os.path.join(directory, "radiance.xml")
-if "function" in queries:
+if "xml" in queries:
+    # gonio's own tensor tree: nothing to convert.
+    xml = queries["xml"]
+    sir = None
+elif "function" in queries:
     # bsdf2ttree's own tabulation of a function (-t3: isotropic), no interpolant.
     expr = f"bsdf(ix,iy,iz,ox,oy,oz)={queries['function']};"
     run([*ttree, "-t3", "-e", expr, "bsdf"], xml)
@@ -265,19 +277,67 @@ def render(pairs):
             sys.stderr.write(done.stderr.decode(errors="replace"))
             sys.exit(f"rtrace failed with status {done.returncode}")
         rgb = [float(x) for x in done.stdout.split()[:3]]
-        out.append(statistics.mean(rgb) / (radiance * omega * math.cos(math.radians(theta_l))))
+        scale = radiance * omega * math.cos(math.radians(theta_l))
+        out.append([sum(m * c for m, c in zip(row, rgb)) / scale for row in RGB_TO_XYZ])
     return out
 
 
+def rgb_to_xyz():
+    """Radiance's RGB -> XYZ matrix: the primaries' XYZ (x/y, 1, z/y) scaled so that RGB
+    (1, 1, 1) is the equal-energy white X = Y = Z = 1."""
+    prims = [(0.640, 0.330), (0.290, 0.600), (0.150, 0.060)]
+    cols = [[x / y, 1.0, (1.0 - x - y) / y] for x, y in prims]
+    # Solve cols^T s = (1, 1, 1) for the scales s (Cramer's rule on the 3 x 3 system).
+    m = [[cols[c][r] for c in range(3)] for r in range(3)]
+
+    def det(a):
+        return (
+            a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1])
+            - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
+            + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0])
+        )
+
+    d = det(m)
+    s = []
+    for c in range(3):
+        mc = [[1.0 if k == c else m[r][k] for k in range(3)] for r in range(3)]
+        s.append(det(mc) / d)
+    return [[m[r][c] * s[c] for c in range(3)] for r in range(3)]
+
+
+RGB_TO_XYZ = rgb_to_xyz()
+
+
+def picture(spec):
+    """Render spec["scene"] with rpict (direct light only, no jitter) into spec["output"]."""
+    scene_dir = os.path.join(directory, "picture")
+    os.makedirs(scene_dir, exist_ok=True)
+    scene = os.path.join(scene_dir, "scene.rad")
+    with open(scene, "w") as f:
+        f.write(spec["scene"])
+    octree = os.path.join(scene_dir, "scene.oct")
+    run([os.path.join(binpath, "oconv"), scene], octree)
+    n = str(spec["resolution"])
+    options = ["-ab", "0", "-ss", "0", "-dj", "0", "-ds", "0", "-ps", "1", "-pj", "0"]
+    run(
+        [os.path.join(binpath, "rpict"), *spec["view"], "-x", n, "-y", n, *options, octree],
+        spec["output"],
+    )
+
+
 colorimetry, bsdf_min, lobes = read_sir(sir) if sir else (None, None, [])
+if "picture" in queries:
+    picture(queries["picture"])
 sd = rbsdf.load_file(os.path.abspath(xml))
-values, query_xy = [], []
+values, query_xy, query_xyz = [], [], []
 for theta_l, phi_l, theta_v, phi_v in queries["pairs"]:
     # The viewer first, the light second: the order of Radiance's renderer (see the top).
     xyz = rbsdf.query(sd, theta_v, phi_v, theta_l, phi_l)
     values.append(float(xyz[1]))
+    query_xyz.append([float(v) for v in xyz])
     s = float(sum(xyz))
     query_xy.append([float(xyz[0]) / s, float(xyz[1]) / s] if s > 0 else None)
+rendered = render(queries.get("render", []))
 flags = rbsdf.SAMPLE_R | rbsdf.SAMPLE_DF | rbsdf.SAMPLE_SP
 dhr = [rbsdf.direct_hemi(sd, t, 0.0, flags) for t in queries["dhr_theta"]]
 print(
@@ -287,10 +347,12 @@ print(
             "colorimetry": colorimetry,
             "bsdf_min": bsdf_min,
             "lobes": lobes,
-            "tree_xy": tree_xy(xml),
+            "tree_xy": None if "xml" in queries else tree_xy(xml),
             "y": values,
             "query_xy": query_xy,
-            "rendered": render(queries.get("render", [])),
+            "query_xyz": query_xyz,
+            "rendered": [xyz[1] for xyz in rendered],
+            "rendered_xyz": rendered,
             "dhr": dhr,
         }
     )

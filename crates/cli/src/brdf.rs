@@ -7,7 +7,7 @@ use clap::{Args, Subcommand, ValueEnum};
 use glam::DVec3;
 use gonio_brdf::Brdf;
 use gonio_brdf::fit::{FitKind, FitOptions, fit};
-use gonio_brdf::formats::{astm, csv, merl, mitsuba, pabopto};
+use gonio_brdf::formats::{astm, csv, merl, mitsuba, pabopto, radiance_xml};
 use gonio_brdf::gbrdf;
 use gonio_brdf::models::ModelSpec;
 use gonio_brdf::table::colour::{self, ColourSpace};
@@ -27,8 +27,9 @@ pub enum BrdfCommand {
     /// Import a measurement or another format into a .gbrdf table: Cornell ASTM text (.astm),
     /// MERL .binary, or CSV samples (theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,<values per sr>).
     Import(ImportArgs),
-    /// Export a .gbrdf table to MERL .binary, the Mitsuba 3 / pbrt-v4 tensor .bsdf, Radiance
-    /// PAB-Opto data files (a directory, one file per incidence) or CSV.
+    /// Export a .gbrdf table to MERL .binary, the Mitsuba 3 / pbrt-v4 tensor .bsdf, Radiance's
+    /// XML BSDF (a tensor tree, for the BSDF material), Radiance PAB-Opto data files (a
+    /// directory, one file per incidence) or CSV.
     Export(ExportArgs),
     /// Plot a table: in-plane curves on a log scale and a polar lobe view, as PNG.
     Plot(PlotArgs),
@@ -124,6 +125,9 @@ impl ColourArgs {
 pub enum ExportFormat {
     Merl,
     Mitsuba,
+    /// Radiance's XML BSDF, a tensor tree written from the table (docs/brdf-tables.md).
+    RadianceXml,
+    /// Radiance PAB-Opto files for pabopto2bsdf (a directory).
     Pabopto,
     Csv,
 }
@@ -149,6 +153,12 @@ pub struct ExportArgs {
     /// smooth lobes, within about 1%) (docs/brdf-tables.md).
     #[arg(long, default_value_t = 128, value_parser = clap::value_parser!(u16).range(8..=512))]
     value_grid: u16,
+    /// radiance-xml: order of the tensor tree, 2^N cells per side (a cell is π/4^N of projected
+    /// solid angle of the light's directions: 1.8° across at the pole for N = 6). Default 6 for
+    /// a monochrome isotropic table (a TensorTree3, up to 8), 5 otherwise (a TensorTree4, up
+    /// to 6; colour tables are TensorTree4 because Radiance drops the colour of a TensorTree3).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(2..=8))]
+    tree_order: Option<u32>,
 }
 
 #[derive(Args)]
@@ -413,6 +423,27 @@ fn export(a: ExportArgs) -> Result<()> {
             mitsuba::write(&t, &a.output, opts)?
         }
         ExportFormat::Csv => csv::write(&t, &a.output, a.step_deg)?,
+        ExportFormat::RadianceXml => {
+            let name = a
+                .table
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or("brdf");
+            let tree = radiance_xml::write(&t, &a.output, name, a.tree_order)?;
+            pb.finish_and_clear();
+            println!(
+                "wrote {} (TensorTree{} of order {}{})",
+                a.output.display(),
+                tree.rank(),
+                tree.order(),
+                if tree.has_colour() {
+                    ", Y and CIE u′ v′"
+                } else {
+                    ", Y"
+                }
+            );
+            return Ok(());
+        }
         ExportFormat::Pabopto => {
             let name = a
                 .table

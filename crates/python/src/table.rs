@@ -6,7 +6,7 @@
 use crate::error::{Result, invalid};
 use crate::surface::Surface;
 use glam::DVec3;
-use gonio_brdf::formats::{astm, csv as brdf_csv, merl, mitsuba, pabopto};
+use gonio_brdf::formats::{astm, csv as brdf_csv, merl, mitsuba, pabopto, radiance_xml};
 use gonio_brdf::models::ModelSpec;
 use gonio_brdf::table::{BrdfTable, Provenance, Resolution};
 use gonio_brdf::{Brdf, Ior, gbrdf};
@@ -166,8 +166,9 @@ impl Table {
     }
 
     /// Export for another renderer or reader: `format` "mitsuba" (Mitsuba 3 / pbrt-v4 tensor
-    /// `.bsdf`), "merl" (`.binary`), "csv" (in-plane samples every `step_deg`), "pabopto"
-    /// (Radiance's `pabopto2bsdf` input: a directory of files, one per incidence).
+    /// `.bsdf`), "merl" (`.binary`), "csv" (in-plane samples every `step_deg`), "radiance-xml"
+    /// (Radiance's XML BSDF, a tensor tree of the default order, for its BSDF material),
+    /// "pabopto" (Radiance's `pabopto2bsdf` input: a directory of files, one per incidence).
     #[pyo3(signature = (format, path, step_deg=1.0))]
     fn export(&self, py: Python<'_>, format: &str, path: PathBuf, step_deg: f64) -> Result<()> {
         let table = self.table.clone();
@@ -177,6 +178,14 @@ impl Table {
                 py.detach(move || merl::write(&table, &path))?;
             }
             "csv" => py.detach(move || brdf_csv::write(&table, &path, step_deg))?,
+            "radiance-xml" => {
+                let name = path
+                    .file_stem()
+                    .and_then(|s| s.to_str())
+                    .unwrap_or("brdf")
+                    .to_string();
+                py.detach(move || radiance_xml::write(&table, &path, &name, None))?;
+            }
             "pabopto" => {
                 let name = path
                     .file_stem()
@@ -188,7 +197,8 @@ impl Table {
             }
             other => {
                 return Err(invalid(format!(
-                    "export format `{other}`: use \"mitsuba\", \"merl\", \"csv\" or \"pabopto\""
+                    "export format `{other}`: use \"mitsuba\", \"merl\", \"csv\", \"radiance-xml\" \
+                     or \"pabopto\""
                 )));
             }
         }

@@ -64,7 +64,13 @@ def test_measured_paint_imports_and_exports(tmp_path):
     # A blue paint reflects more at 450 nm than at 650 nm.
     w = np.array(table.wavelengths_nm)
     assert bands[np.argmin(abs(w - 450))] > bands[np.argmin(abs(w - 650))]
-    for fmt, name in [("mitsuba", "p.bsdf"), ("merl", "p.binary"), ("csv", "p.csv")]:
+    exports = [
+        ("mitsuba", "p.bsdf"),
+        ("merl", "p.binary"),
+        ("csv", "p.csv"),
+        ("radiance-xml", "p.xml"),
+    ]
+    for fmt, name in exports:
         table.export(fmt, tmp_path / name)
         assert (tmp_path / name).stat().st_size > 0
     with pytest.raises(ValueError, match="export format"):

@@ -29,6 +29,8 @@ mod models;
 mod quadrature;
 mod radiance;
 mod radiance_grazing;
+mod radiance_tree;
+mod radiance_xml;
 mod sampler;
 mod sampling;
 mod spec;

@@ -35,8 +35,12 @@ pub(crate) struct RadianceReport {
     /// Per pair, Radiance's BSDF (Y, 1/sr).
     pub y: Vec<f64>,
     query_xy: Vec<Option<[f64; 2]>>,
+    /// Per pair, Radiance's BSDF as CIE XYZ (1/sr).
+    pub query_xyz: Vec<[f64; 3]>,
     /// Per rendered pair, the BSDF that `rtrace` renders (Y, 1/sr).
     pub rendered: Vec<f64>,
+    /// The same as CIE XYZ (rtrace's RGB through Radiance's primaries).
+    pub rendered_xyz: Vec<[f64; 3]>,
     pub dhr: Vec<f64>,
 }
 
@@ -119,7 +123,7 @@ pub(crate) fn run_radiance(
 
 /// `n` pairs with the light uniform in solid angle between `light_min` and `light_max`
 /// degrees, the viewer between `view_min` and `view_max` degrees, azimuths uniform.
-fn pairs(
+pub(crate) fn pairs(
     n: usize,
     (light_min, light_max): (f64, f64),
     (view_min, view_max): (f64, f64),
@@ -152,7 +156,7 @@ pub(crate) fn tabulate(model: &Model, res: Resolution, mono: bool) -> BrdfTable 
 /// gonio's own directional-hemispherical reflectance of the luminance Y that the export
 /// writes, for light at `theta` degrees (phi 0): the table's albedo per channel, weighted by
 /// the export's XYZ weights (the luminance is linear in the channels).
-fn albedo_y(table: &BrdfTable, theta: f64) -> f64 {
+pub(crate) fn albedo_y(table: &BrdfTable, theta: f64) -> f64 {
     let albedo = table.albedo(theta.to_radians(), 0.0);
     match pabopto::xyz_weights(table.channels()).unwrap() {
         None => albedo[0],
@@ -238,7 +242,7 @@ fn check_dhr(table: &BrdfTable, report: &RadianceReport, tolerance: f64, what: &
 }
 
 /// The chromaticity (x, y) of XYZ.
-fn xy([x, y, z]: [f64; 3]) -> [f64; 2] {
+pub(crate) fn xy([x, y, z]: [f64; 3]) -> [f64; 2] {
     [x / (x + y + z), y / (x + y + z)]
 }
 
@@ -248,7 +252,7 @@ fn xy([x, y, z]: [f64; 3]) -> [f64; 2] {
 /// rounded up to its histogram bin (bsdfrep.c, BSDFMIN), and below it Radiance returns the
 /// minimum in its default colour: a constant Lambert base, the most common value, would be
 /// clamped there and lose its colour.
-fn tinted(channels: Channels, colour: &[f64]) -> BrdfTable {
+pub(crate) fn tinted(channels: Channels, colour: &[f64]) -> BrdfTable {
     let lobe = Model::Ward(Ward::isotropic(Rgb::splat(0.4), 0.2));
     let mut b = TableBuilder::new(Resolution::isotropic(32, 45, 90), channels).unwrap();
     b.fill(|c, out| {

@@ -108,6 +108,7 @@ mod slow {
             ("mitsuba", "w.bsdf"),
             ("csv", "w.csv"),
             ("pabopto", "pab"),
+            ("radiance-xml", "w.xml"),
         ] {
             let out = gonio(
                 &[
@@ -176,4 +177,74 @@ mod slow {
         assert_eq!(out.status.code(), Some(2));
         assert!(String::from_utf8_lossy(&out.stderr).contains("missing.gbrdf"));
     }
+}
+
+/// `brdf export --format radiance-xml` writes Radiance's XML BSDF: a TensorTree3 for a
+/// monochrome isotropic table, a TensorTree4 with CIE u′ v′ for a colour one, of the order
+/// `--tree-order` asks; an order the rank cannot take exits with status 2 and says why.
+#[test]
+fn export_radiance_xml() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let model = r#"{"model":"ward","specular":0.05,"alpha":0.1,"diffuse":0.4}"#;
+    let small = ["--resolution", "16,16,16"];
+    ok_in(
+        &[
+            &[
+                "brdf", "tabulate", "--model", model, "--mono", "-o", "m.gbrdf",
+            ][..],
+            &small,
+        ]
+        .concat(),
+        d,
+    );
+    ok_in(
+        &[
+            &["brdf", "tabulate", "--model", model, "-o", "c.gbrdf"][..],
+            &small,
+        ]
+        .concat(),
+        d,
+    );
+    let export = |table: &str, order: &str| {
+        gonio(
+            &[
+                "brdf",
+                "export",
+                table,
+                "--format",
+                "radiance-xml",
+                "-o",
+                "t.xml",
+                "--tree-order",
+                order,
+            ],
+            d,
+        )
+    };
+    let out = export("m.gbrdf", "4");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).contains("TensorTree3 of order 4"));
+    let xml = std::fs::read_to_string(d.join("t.xml")).unwrap();
+    assert!(xml.contains("<IncidentDataStructure>TensorTree3</IncidentDataStructure>"));
+    assert!(!xml.contains("CIE-u"));
+    let out = export("c.gbrdf", "3");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let xml = std::fs::read_to_string(d.join("t.xml")).unwrap();
+    assert!(xml.contains("TensorTree4") && xml.contains(">CIE-v</Wavelength>"));
+    let out = export("c.gbrdf", "7");
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("order 7") && err.contains("TensorTree4"),
+        "{err}"
+    );
 }
