@@ -65,7 +65,8 @@ pub struct ComputeArgs {
     /// interpolate between them (default: one per phi_h node).
     #[arg(long)]
     incidence_azimuths: Option<usize>,
-    /// Ray method: no shadowing or masking by the height field (the original NIST method).
+    /// No shadowing or masking by the height field: the ray method as the original NIST
+    /// method; the Kirchhoff integral as it stands, without Smith's G2 of the spot's slopes.
     #[arg(long)]
     no_shadowing: bool,
     /// Print a JSON summary (file, resolution, time, albedo) instead of text.
@@ -151,6 +152,7 @@ pub fn run(a: ComputeArgs) -> Result<()> {
                 &map,
                 KirchhoffOptions {
                     geometric_above: a.geometric_above_g,
+                    shadowing: !a.no_shadowing,
                     ..KirchhoffOptions::new(ior)
                 },
             )
