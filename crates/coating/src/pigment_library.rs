@@ -12,7 +12,7 @@
 
 use crate::clear_coat::Pigment;
 use crate::error::{CoatingError, Result};
-use crate::kubelka_munk::{Coefficients, saunderson};
+use crate::kubelka_munk::{Coefficients, saunderson_specular_excluded};
 use gonio_color::Spectrum;
 use std::sync::LazyLock;
 
@@ -28,8 +28,8 @@ use std::sync::LazyLock;
 pub const SCALE_PER_UM: f64 = 0.5;
 
 /// Saunderson's external reflectance k1 of the database's measuring geometry (Unicolour pairs
-/// the data with it): the reflectance read through the paint's surface is
-/// [`saunderson`]`(R, k1, k2)` of the internal Kubelka-Munk reflectance R.
+/// the data with it): the reflectance read through the paint's surface, specular excluded, is
+/// [`saunderson_specular_excluded`]`(R, k1, k2)` of the internal Kubelka-Munk reflectance R.
 pub const SAUNDERSON_K1: f64 = 0.03;
 
 /// Saunderson's internal reflectance k2 for diffuse light of the database's measuring geometry.
@@ -111,9 +111,10 @@ pub fn find(name: &str) -> Result<&'static LibraryPigment> {
         return Ok(p);
     }
     let names: Vec<&str> = LIBRARY.iter().map(|p| p.name.as_str()).collect();
+    // A name that contains what was typed (a shortened name) first, else the fewest edits.
     let closest = names
         .iter()
-        .min_by_key(|n| edit_distance(name, n))
+        .min_by_key(|n| (!n.contains(name), edit_distance(name, n)))
         .expect("the library is not empty");
     Err(CoatingError::Invalid(format!(
         "'{name}' is not a pigment of gonio's library ({SOURCE}); did you mean '{closest}'? \
@@ -143,12 +144,14 @@ pub fn opaque_reflectance(parts: &[(f64, &LibraryPigment)]) -> Result<Spectrum> 
 }
 
 /// A reflectance inside the paint's surface as the database's instrument reads it through the
-/// surface: Saunderson's correction with [`SAUNDERSON_K1`] and [`SAUNDERSON_K2`] at each sample.
+/// surface, specular excluded: [`saunderson_specular_excluded`] with [`SAUNDERSON_K1`] and
+/// [`SAUNDERSON_K2`] at each sample (Unicolour's correction of these data; the colour of the
+/// paint seen away from its mirror reflection).
 pub fn as_measured(internal: &Spectrum) -> Spectrum {
     let values = internal
         .values()
         .iter()
-        .map(|&r| saunderson(r, SAUNDERSON_K1, SAUNDERSON_K2))
+        .map(|&r| saunderson_specular_excluded(r, SAUNDERSON_K1, SAUNDERSON_K2))
         .collect();
     Spectrum::new(internal.wavelengths_nm().to_vec(), values)
         .expect("same wavelengths as a valid spectrum")
