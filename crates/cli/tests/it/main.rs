@@ -18,5 +18,6 @@ mod kirchhoff_cli;
 mod multiangle_cli;
 mod orange_peel;
 mod outputs;
+mod pigments_cli;
 mod render_cli;
 mod surface_cli;
