@@ -13,6 +13,7 @@ mod isotropy;
 mod lab;
 mod multiangle;
 mod output;
+mod pigments;
 mod progress;
 mod render;
 mod report;
@@ -79,6 +80,10 @@ enum Command {
     /// -o T.gbrdf` tabulates the body reflection, `gonio coating info COATING.toml` summarises.
     #[command(subcommand)]
     Coating(coating::CoatingCommand),
+    /// gonio's built-in library of measured pigments (docs/coatings.md, "The pigment library"):
+    /// `gonio pigments` lists them; `gonio pigments NAME [-o DIR] [--json]` shows one, its
+    /// masstone and 1:10 tint with titanium white, and writes its K/S plot and swatches.
+    Pigments(pigments::PigmentsArgs),
     /// The formulation lab: a web page on this machine where a coating's formulation is changed
     /// with sliders and its readings, colour and picture follow (docs/lab.md):
     /// `gonio lab [--port 8765]`, then open http://127.0.0.1:8765/.
@@ -114,6 +119,7 @@ fn main() -> ExitCode {
         Command::Multiangle(args) => multiangle::run(args),
         Command::Lab(args) => lab::run(args),
         Command::Coating(cmd) => coating::run(cmd),
+        Command::Pigments(args) => pigments::run(args),
         Command::Texture(args) => texture::run(args),
     };
     match result {

@@ -21,7 +21,9 @@
 //! reflectance = { nm = [400, 500, 600, 700], values = [0.05, 0.05, 0.3, 0.7] }
 //!
 //! # kind = "kubelka-munk": thickness_um, substrate (a spectrum) and one or more
-//! # [[base.pigment]] with name, concentration, k_per_um and s_per_um (spectra).
+//! # [[base.pigment]] with name, concentration, k_per_um and s_per_um (spectra), or with
+//! # library = "phthalo_blue_green_shade" (a pigment of gonio's library, [`crate::pigment_library`])
+//! # and concentration (name optional: the library's name).
 //!
 //! [flakes]                        # optional: effect flakes at the bottom of the coat
 //! kind = "aluminium"              # or "metal" (with n and k spectra) or "interference"
@@ -34,6 +36,7 @@
 use crate::clear_coat::{Base, Coat, Dispersion, Pigment};
 use crate::error::{CoatingError, Result};
 use crate::flakes::{FlakePigment, Flakes, aluminium};
+use crate::pigment_library;
 use crate::system::Coating;
 use gonio_brdf::microfacet::Microfacet;
 use gonio_color::Spectrum;
@@ -170,13 +173,19 @@ enum BaseFields {
     },
 }
 
+/// A `[[base.pigment]]`: K and S spelled out (with a name), or a pigment of the library.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct PigmentFields {
-    name: String,
+    #[serde(default)]
+    name: Option<String>,
+    #[serde(default)]
+    library: Option<String>,
     concentration: f64,
-    k_per_um: SpectrumField,
-    s_per_um: SpectrumField,
+    #[serde(default)]
+    k_per_um: Option<SpectrumField>,
+    #[serde(default)]
+    s_per_um: Option<SpectrumField>,
 }
 
 impl SpectrumField {
@@ -309,6 +318,41 @@ fn flakes(f: FlakeFields) -> Result<Flakes> {
     })
 }
 
+/// A `[[base.pigment]]` from its fields: its own K and S, or the library's scaled by
+/// [`pigment_library::SCALE_PER_UM`] (named as in the library unless `name` is given).
+fn pigment_of(p: PigmentFields) -> Result<Pigment> {
+    match (p.library, p.k_per_um, p.s_per_um) {
+        (Some(library), None, None) => {
+            let mut pigment = pigment_library::find(&library)
+                .and_then(|l| l.pigment(p.concentration))
+                .map_err(|e| CoatingError::Invalid(format!("base.pigment library: {e}")))?;
+            if let Some(name) = p.name {
+                pigment.name = name;
+            }
+            Ok(pigment)
+        }
+        (None, Some(k), Some(s)) => {
+            let name = p.name.ok_or_else(|| {
+                CoatingError::Invalid(
+                    "base.pigment: a pigment with k_per_um and s_per_um needs a name".into(),
+                )
+            })?;
+            let field = |f: &str| format!("base.pigment '{name}'.{f}");
+            Ok(Pigment {
+                concentration: p.concentration,
+                k_per_um: k.spectrum(&field("k_per_um"))?,
+                s_per_um: s.spectrum(&field("s_per_um"))?,
+                name,
+            })
+        }
+        (library, ..) => Err(CoatingError::Invalid(format!(
+            "base.pigment '{}': give either library (a pigment of gonio's library) or both \
+             k_per_um and s_per_um",
+            p.name.or(library).unwrap_or_default()
+        ))),
+    }
+}
+
 /// Parse the text of a coating description, with the files it names (a top's height map)
 /// relative to `folder`.
 pub fn parse_in(text: &str, folder: &Path, wavelengths_nm: &[f64]) -> Result<Coating> {
@@ -378,15 +422,7 @@ pub fn parse_in(text: &str, folder: &Path, wavelengths_nm: &[f64]) -> Result<Coa
                 substrate: substrate.spectrum("base.substrate")?,
                 pigments: pigment
                     .into_iter()
-                    .map(|p| {
-                        let field = |f: &str| format!("base.pigment '{}'.{f}", p.name);
-                        Ok(Pigment {
-                            concentration: p.concentration,
-                            k_per_um: p.k_per_um.spectrum(&field("k_per_um"))?,
-                            s_per_um: p.s_per_um.spectrum(&field("s_per_um"))?,
-                            name: p.name,
-                        })
-                    })
+                    .map(pigment_of)
                     .collect::<Result<Vec<_>>>()?,
             }
         }

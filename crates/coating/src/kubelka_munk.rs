@@ -121,7 +121,16 @@ fn b_coth(b: f64, y: f64) -> f64 {
 /// its internal reflectance `k2` for diffuse light from inside (about 0.6 for n = 1.5, total
 /// internal reflection included).
 pub fn saunderson(r: f64, k1: f64, k2: f64) -> f64 {
-    k1 + (1.0 - k1) * (1.0 - k2) * r / (1.0 - k2 * r)
+    k1 + saunderson_specular_excluded(r, k1, k2)
+}
+
+/// Saunderson's correction as an instrument that excludes the specular reflection reads it
+/// (45°/0° geometry, or a sphere with its specular port open): the surface's own reflection k1
+/// is not collected, `(1 − k1)(1 − k2) R / (1 − k2 R)`, only the light that entered the layer
+/// and came back out. The form the Unicolour library applies to the RIT artist-paint data
+/// (`Pigment.CorrectR`, "assumes data measured in SPEX mode").
+pub fn saunderson_specular_excluded(r: f64, k1: f64, k2: f64) -> f64 {
+    (1.0 - k1) * (1.0 - k2) * r / (1.0 - k2 * r)
 }
 
 /// The inverse of [`saunderson`]: the internal reflectance behind a measured reflectance `rm`.

@@ -1,6 +1,6 @@
 //! gonio-coating: coatings from their constituents. Thin films (the TiO2 layers of
 //! interference pigments; [`thin_film`]), pigmented layers by Kubelka-Munk two-constant theory
-//! ([`kubelka_munk`]), a smooth clear coat over a diffuse base with every internal reflection
+//! ([`kubelka_munk`]) with a built-in library of measured pigments ([`pigment_library`]), a smooth clear coat over a diffuse base with every internal reflection
 //! counted exactly ([`clear_coat`]), and the general system ([`system`]): a smooth or rough top
 //! interface ([`interface`]), an absorbing clear coat, aluminium or interference flakes over
 //! the base ([`flakes`]), coupled by position-free Monte Carlo layered transport ([`layered`]);
@@ -17,6 +17,7 @@ pub mod glint;
 pub mod interface;
 pub mod kubelka_munk;
 pub mod layered;
+pub mod pigment_library;
 pub mod system;
 pub mod thin_film;
 

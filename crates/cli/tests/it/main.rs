@@ -18,6 +18,7 @@ mod kirchhoff_cli;
 mod multiangle_cli;
 mod orange_peel;
 mod outputs;
+mod pigments_cli;
 mod radiance_picture;
 mod render_cli;
 mod surface_cli;

@@ -98,4 +98,7 @@ fn saunderson_round_trip() {
     // A black layer reads the surface's own reflection; a white one reads 1.
     assert_eq!(saunderson(0.0, 0.04, 0.6), 0.04);
     assert!((saunderson(1.0, 0.04, 0.6) - 1.0).abs() < 1e-15);
+    // Specular excluded: a black layer reads nothing, a white one all that entered (1 − k1).
+    assert_eq!(saunderson_specular_excluded(0.0, 0.04, 0.6), 0.0);
+    assert!((saunderson_specular_excluded(1.0, 0.04, 0.6) - 0.96).abs() < 1e-15);
 }

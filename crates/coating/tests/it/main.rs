@@ -14,6 +14,7 @@ mod flakes;
 mod glint;
 mod kubelka_munk;
 mod oracle;
+mod pigment_library;
 mod scatmech_oracle;
 mod system;
 mod thin_film;
