@@ -84,8 +84,14 @@ pub fn with_values(text: &str, varied: &[Varied], values: &[f64]) -> Result<Stri
                     .get_mut("base")
                     .and_then(|b| b.get_mut("pigment"))
                     .ok_or_else(|| missing("[[base.pigment]]"))?;
-                let is_it =
-                    |p: &dyn TableLike| p.get("name").and_then(Item::as_str) == Some(name.as_str());
+                // A pigment is known by its `name`, or a library pigment given without one by
+                // its `library` name (as the description names it, `description::read`).
+                let is_it = |p: &dyn TableLike| {
+                    p.get("name")
+                        .or_else(|| p.get("library"))
+                        .and_then(Item::as_str)
+                        == Some(name.as_str())
+                };
                 let found = match pigments {
                     Item::ArrayOfTables(tables) => tables
                         .iter_mut()
@@ -191,5 +197,16 @@ mod tests {
         assert!(e.to_string().contains("no [flakes] table"), "{e}");
         let e = with_values(rough, &varied("concentration:blue=0:1"), &[0.5]).unwrap_err();
         assert!(e.to_string().contains("'blue'"), "{e}");
+        // A library pigment without a name is known by its library name.
+        let library = "[coat]\nindex = 1.5\nthickness_um = 40\n[base]\nkind = \"kubelka-munk\"\nthickness_um = 30\nsubstrate = 0.6\n\n[[base.pigment]]\nlibrary = \"titanium_white\"\nconcentration = 1.0\n\n[[base.pigment]]\nlibrary = \"phthalo_blue_green_shade\"\nconcentration = 0.1 # toner\n";
+        let v = varied("concentration:phthalo_blue_green_shade=0.01:0.5");
+        let text = with_values(library, &v, &[0.2]).unwrap();
+        let start = gonio_coating::description::parse(library, &wl).unwrap();
+        assert_eq!(
+            gonio_coating::description::parse(&text, &wl).unwrap(),
+            v[0].constituent.apply(&start, 0.2).unwrap(),
+            "{text}"
+        );
+        assert!(text.contains("# toner"));
     }
 }
