@@ -113,7 +113,7 @@ fn text(r: &TextureReading, camera: &TextureCamera, coating: &Path) -> String {
         ));
     }
     out.push_str(&format!(
-        "\ngraininess (diffuse light): {:.2} ± {:.2} %\n\
+        "\ngraininess (diffuse light): {:.2} ± {:.3} %\n\
          (gonio's own scales, docs/instruments.md \"Texture\": not a commercial instrument's)\n",
         r.graininess, r.graininess_uncertainty
     ));

@@ -144,8 +144,9 @@ impl FlakeField {
 
     /// The flakes' cells cut by the horizontal plane at height `z` (m, in the frame the field
     /// is placed in) within the rectangle from `lo` to `hi` (x, y, m): `visit` is told each
-    /// piece of a cell in the rectangle, its site's flake (`None` for a gap) and its area, m²
-    /// (a cell may come in several pieces; the areas add up to the rectangle's). The cells are
+    /// piece of a cell in the rectangle whose site's flake (`None` for a gap) is `wanted`, the
+    /// flake and the piece's area, m² (a cell may come in several pieces; the areas of all add
+    /// up to the rectangle's; the pieces not wanted are not clipped). The cells are
     /// [`FlakeField::flake_at`]'s exactly: within one cube of the grid a point's candidates are
     /// the same 27 sites, and the points of the plane nearer to site a than to site b form a
     /// half-plane, `2 q·(b − a) ≤ |b|² − |a|²` (q in the plane: the section of a Voronoi
@@ -159,6 +160,7 @@ impl FlakeField {
         z: f64,
         lo: DVec2,
         hi: DVec2,
+        wanted: impl Fn(Option<&Flake>) -> bool,
         mut visit: impl FnMut(Option<Flake>, f64),
     ) {
         let s = self.spacing;
@@ -175,6 +177,10 @@ impl FlakeField {
                 let cells = neighbours([cx, cy, cz]);
                 let sites = cells.map(|c| self.site(c));
                 for (i, &site) in sites.iter().enumerate() {
+                    let flake = self.flake_of(cells[i]);
+                    if !wanted(flake.as_ref()) {
+                        continue;
+                    }
                     poly.clear();
                     poly.extend([
                         DVec2::new(x0, y0),
@@ -195,7 +201,7 @@ impl FlakeField {
                     }
                     let area = shoelace(&poly) * s * s;
                     if area > 0.0 {
-                        visit(self.flake_of(cells[i]), area);
+                        visit(flake, area);
                     }
                 }
             }

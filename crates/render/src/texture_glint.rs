@@ -25,7 +25,7 @@
 //! specimen is a plane under the lights: nothing else sends light back to it).
 
 use crate::error::{RenderError, Result};
-use crate::flakes::MAX_BANDS;
+use crate::flakes::{Flake, MAX_BANDS};
 use crate::geometry::Ray;
 use crate::image::Image;
 use crate::integrator::on_threads;
@@ -109,18 +109,21 @@ fn pixel(scene: &Scene, x: usize, y: usize) -> Result<Rgb> {
     let bands = &mut bands[..glint.wavelengths_nm().len()];
     let mut sum = Rgb::ZERO;
     let corners = (DVec2::new(lo.x, lo.y), DVec2::new(hi.x, hi.y));
-    flakes.sections(lo.z, corners.0, corners.1, |flake, piece| {
-        let Some(wi) = flake.and_then(|f| glint.flake(wo, f.normal, bands)) else {
-            return;
-        };
-        let light = arriving(
-            scene,
-            &Ray {
-                origin,
-                dir: frame.to_world(wi).normalize(),
-            },
-        );
-        if light != Rgb::ZERO {
+    // The light a flake of normal `h` mirrors, its weight per band into `out`.
+    let mirrored = |h: DVec3, out: &mut [f64]| {
+        glint.flake(wo, h, out).map_or(Rgb::ZERO, |wi| {
+            let dir = frame.to_world(wi).normalize();
+            arriving(scene, &Ray { origin, dir })
+        })
+    };
+    let nb = bands.len();
+    // Only the flakes that mirror some light are clipped.
+    let lit = |f: Option<&Flake>| {
+        f.is_some_and(|f| mirrored(f.normal, &mut [0.0; MAX_BANDS][..nb]) != Rgb::ZERO)
+    };
+    flakes.sections(lo.z, corners.0, corners.1, lit, |flake, piece| {
+        if let Some(f) = flake {
+            let light = mirrored(f.normal, bands);
             sum += flakes.to_rgb(bands) * light * piece;
         }
     });

@@ -27,12 +27,18 @@ fn sections_are_the_cells_that_flake_at_finds() {
     let mut exact: HashMap<Option<[i64; 3]>, f64> = HashMap::new();
     let mut pieces: HashMap<Option<[i64; 3]>, usize> = HashMap::new();
     let mut total = 0.0;
-    field.sections(z, lo, hi, |flake, area| {
-        let key = flake.map(|f| f.site);
-        *exact.entry(key).or_default() += area;
-        *pieces.entry(key).or_default() += 1;
-        total += area;
-    });
+    field.sections(
+        z,
+        lo,
+        hi,
+        |_| true,
+        |flake, area| {
+            let key = flake.map(|f| f.site);
+            *exact.entry(key).or_default() += area;
+            *pieces.entry(key).or_default() += 1;
+            total += area;
+        },
+    );
     let rect = (hi.x - lo.x) * (hi.y - lo.y);
     assert!((total - rect).abs() < 1e-9 * rect, "{total} against {rect}");
     let h = 0.05e-6;
