@@ -53,6 +53,35 @@ fn graininess_removes_the_pictures_noise() {
     assert!(graininess(&pattern, &pattern) - 20.0 < 1e-9);
 }
 
+/// The stated uncertainty of the graininess is its spread over the pictures' noise: a pattern
+/// of coefficient of variation 20% over 10 000 pixels, seen through independent noise of 30%
+/// in 400 pairs of pictures; the standard deviation of the 400 readings against the mean of
+/// the stated uncertainties, within 20% (a standard deviation from 400 draws errs by
+/// 1/√(2·399) = 3.5%, so 20% is over 5 of them).
+#[test]
+fn graininess_uncertainty_is_its_spread() {
+    use gonio_render::texture_metrics::graininess_uncertainty;
+    use rand::{RngExt, SeedableRng};
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
+    let n = 10_000;
+    let pattern: Vec<f64> = (0..n).map(|k| if k % 2 == 0 { 0.8 } else { 1.2 }).collect();
+    let noisy = |rng: &mut rand_pcg::Pcg64| -> Vec<f64> {
+        pattern
+            .iter()
+            .map(|p| p + 0.3 * (rng.random::<f64>() - 0.5) * 12f64.sqrt())
+            .collect()
+    };
+    let (mut g, mut u) = (Vec::new(), 0.0);
+    for _ in 0..400 {
+        let (a, b) = (noisy(&mut rng), noisy(&mut rng));
+        g.push(graininess(&a, &b));
+        u += graininess_uncertainty(&a, &b) / 400.0;
+    }
+    let mean = g.iter().sum::<f64>() / g.len() as f64;
+    let sd = (g.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (g.len() - 1) as f64).sqrt();
+    assert!((sd - u).abs() < 0.2 * u, "spread {sd}, stated {u}");
+}
+
 /// A silver metallic (aluminium, coverage 0.5, over a grey base, smooth top) with flakes
 /// `diameter_um` across and `tilt_deg` rms, or none.
 fn silver(flakes: Option<(f64, f64)>) -> Coating {
