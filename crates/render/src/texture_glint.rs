@@ -5,9 +5,9 @@
 //! Why not the path tracer's samples: a flake about a pixel's size or smaller is found by the
 //! share of a pixel's samples that land on it (and the path follows its mirror on half of
 //! them), so the pixel's glint fluctuates with the samples, and whether it passes a spot's
-//! threshold too: at 16 samples per pixel a flake that covers a quarter of a pixel is missed
-//! on one pixel in sixty, and a sliver of a flake much more often, so the sparkle readings
-//! depended on the samples (issue 43: 523 spots at 16 samples, 648 at 64, field 12 mm at
+//! threshold too: at 16 samples per pixel a flake that covers a share f of a pixel is missed
+//! with probability `(1 − f/2)^16` (12% for a quarter), a sliver of a flake much more often,
+//! so the sparkle readings depended on the samples (issue 43: 523 spots at 16 samples, 648 at 64, field 12 mm at
 //! 30 µm). Here the picture is rendered with the flakes' glint left out
 //! ([`crate::flakes::FlakeField::without_glint`]: the rest of the coating, whose noise is a
 //! small share of the surround's level, far under a spot's threshold) and the glint added
