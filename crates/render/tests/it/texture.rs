@@ -284,15 +284,18 @@ mod slow {
     /// directions: with `dωi' = cos θi dωi / (n² cos θi')` (Snell) and `dωh = dωi' / (4
     /// wi'·h)` (the reflection's Jacobian), a quadrature over the disc (48 × 48 nodes); there
     /// are `c A / (π d²/4)` flakes. Two glinting flakes closer than one pixel (8-connected
-    /// neighbours) make one spot: with their pixels' extent along each axis d + 1.5 p beyond
-    /// each other's centre on average (d the flake's width, p the pixel), pairs closer than
-    /// the area `A_m = (2d + 3p)²` merge, and of N glinting flakes at density ρ (nearly
-    /// Poisson: a thinning of the cells by under 1%) `N ρ A_m / 2` do (4% at 15°, 1% at 45°).
+    /// neighbours) make one spot: along one axis two flakes of width d merge surely while the
+    /// gap between them is under a pixel p and then with a probability falling linearly to 0
+    /// at two pixels (the grid's phase), over a length `2d + 3p` of their centres' distance,
+    /// so over both axes pairs within the area `A_m = (2d + 3p)²` merge, and of N glinting
+    /// flakes at density ρ (nearly Poisson: a thinning of the cells by under 1%) `N ρ A_m / 2`
+    /// do (4% at 15°, 1% at 45°).
     /// A glinting flake is a spot unless every piece of it in a pixel is under the threshold
     /// (ten times the surround, a few µm² of a pixel under the lamp: slivers only, left
     /// out). Counted at 4 samples per pixel (the count does not depend on them, previous
     /// test), within 3.5 Poisson standard deviations √E: 665 ± 26, 184 ± 14 and 18.8 ± 4.3.
-    /// Before the glint was integrated over the pixel, 16 samples counted 523 at 15° (−5.5σ).
+    /// Before the glint was integrated over the pixel, 16 samples counted 523 at 15° (−5.5σ),
+    /// and this test's 4 samples 363.
     #[test]
     fn spots_are_the_flakes_that_mirror_the_lamp() {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
