@@ -89,6 +89,7 @@ fn to_json(r: &TextureReading, camera: &TextureCamera) -> Value {
             "grade": s.sparkle.grade,
         })).collect::<Vec<_>>(),
         "graininess_percent": r.graininess,
+        "graininess_uncertainty_percent": r.graininess_uncertainty,
     })
 }
 
@@ -112,9 +113,9 @@ fn text(r: &TextureReading, camera: &TextureCamera, coating: &Path) -> String {
         ));
     }
     out.push_str(&format!(
-        "\ngraininess (diffuse light): {:.2} %\n\
+        "\ngraininess (diffuse light): {:.2} ± {:.3} %\n\
          (gonio's own scales, docs/instruments.md \"Texture\": not a commercial instrument's)\n",
-        r.graininess
+        r.graininess, r.graininess_uncertainty
     ));
     out
 }

@@ -55,6 +55,8 @@ pub struct FlakeField {
     seed: u64,
     /// Per band, the linear sRGB weights of a spectrum at the glint's bands (D65, CIE 1931).
     rgb_weights: Vec<[f64; 3]>,
+    /// Whether a path follows the flakes' mirror ([`FlakeField::without_glint`]).
+    glints: bool,
 }
 
 /// A flake found at a point: its site (for telling flakes apart) and its normal.
@@ -91,7 +93,24 @@ impl FlakeField {
             spacing,
             seed,
             rgb_weights,
+            glints: true,
         })
+    }
+
+    /// The same flakes shading the light from inside as before (the base between them, not
+    /// through a metal flake) but not mirroring: a path does not follow their glint, which the
+    /// caller adds itself (the texture camera integrates it over each pixel exactly,
+    /// [`crate::texture_glint`]).
+    pub fn without_glint(self) -> FlakeField {
+        FlakeField {
+            glints: false,
+            ..self
+        }
+    }
+
+    /// Whether a path follows the flakes' mirror (see [`FlakeField::without_glint`]).
+    pub fn glints(&self) -> bool {
+        self.glints
     }
 
     /// The coating's glint: the flakes' optics and the coat they lie under.
@@ -109,25 +128,93 @@ impl FlakeField {
     }
 
     /// The site nearest to `p` (m, any frame fixed to the surface) and whether it is a flake:
-    /// `None` for a gap.
+    /// `None` for a gap. The site is sought in the 27 cells around `p`'s own.
     pub fn flake_at(&self, p: DVec3) -> Option<Flake> {
         let q = p / self.spacing;
         let base = q.floor();
         let mut best = (f64::INFINITY, [0i64; 3]);
-        for dz in -1..=1 {
-            for dy in -1..=1 {
-                for dx in -1..=1 {
-                    let cell = [base.x as i64 + dx, base.y as i64 + dy, base.z as i64 + dz];
-                    let site = DVec3::new(cell[0] as f64, cell[1] as f64, cell[2] as f64)
-                        + self.uniform3(cell, 0);
-                    let d2 = site.distance_squared(q);
-                    if d2 < best.0 {
-                        best = (d2, cell);
+        for cell in neighbours([base.x as i64, base.y as i64, base.z as i64]) {
+            let d2 = self.site(cell).distance_squared(q);
+            if d2 < best.0 {
+                best = (d2, cell);
+            }
+        }
+        self.flake_of(best.1)
+    }
+
+    /// The flakes' cells cut by the horizontal plane at height `z` (m, in the frame the field
+    /// is placed in) within the rectangle from `lo` to `hi` (x, y, m): `visit` is told each
+    /// piece of a cell in the rectangle whose site's flake (`None` for a gap) is `wanted`, the
+    /// flake and the piece's area, m² (a cell may come in several pieces; the areas of all add
+    /// up to the rectangle's; the pieces not wanted are not clipped). The cells are
+    /// [`FlakeField::flake_at`]'s exactly: within one cube of the grid a point's candidates are
+    /// the same 27 sites, and the points of the plane nearer to site a than to site b form a
+    /// half-plane, `2 q·(b − a) ≤ |b|² − |a|²` (q in the plane: the section of a Voronoi
+    /// tessellation by a plane is a power diagram, F. Aurenhammer, "Power diagrams:
+    /// properties, algorithms and applications", SIAM J. Comput. 16(1), 78, 1987), so each
+    /// piece is the cube's square in the rectangle clipped by 26 half-planes (I. E. Sutherland
+    /// & G. W. Hodgman, "Reentrant polygon clipping", CACM 17(1), 32, 1974) and its area the
+    /// shoelace formula's.
+    pub fn sections(
+        &self,
+        z: f64,
+        lo: DVec2,
+        hi: DVec2,
+        wanted: impl Fn(Option<&Flake>) -> bool,
+        mut visit: impl FnMut(Option<Flake>, f64),
+    ) {
+        let s = self.spacing;
+        let (a, b, qz) = (lo / s, hi / s, z / s);
+        let cz = qz.floor() as i64;
+        let (mut poly, mut next) = (Vec::with_capacity(32), Vec::with_capacity(32));
+        for cy in a.y.floor() as i64..b.y.ceil() as i64 {
+            for cx in a.x.floor() as i64..b.x.ceil() as i64 {
+                let (x0, x1) = (a.x.max(cx as f64), b.x.min(cx as f64 + 1.0));
+                let (y0, y1) = (a.y.max(cy as f64), b.y.min(cy as f64 + 1.0));
+                if x1 <= x0 || y1 <= y0 {
+                    continue;
+                }
+                let cells = neighbours([cx, cy, cz]);
+                let sites = cells.map(|c| self.site(c));
+                for (i, &site) in sites.iter().enumerate() {
+                    let flake = self.flake_of(cells[i]);
+                    if !wanted(flake.as_ref()) {
+                        continue;
+                    }
+                    poly.clear();
+                    poly.extend([
+                        DVec2::new(x0, y0),
+                        DVec2::new(x1, y0),
+                        DVec2::new(x1, y1),
+                        DVec2::new(x0, y1),
+                    ]);
+                    for (j, &other) in sites.iter().enumerate() {
+                        if j == i || poly.is_empty() {
+                            continue;
+                        }
+                        // Nearer to `site` than to `other`: n·q ≤ k.
+                        let d = other - site;
+                        let n = 2.0 * DVec2::new(d.x, d.y);
+                        let k = other.length_squared() - site.length_squared() - 2.0 * qz * d.z;
+                        clip(&poly, n, k, &mut next);
+                        std::mem::swap(&mut poly, &mut next);
+                    }
+                    let area = shoelace(&poly) * s * s;
+                    if area > 0.0 {
+                        visit(flake, area);
                     }
                 }
             }
         }
-        let site = best.1;
+    }
+
+    /// The site of `cell`, in units of the grid's spacing.
+    fn site(&self, cell: [i64; 3]) -> DVec3 {
+        DVec3::new(cell[0] as f64, cell[1] as f64, cell[2] as f64) + self.uniform3(cell, 0)
+    }
+
+    /// The flake of the site in `cell`, `None` for a gap.
+    fn flake_of(&self, site: [i64; 3]) -> Option<Flake> {
         let u = self.uniform3(site, 1);
         (u.x < self.glint.coverage()).then(|| Flake {
             site,
@@ -154,6 +241,43 @@ impl FlakeField {
         let w = self.glint.inside(wo);
         p - frame.to_world(w) * (self.glint.depth() / w.z.max(1e-6))
     }
+}
+
+/// The 27 cells around `cell` (itself included).
+fn neighbours(cell: [i64; 3]) -> [[i64; 3]; 27] {
+    std::array::from_fn(|k| {
+        let k = k as i64;
+        [
+            cell[0] + k % 3 - 1,
+            cell[1] + (k / 3) % 3 - 1,
+            cell[2] + k / 9 - 1,
+        ]
+    })
+}
+
+/// The convex polygon `poly` clipped to the half-plane `n·q ≤ k`, into `out` (one step of
+/// Sutherland–Hodgman).
+fn clip(poly: &[DVec2], n: DVec2, k: f64, out: &mut Vec<DVec2>) {
+    out.clear();
+    for (i, &p) in poly.iter().enumerate() {
+        let q = poly[(i + 1) % poly.len()];
+        let (fp, fq) = (n.dot(p) - k, n.dot(q) - k);
+        if fp <= 0.0 {
+            out.push(p);
+        }
+        if (fp < 0.0 && fq > 0.0) || (fp > 0.0 && fq < 0.0) {
+            out.push(p + (q - p) * (fp / (fp - fq)));
+        }
+    }
+}
+
+/// The area of the polygon `poly` (the shoelace formula; positive counter-clockwise).
+fn shoelace(poly: &[DVec2]) -> f64 {
+    let mut twice = 0.0;
+    for (i, &p) in poly.iter().enumerate() {
+        twice += p.perp_dot(poly[(i + 1) % poly.len()]);
+    }
+    0.5 * twice
 }
 
 /// SplitMix64's finaliser (S. Vigna), a 64-bit mix.

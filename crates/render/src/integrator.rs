@@ -163,14 +163,7 @@ pub fn render_estimate(scene: &Scene, options: &RenderOptions) -> Result<Estimat
             })
             .collect()
     };
-    let results = match options.threads {
-        Some(n) => rayon::ThreadPoolBuilder::new()
-            .num_threads(n.max(1))
-            .build()
-            .map_err(|e| RenderError::Invalid(format!("cannot start {n} threads: {e}")))?
-            .install(run),
-        None => run(),
-    };
+    let results = on_threads(options.threads, run)?;
     if options.cancel.is_cancelled() {
         return Err(RenderError::Cancelled);
     }
@@ -195,6 +188,21 @@ pub fn render_estimate(scene: &Scene, options: &RenderOptions) -> Result<Estimat
             seconds: start.elapsed().as_secs_f64(),
             denoised: false,
         },
+    })
+}
+
+/// `run` on `threads` threads (`None`: rayon's global pool, all of them).
+pub(crate) fn on_threads<T: Send>(
+    threads: Option<usize>,
+    run: impl FnOnce() -> T + Send,
+) -> Result<T> {
+    Ok(match threads {
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n.max(1))
+            .build()
+            .map_err(|e| RenderError::Invalid(format!("cannot start {n} threads: {e}")))?
+            .install(run),
+        None => run(),
     })
 }
 

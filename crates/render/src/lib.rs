@@ -36,6 +36,7 @@ pub mod settings;
 pub mod spectral;
 pub mod surface;
 pub mod texture;
+pub mod texture_glint;
 pub mod texture_metrics;
 
 pub use assets::Assets;

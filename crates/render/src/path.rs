@@ -209,7 +209,7 @@ pub(crate) fn facing_frame(hit: &Hit, dir: DVec3) -> (DVec3, Frame) {
 
 /// A point just off the surface on the side of `n`, so that a ray from it does not hit the
 /// surface it leaves.
-fn offset(p: DVec3, n: DVec3) -> DVec3 {
+pub(crate) fn offset(p: DVec3, n: DVec3) -> DVec3 {
     p + n * (1e-7 * (1.0 + p.abs().max_element()))
 }
 
@@ -373,7 +373,8 @@ pub(crate) fn radiance<S: Shading>(
         }
         let mirror = material.mirror(wo.z);
         // Discrete flakes: the flake under the point (or a gap), the direction it mirrors
-        // and its weight, and what the point lets through of the light from inside.
+        // and its weight (unless the field leaves its glint to the caller), and what the
+        // point lets through of the light from inside.
         let mut glint = None;
         let mut body_scale = None;
         if let Some(flakes) = &material.flakes {
@@ -384,7 +385,7 @@ pub(crate) fn radiance<S: Shading>(
                 .glint()
                 .body_scale(wo, flake.map(|f| f.normal), bands);
             body_scale = Some(shading.carry_bands(flakes, bands));
-            if let Some(flake) = flake
+            if let Some(flake) = flake.filter(|_| flakes.glints())
                 && let Some(wi) = flakes.glint().flake(wo, flake.normal, bands)
             {
                 glint = Some((wi, shading.carry_bands(flakes, bands)));

@@ -15,9 +15,11 @@ use crate::integrator::{RenderOptions, render};
 use crate::material::Material;
 use crate::scene::Scene;
 use crate::settings::ColourMode;
-use crate::texture_metrics::{Sparkle, graininess, luminance, sparkle};
+use crate::texture_glint::glint_picture;
+use crate::texture_metrics::{Sparkle, graininess, graininess_uncertainty, luminance, sparkle};
 use gonio_coating::system::Coating;
 use std::path::Path;
+use std::sync::Arc;
 
 /// The lamp's angles from the normal for sparkle, degrees.
 pub const SPARKLE_ANGLES_DEG: [f64; 3] = [15.0, 45.0, 75.0];
@@ -97,6 +99,8 @@ pub struct TextureReading {
     pub sparkle: Vec<SparkleShot>,
     /// Graininess under the diffuse hemisphere, %.
     pub graininess: f64,
+    /// The standard uncertainty of `graininess` from the pictures' noise, %.
+    pub graininess_uncertainty: f64,
     /// The diffuse picture (the mean of the two renders).
     pub diffuse: Image,
 }
@@ -116,7 +120,11 @@ pub fn measure(
     } else {
         FlakeMode::Smooth
     };
-    let material = from_coating("coating", coating, source, mode, camera.flake_seed)?;
+    let mut material = from_coating("coating", coating, source, mode, camera.flake_seed)?;
+    // The flakes' glint is added to each picture exactly (`texture_glint`), not sampled.
+    material.flakes = material
+        .flakes
+        .map(|f| Arc::new(Arc::unwrap_or_clone(f).without_glint()));
     let options = |seed: u32| RenderOptions {
         spp: Some(camera.spp),
         seed: Some(seed),
@@ -131,7 +139,7 @@ pub fn measure(
     for (k, &angle) in SPARKLE_ANGLES_DEG.iter().enumerate() {
         progress(k + 1, &format!("lamp at {angle}°"));
         let scene = scene(camera, Some(angle), &material)?;
-        let (image, _) = render(&scene, &options(1))?;
+        let image = picture(&scene, &options(1), &glint_picture(&scene, camera.threads)?)?;
         // A white diffuser's luminance under the lamp: E / π with E = L Ω cos θ, L = 1.
         let omega = std::f64::consts::TAU * (1.0 - LAMP_RADIUS_DEG.to_radians().cos());
         let white = omega * angle.to_radians().cos() / std::f64::consts::PI;
@@ -144,9 +152,10 @@ pub fn measure(
     }
     progress(4, "diffuse light");
     let scene = scene(camera, None, &material)?;
-    let (a, _) = render(&scene, &options(1))?;
+    let glint = glint_picture(&scene, camera.threads)?;
+    let a = picture(&scene, &options(1), &glint)?;
     progress(5, "diffuse light, independent samples");
-    let (b, _) = render(&scene, &options(2))?;
+    let b = picture(&scene, &options(2), &glint)?;
     let ya: Vec<f64> = a.pixels.iter().map(|&p| luminance(p)).collect();
     let yb: Vec<f64> = b.pixels.iter().map(|&p| luminance(p)).collect();
     let mut diffuse = a.clone();
@@ -158,8 +167,21 @@ pub fn measure(
     Ok(TextureReading {
         sparkle: shots,
         graininess: graininess(&ya, &yb),
+        graininess_uncertainty: graininess_uncertainty(&ya, &yb),
         diffuse,
     })
+}
+
+/// `scene`'s picture: the coating without its flakes' glint rendered with `options`, and
+/// `glint`, the glint integrated over each pixel, added.
+fn picture(scene: &Scene, options: &RenderOptions, glint: &Image) -> Result<Image> {
+    let (mut image, _) = render(scene, options)?;
+    for (p, g) in image.pixels.iter_mut().zip(&glint.pixels) {
+        for c in 0..3 {
+            p[c] += g[c];
+        }
+    }
+    Ok(image)
 }
 
 /// The camera's scene: the specimen (a plane of `material`) seen along its normal from 1 m

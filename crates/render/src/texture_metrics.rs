@@ -126,16 +126,38 @@ pub fn sparkle(y: &[f64], width: usize, pixel_mm: f64, floor: f64) -> Sparkle {
 /// light rendered with independent samples: the coefficient of variation of the pattern with
 /// the pictures' noise taken out (see the module's documentation).
 pub fn graininess(a: &[f64], b: &[f64]) -> f64 {
+    let (m, texture, _) = pattern_and_noise(a, b);
+    if m > 0.0 {
+        100.0 * texture.sqrt() / m
+    } else {
+        0.0
+    }
+}
+
+/// The standard uncertainty of [`graininess`], %, from the pictures' noise: with the
+/// pattern t, each picture's noise e of variance `V_e = var(A − B)/2` per pixel and N
+/// pixels, the estimate of the pattern's variance `V_t` errs by `2 cov(t, ē) + cov(e_A,
+/// e_B)` (the two noises' mean ē, of variance `V_e/2`), of variance `(2 V_t V_e + V_e²)/N`,
+/// and the graininess `100 √V_t / m` by `100 σ(V_t) / (2 √V_t m)` (first order; its square
+/// root's bound `100 √σ(V_t) / m` where the pattern vanishes).
+pub fn graininess_uncertainty(a: &[f64], b: &[f64]) -> f64 {
+    let (m, texture, noise) = pattern_and_noise(a, b);
+    if m <= 0.0 {
+        return 0.0;
+    }
+    let sigma = ((2.0 * texture * noise + noise * noise) / a.len() as f64).sqrt();
+    let first_order = 100.0 * sigma / (2.0 * texture.sqrt() * m);
+    first_order.min(100.0 * sigma.sqrt() / m)
+}
+
+/// The mean of two pictures `a` and `b` of one field, the variance of its pattern with the
+/// noise taken out and each picture's noise variance (see the module's documentation).
+fn pattern_and_noise(a: &[f64], b: &[f64]) -> (f64, f64, f64) {
     let n = a.len() as f64;
     let mean = |v: &mut dyn Iterator<Item = f64>| v.sum::<f64>() / n;
     let m = mean(&mut a.iter().zip(b).map(|(x, y)| 0.5 * (x + y)));
     let d = mean(&mut a.iter().zip(b).map(|(x, y)| x - y));
     let var_mean = mean(&mut a.iter().zip(b).map(|(x, y)| (0.5 * (x + y) - m).powi(2)));
     let var_diff = mean(&mut a.iter().zip(b).map(|(x, y)| (x - y - d).powi(2)));
-    let texture = (var_mean - var_diff / 4.0).max(0.0);
-    if m > 0.0 {
-        100.0 * texture.sqrt() / m
-    } else {
-        0.0
-    }
+    (m, (var_mean - var_diff / 4.0).max(0.0), var_diff / 2.0)
 }

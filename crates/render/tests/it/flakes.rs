@@ -14,7 +14,7 @@ use std::collections::HashSet;
 const BANDS: [f64; 3] = [450.0, 550.0, 650.0];
 
 /// The glint of a silver metallic with a smooth top, flakes `diameter_um` across.
-fn glint(diameter_um: f64) -> Glint {
+pub fn glint(diameter_um: f64) -> Glint {
     let coating = parse(
         &format!(
             "[coat]\nindex = 1.5\nthickness_um = 40\n\
@@ -27,7 +27,7 @@ fn glint(diameter_um: f64) -> Glint {
     Glint::new(&coating, &BANDS).unwrap().unwrap()
 }
 
-fn dir(theta_deg: f64, phi_deg: f64) -> DVec3 {
+pub fn dir(theta_deg: f64, phi_deg: f64) -> DVec3 {
     let (t, p) = (theta_deg.to_radians(), phi_deg.to_radians());
     DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos())
 }
@@ -35,7 +35,7 @@ fn dir(theta_deg: f64, phi_deg: f64) -> DVec3 {
 /// A square patch (normal +z, shading tangent +x) of a black material seen from `wo` at 10 m
 /// over `field` metres, `px` pixels a side, under a lamp of radiance 1 and angular radius
 /// `lamp_deg` in direction `wi` 100 m away, nothing else lit; the material is then given `flakes`.
-fn patch(wo: DVec3, wi: DVec3, field: f64, px: usize, lamp_deg: f64) -> gonio_render::Scene {
+pub fn patch(wo: DVec3, wi: DVec3, field: f64, px: usize, lamp_deg: f64) -> gonio_render::Scene {
     let cam = wo * 10.0;
     let lamp = wi * 100.0;
     let fov = 2.0 * (field / 2.0 / 10.0).atan().to_degrees();
@@ -60,7 +60,7 @@ fn patch(wo: DVec3, wi: DVec3, field: f64, px: usize, lamp_deg: f64) -> gonio_re
     ))
 }
 
-fn with_flakes(mut s: gonio_render::Scene, field: FlakeField) -> gonio_render::Scene {
+pub fn with_flakes(mut s: gonio_render::Scene, field: FlakeField) -> gonio_render::Scene {
     let m = s.materials[0].clone();
     s.materials[0] = m.with_flakes(field);
     s

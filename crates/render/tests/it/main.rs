@@ -20,3 +20,4 @@ mod render;
 mod scene;
 mod spectral;
 mod texture;
+mod texture_glint;
