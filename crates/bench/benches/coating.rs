@@ -8,8 +8,8 @@ use gonio_brdf::formats::astm;
 use gonio_brdf::table::{Provenance, Resolution};
 use gonio_coating::cell::CellWalks;
 use gonio_coating::description;
-use gonio_coating::system::TARGET_DL;
 use gonio_coating::kubelka_munk::Coefficients;
+use gonio_coating::system::TARGET_DL;
 use gonio_coating::thin_film::{Polarisation, interference_flake};
 use std::hint::black_box;
 use std::path::Path;
@@ -40,39 +40,31 @@ fn benches(c: &mut Criterion) {
     let silver_path =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/coatings/silver_metallic.toml");
     let silver = description::read(&silver_path, &bands).unwrap();
-    group.bench_function(
-        "layered table 45x45x24, 31 bands, 32 walks (silver_metallic.toml)",
-        |b| {
-            b.iter(|| {
-                silver
-                    .table(
-                        Resolution::isotropic(45, 45, 24),
-                        black_box(&bands),
-                        32,
-                        Provenance::default(),
-                    )
-                    .unwrap()
-            })
-        },
-    );
-    // The same eighth of the default table with the walks added where a cell's L* is noisier
-    // than the default target (what `gonio coating compute` does; the whole default table is
-    // timed through the command in docs/performance.md).
-    group.bench_function(
-        "layered table 45x45x24, 31 bands, 32 walks and more to 1/3 L* (silver_metallic.toml)",
-        |b| {
-            b.iter(|| {
-                silver
-                    .table(
-                        Resolution::isotropic(45, 45, 24),
-                        black_box(&bands),
-                        CellWalks::adaptive(32, TARGET_DL),
-                        Provenance::default(),
-                    )
-                    .unwrap()
-            })
-        },
-    );
+    // The same eighth of the default table with 32 walks in every cell, and with walks added
+    // where a cell's L* is noisier than the default target (what `gonio coating compute` does).
+    for (label, walks) in [
+        ("32 walks", CellWalks::fixed(32)),
+        (
+            "32 walks and more to 1/3 L*",
+            CellWalks::adaptive(32, TARGET_DL),
+        ),
+    ] {
+        group.bench_function(
+            format!("layered table 45x45x24, 31 bands, {label} (silver_metallic.toml)"),
+            |b| {
+                b.iter(|| {
+                    silver
+                        .table(
+                            Resolution::isotropic(45, 45, 24),
+                            black_box(&bands),
+                            walks,
+                            Provenance::default(),
+                        )
+                        .unwrap()
+                })
+            },
+        );
+    }
     group.finish();
     let flake = interference_flake(120.0, 400.0, 1.58, 1.5, 550.0).unwrap();
     c.bench_function("interference flake reflectance, s and p (3 films)", |b| {

@@ -33,6 +33,20 @@ fn spots_are_counted_and_measured() {
     assert_eq!(sparkle(&flat, w, 0.01, 0.0).spots, 0);
 }
 
+/// A pattern of coefficient of variation 20% over `n` pixels (0.8 and 1.2 alternating).
+fn checker(n: usize) -> Vec<f64> {
+    (0..n).map(|k| if k % 2 == 0 { 0.8 } else { 1.2 }).collect()
+}
+
+/// `pattern` seen through independent uniform noise of standard deviation 0.3.
+fn seen_through_noise(pattern: &[f64], rng: &mut rand_pcg::Pcg64) -> Vec<f64> {
+    use rand::RngExt;
+    pattern
+        .iter()
+        .map(|p| p + 0.3 * (rng.random::<f64>() - 0.5) * 12f64.sqrt())
+        .collect()
+}
+
 /// The noise is taken out: a pattern of coefficient of variation 20% seen through
 /// independent noise of 30% reads 20% within the sampling error of 40 000 pixels.
 #[test]
@@ -40,13 +54,8 @@ fn graininess_removes_the_pictures_noise() {
     use rand::{RngExt, SeedableRng};
     let mut rng = rand_pcg::Pcg64::seed_from_u64(3);
     let n = 40_000;
-    let pattern: Vec<f64> = (0..n).map(|k| if k % 2 == 0 { 0.8 } else { 1.2 }).collect();
-    let noisy = |rng: &mut rand_pcg::Pcg64| -> Vec<f64> {
-        pattern
-            .iter()
-            .map(|p| p + 0.3 * (rng.random::<f64>() - 0.5) * 12f64.sqrt())
-            .collect()
-    };
+    let pattern = checker(n);
+    let noisy = |rng: &mut rand_pcg::Pcg64| seen_through_noise(&pattern, rng);
     let (a, b) = (noisy(&mut rng), noisy(&mut rng));
     let g = graininess(&a, &b);
     assert!((g - 20.0).abs() < 0.5, "{g}");
@@ -64,13 +73,8 @@ fn graininess_uncertainty_is_its_spread() {
     use rand::{RngExt, SeedableRng};
     let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
     let n = 10_000;
-    let pattern: Vec<f64> = (0..n).map(|k| if k % 2 == 0 { 0.8 } else { 1.2 }).collect();
-    let noisy = |rng: &mut rand_pcg::Pcg64| -> Vec<f64> {
-        pattern
-            .iter()
-            .map(|p| p + 0.3 * (rng.random::<f64>() - 0.5) * 12f64.sqrt())
-            .collect()
-    };
+    let pattern = checker(n);
+    let noisy = |rng: &mut rand_pcg::Pcg64| seen_through_noise(&pattern, rng);
     let (mut g, mut u) = (Vec::new(), 0.0);
     for _ in 0..400 {
         let (a, b) = (noisy(&mut rng), noisy(&mut rng));

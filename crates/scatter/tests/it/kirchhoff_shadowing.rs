@@ -36,6 +36,15 @@ fn kirchhoff(map: &HeightMap, options: KirchhoffOptions) -> Kirchhoff {
     Kirchhoff::new(map, options).unwrap()
 }
 
+/// The engine on `map` with shadowing and masking (the default) and without.
+fn with_and_without_shadowing(map: &HeightMap) -> (Kirchhoff, Kirchhoff) {
+    let without = KirchhoffOptions {
+        shadowing: false,
+        ..options()
+    };
+    (kirchhoff(map, options()), kirchhoff(map, without))
+}
+
 fn options() -> KirchhoffOptions {
     KirchhoffOptions::new(Ior::Dielectric(1.55))
 }
@@ -132,14 +141,7 @@ fn ray_albedo(map: &HeightMap, spot: Spot, ti: f64) -> RayAlbedo {
 #[test]
 fn albedo_stays_below_one_to_grazing() {
     let map = sample(256);
-    let with = kirchhoff(&map, options());
-    let without = kirchhoff(
-        &map,
-        KirchhoffOptions {
-            shadowing: false,
-            ..options()
-        },
-    );
+    let (with, without) = with_and_without_shadowing(&map);
     for ti in [70.0, 80.0, 85.0, 88.0, 89.0] {
         let a = albedo(&with, ti);
         eprintln!("{ti}°: albedo {a:.4}");
@@ -206,14 +208,7 @@ mod slow {
     #[test]
     fn below_sixty_degrees_nothing_changes_beyond_the_noise() {
         let map = sample(256);
-        let with = kirchhoff(&map, options());
-        let without = kirchhoff(
-            &map,
-            KirchhoffOptions {
-                shadowing: false,
-                ..options()
-            },
-        );
+        let (with, without) = with_and_without_shadowing(&map);
         for ti in [0.0, 20.0, 40.0, 50.0, 55.0] {
             let ray = ray_albedo(&map, with.spot(), ti);
             let (new, old) = (albedo(&with, ti), albedo(&without, ti));
