@@ -51,7 +51,7 @@ fn seen_through_noise(pattern: &[f64], rng: &mut rand_pcg::Pcg64) -> Vec<f64> {
 /// independent noise of 30% reads 20% within the sampling error of 40 000 pixels.
 #[test]
 fn graininess_removes_the_pictures_noise() {
-    use rand::{RngExt, SeedableRng};
+    use rand::SeedableRng;
     let mut rng = rand_pcg::Pcg64::seed_from_u64(3);
     let n = 40_000;
     let pattern = checker(n);
@@ -70,7 +70,7 @@ fn graininess_removes_the_pictures_noise() {
 #[test]
 fn graininess_uncertainty_is_its_spread() {
     use gonio_render::texture_metrics::graininess_uncertainty;
-    use rand::{RngExt, SeedableRng};
+    use rand::SeedableRng;
     let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
     let n = 10_000;
     let pattern = checker(n);
