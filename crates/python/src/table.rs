@@ -179,21 +179,14 @@ impl Table {
             }
             "csv" => py.detach(move || brdf_csv::write(&table, &path, step_deg))?,
             "radiance-xml" => {
-                let name = path
-                    .file_stem()
-                    .and_then(|s| s.to_str())
-                    .unwrap_or("brdf")
-                    .to_string();
+                let name = stem_of(&path);
                 py.detach(move || radiance_xml::write(&table, &path, &name, None))?;
             }
             "pabopto" => {
-                let name = path
-                    .file_stem()
-                    .and_then(|s| s.to_str())
-                    .unwrap_or("brdf")
-                    .to_string();
-                let incidences: Vec<f64> = (0..9).map(|k| f64::from(k) * 10.0).collect();
-                py.detach(move || pabopto::write(&table, &path, &name, &incidences))?;
+                let name = stem_of(&path);
+                py.detach(move || {
+                    pabopto::write(&table, &path, &name, &pabopto::DEFAULT_THETA_I_DEG)
+                })?;
             }
             other => {
                 return Err(invalid(format!(
@@ -321,7 +314,11 @@ pub fn compute_table(
                 ray_table(&engine, &options, provenance, &progress)?
             }
             "kirchhoff" => {
-                let engine = Kirchhoff::new(&map, KirchhoffOptions::new(ior))?;
+                let options_k = KirchhoffOptions {
+                    shadowing,
+                    ..KirchhoffOptions::new(ior)
+                };
+                let engine = Kirchhoff::new(&map, options_k)?;
                 kirchhoff_table(&engine, &wavelength_nm, &options, provenance, &progress)?
             }
             other => {
@@ -332,4 +329,12 @@ pub fn compute_table(
         })
     })?;
     Ok(Table::new(table))
+}
+
+/// The material's name in a Radiance export: the output path's stem ("brdf" without one).
+fn stem_of(path: &std::path::Path) -> String {
+    path.file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("brdf")
+        .to_string()
 }

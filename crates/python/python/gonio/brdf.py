@@ -39,7 +39,9 @@ def compute(
     channel per wavelength in ``wavelength_nm``; several give a spectral table). ``resolution``:
     (theta_h, theta_d, phi_d) nodes for an isotropic table, or with phi_h for an anisotropic one.
     ``incidence_azimuths``: turns of the source averaged (isotropic) or interpolated
-    (anisotropic); default from the map's texture aspect ratio.
+    (anisotropic); default from the map's texture aspect ratio. ``shadowing`` ``False``: no
+    shadowing or masking by the map (the ray method as NIST's original, the Kirchhoff integral
+    without Smith's G2), as ``gonio brdf compute --no-shadowing``.
     """
     source = os.fspath(surface) if isinstance(surface, (str, os.PathLike)) else "Surface"
     if not isinstance(surface, Surface):
