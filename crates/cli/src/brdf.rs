@@ -424,11 +424,7 @@ fn export(a: ExportArgs) -> Result<()> {
         }
         ExportFormat::Csv => csv::write(&t, &a.output, a.step_deg)?,
         ExportFormat::RadianceXml => {
-            let name = a
-                .table
-                .file_stem()
-                .and_then(|s| s.to_str())
-                .unwrap_or("brdf");
+            let name = gonio_brdf::formats::radiance_name(&a.table);
             let tree = radiance_xml::write(&t, &a.output, name, a.tree_order)?;
             pb.finish_and_clear();
             println!(
@@ -445,11 +441,7 @@ fn export(a: ExportArgs) -> Result<()> {
             return Ok(());
         }
         ExportFormat::Pabopto => {
-            let name = a
-                .table
-                .file_stem()
-                .and_then(|s| s.to_str())
-                .unwrap_or("brdf");
+            let name = gonio_brdf::formats::radiance_name(&a.table);
             let files = pabopto::write(&t, &a.output, name, &a.incidence_deg)?;
             pb.finish_and_clear();
             println!(

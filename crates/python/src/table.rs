@@ -179,11 +179,11 @@ impl Table {
             }
             "csv" => py.detach(move || brdf_csv::write(&table, &path, step_deg))?,
             "radiance-xml" => {
-                let name = stem_of(&path);
+                let name = gonio_brdf::formats::radiance_name(&path).to_string();
                 py.detach(move || radiance_xml::write(&table, &path, &name, None))?;
             }
             "pabopto" => {
-                let name = stem_of(&path);
+                let name = gonio_brdf::formats::radiance_name(&path).to_string();
                 py.detach(move || {
                     pabopto::write(&table, &path, &name, &pabopto::DEFAULT_THETA_I_DEG)
                 })?;
@@ -329,12 +329,4 @@ pub fn compute_table(
         })
     })?;
     Ok(Table::new(table))
-}
-
-/// The material's name in a Radiance export: the output path's stem ("brdf" without one).
-fn stem_of(path: &std::path::Path) -> String {
-    path.file_stem()
-        .and_then(|s| s.to_str())
-        .unwrap_or("brdf")
-        .to_string()
 }

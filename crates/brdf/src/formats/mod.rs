@@ -11,3 +11,9 @@ pub mod pabopto;
 pub mod radiance_xml;
 pub mod scattered;
 pub mod tensor;
+
+/// The material's name in a Radiance export (the XML BSDF's and the PAB-Opto files'): the stem
+/// of `path`, "brdf" where it has none.
+pub fn radiance_name(path: &std::path::Path) -> &str {
+    path.file_stem().and_then(|s| s.to_str()).unwrap_or("brdf")
+}
