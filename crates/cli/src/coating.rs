@@ -38,6 +38,10 @@ pub enum CoatingCommand {
     /// with the values replaced) and prints the values with their uncertainties and ΔE00 per
     /// geometry before and after (docs/formulation.md).
     Match(MatchArgs),
+    /// A formulation against a measurement, including what a match did not see: ΔE00 at every
+    /// geometry of a standard (E2539 by default: lit at 45° and at 15°) and, for a measured BRDF
+    /// (.astm), at every measured sample (docs/formulation.md).
+    Predict(crate::coating_predict::PredictArgs),
 }
 
 #[derive(Args)]
@@ -235,6 +239,7 @@ pub fn run(cmd: CoatingCommand) -> Result<()> {
         CoatingCommand::Study(a) => study(a),
         CoatingCommand::Sensitivity(a) => sensitivity(a),
         CoatingCommand::Match(a) => match_target(a),
+        CoatingCommand::Predict(a) => crate::coating_predict::predict(a),
     }
 }
 
@@ -269,7 +274,7 @@ fn bands(spec: &str) -> Result<Vec<f64>> {
     Ok((0..n).map(|i| first + step * i as f64).collect())
 }
 
-fn read(path: &Path, wavelengths: &[f64]) -> Result<Coating> {
+pub(crate) fn read(path: &Path, wavelengths: &[f64]) -> Result<Coating> {
     Ok(description::read(path, wavelengths)?)
 }
 

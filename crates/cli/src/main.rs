@@ -4,6 +4,7 @@
 mod brdf;
 mod brdf_compute;
 mod coating;
+mod coating_predict;
 mod color;
 mod compare;
 mod demo;

@@ -17,6 +17,8 @@ pub mod match_objective;
 mod match_reader;
 pub mod match_report;
 pub mod matching;
+pub mod measured_samples;
+pub mod prediction;
 pub mod search;
 pub mod sensitivity;
 pub mod sensitivity_report;

@@ -7,6 +7,7 @@
 mod coating_sensitivity;
 mod lab_target;
 mod matching;
+mod measured_samples;
 mod oracle;
 mod salib;
 mod search;
