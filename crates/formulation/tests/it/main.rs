@@ -10,5 +10,6 @@ mod matching;
 mod oracle;
 mod salib;
 mod search;
+mod selection;
 mod sensitivity;
 mod spectral_matching;
