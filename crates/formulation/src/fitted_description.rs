@@ -125,7 +125,9 @@ pub fn with_library_pigments(text: &str, names: &[String]) -> Result<String> {
         .get_mut("base")
         .and_then(Item::as_table_like_mut)
         .ok_or_else(|| {
-            FormulationError::Invalid("the description has no [base] table to add pigments to".into())
+            FormulationError::Invalid(
+                "the description has no [base] table to add pigments to".into(),
+            )
         })?;
     let pigments = base
         .entry("pigment")

@@ -43,7 +43,10 @@ pub const SPAN: f64 = 10.0;
 /// library when `None`), less those already in `start`'s base. Refused: a base that is not a
 /// Kubelka-Munk layer, an unknown name (the error suggests the closest), a name given twice or
 /// already in the base, no candidate left.
-pub fn candidates(start: &Coating, from: Option<&[String]>) -> Result<Vec<&'static LibraryPigment>> {
+pub fn candidates(
+    start: &Coating,
+    from: Option<&[String]>,
+) -> Result<Vec<&'static LibraryPigment>> {
     screen::with_pigments(start, &[], &[])?;
     let present = screen::base_pigments(start);
     let list: Vec<&'static LibraryPigment> = match from {
@@ -238,7 +241,12 @@ pub fn conclude(screen: Screen, finalists: Vec<Finalist>, seconds: f64) -> Resul
     let best = finalists
         .iter()
         .enumerate()
-        .min_by(|(_, a), (_, b)| a.result.fitted.objective.total_cmp(&b.result.fitted.objective))
+        .min_by(|(_, a), (_, b)| {
+            a.result
+                .fitted
+                .objective
+                .total_cmp(&b.result.fitted.objective)
+        })
         .map(|(i, _)| i)
         .ok_or_else(|| FormulationError::Invalid("a selection needs one finalist".into()))?;
     Ok(Selection {

@@ -132,7 +132,12 @@ fn select_and_check(truth: &[(&str, f64)], noise_seed: u64) -> (Selection, usize
     );
     // 18 + C(18, 2) + C(18, 3) combinations.
     assert_eq!(s.screen.tried.len(), 18 + 153 + 816);
-    let mut got: Vec<&str> = chosen.screened.pigments.iter().map(String::as_str).collect();
+    let mut got: Vec<&str> = chosen
+        .screened
+        .pigments
+        .iter()
+        .map(String::as_str)
+        .collect();
     got.sort();
     let mut want = names.clone();
     want.sort();
@@ -154,7 +159,10 @@ fn select_and_check(truth: &[(&str, f64)], noise_seed: u64) -> (Selection, usize
     for name in &chosen.screened.pigments {
         assert!(text.contains(&format!("library = \"{name}\"")), "{text}");
     }
-    assert!(text.contains("# the white") && text.contains("# µm"), "{text}");
+    assert!(
+        text.contains("# the white") && text.contains("# µm"),
+        "{text}"
+    );
     assert_eq!(
         description::parse(&text, &wavelengths()).unwrap(),
         chosen.result.coating,
@@ -248,7 +256,10 @@ fn bad_selections_are_refused() {
     let e = selection::candidates(&start, Some(&names("pyrrole_red,phthalo_blu")))
         .unwrap_err()
         .to_string();
-    assert!(e.contains("'phthalo_blu'") && e.contains("did you mean"), "{e}");
+    assert!(
+        e.contains("'phthalo_blu'") && e.contains("did you mean"),
+        "{e}"
+    );
     let e = selection::candidates(&start, Some(&names("pyrrole_red,pyrrole_red")))
         .unwrap_err()
         .to_string();
@@ -281,7 +292,10 @@ pub(crate) mod slow {
     #[test]
     fn two_pigments_are_selected_and_recovered() {
         let (_, r) = select_and_check(
-            &[("phthalo_blue_green_shade", 0.04), ("hansa_yellow_opaque", 0.15)],
+            &[
+                ("phthalo_blue_green_shade", 0.04),
+                ("hansa_yellow_opaque", 0.15),
+            ],
             5,
         );
         assert_eq!(r, 1, "the screen ranks the truth first");
