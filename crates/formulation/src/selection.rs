@@ -31,8 +31,8 @@ use std::time::Instant;
 pub const MAX_PIGMENTS: usize = 3;
 
 /// Default number of finalists the full match runs on (docs/formulation.md, "Colorant
-/// selection": the true combination ranked first by the screen on every synthetic solid and
-/// within the first three on the metallic).
+/// selection": the screen ranked the true combination first on the synthetic solids and third
+/// on the metallic, whose coverage it holds at the start's value).
 pub const FINALISTS: usize = 3;
 
 /// A finalist's concentration is fitted from its screened value c within
