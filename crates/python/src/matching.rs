@@ -127,8 +127,11 @@ pub fn match_coating(
             &i.settings,
             &mut |_| {},
         )?;
-        let text =
-            gonio_formulation::fitted_description::with_values(&i.text, &i.varied, &m.fitted.values)?;
+        let text = gonio_formulation::fitted_description::with_values(
+            &i.text,
+            &i.varied,
+            &m.fitted.values,
+        )?;
         Ok((m.to_json(&i.target).to_string(), text, m.coating))
     })?;
     Ok((json, text.clone(), fitted(coating, text)))
@@ -272,7 +275,13 @@ impl SelectionPlan {
                         })
                         .collect();
                     Ok(selection::conclude_finalist(
-                        &i.start, &i.target, &i.gloss, &i.varied, screened, &i.settings, runs,
+                        &i.start,
+                        &i.target,
+                        &i.gloss,
+                        &i.varied,
+                        screened,
+                        &i.settings,
+                        runs,
                     )?)
                 })
                 .collect::<Result<Vec<_>>>()?;

@@ -367,12 +367,24 @@ pub(crate) mod slow {
         );
         assert_eq!(s.screen.tried.len(), 6 + 15);
         assert!(r <= selection::FINALISTS, "the truth is a finalist");
-        let mut got: Vec<&str> = chosen.screened.pigments.iter().map(String::as_str).collect();
+        let mut got: Vec<&str> = chosen
+            .screened
+            .pigments
+            .iter()
+            .map(String::as_str)
+            .collect();
         got.sort();
-        assert_eq!(got, ["phthalo_blue_green_shade", "phthalo_green_blue_shade"]);
+        assert_eq!(
+            got,
+            ["phthalo_blue_green_shade", "phthalo_green_blue_shade"]
+        );
         let sigma = chosen.result.sigma.as_ref().unwrap();
         let x = chosen.result.fitted.values[0];
-        assert!((x - 0.45).abs() < 3.0 * sigma[0], "coverage {x} σ {}", sigma[0]);
+        assert!(
+            (x - 0.45).abs() < 3.0 * sigma[0],
+            "coverage {x} σ {}",
+            sigma[0]
+        );
     }
 
     /// Two colours in the white: phthalo blue (green shade) 0.04 and hansa yellow 0.15, a green.
