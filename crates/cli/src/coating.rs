@@ -33,10 +33,11 @@ pub enum CoatingCommand {
     /// tilt=4:20,roughness=0.01:0.1`; docs/formulation.md).
     Sensitivity(SensitivityArgs),
     /// From a target back to a formulation: the values of the varied constituents, within
-    /// their bounds, that minimise the mean CIEDE2000 to a multi-angle target (plus weighted
-    /// gloss differences); writes the fitted description (`-o FITTED.toml`, the start's text
+    /// their bounds, that minimise the rms difference of reflectance factors to a multi-angle
+    /// target that gives them, else the mean CIEDE2000 (plus weighted gloss differences); writes the fitted description (`-o FITTED.toml`, the start's text
     /// with the values replaced) and prints the values with their uncertainties and ΔE00 per
-    /// geometry before and after (docs/formulation.md).
+    /// geometry before and after (docs/formulation.md). `--select N` also chooses up to N
+    /// pigments of gonio's library: every combination screened, the best few matched in full.
     Match(MatchArgs),
 }
 
