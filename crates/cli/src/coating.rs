@@ -33,10 +33,11 @@ pub enum CoatingCommand {
     /// tilt=4:20,roughness=0.01:0.1`; docs/formulation.md).
     Sensitivity(SensitivityArgs),
     /// From a target back to a formulation: the values of the varied constituents, within
-    /// their bounds, that minimise the mean CIEDE2000 to a multi-angle target (plus weighted
-    /// gloss differences); writes the fitted description (`-o FITTED.toml`, the start's text
+    /// their bounds, that minimise the rms difference of reflectance factors to a multi-angle
+    /// target that gives them, else the mean CIEDE2000 (plus weighted gloss differences); writes the fitted description (`-o FITTED.toml`, the start's text
     /// with the values replaced) and prints the values with their uncertainties and ΔE00 per
-    /// geometry before and after (docs/formulation.md).
+    /// geometry before and after (docs/formulation.md). `--select N` also chooses up to N
+    /// pigments of gonio's library: every combination screened, the best few matched in full.
     Match(MatchArgs),
     /// A formulation against a measurement, including what a match did not see: ΔE00 at every
     /// geometry of a standard (E2539 by default: lit at 45° and at 15°) and, for a measured BRDF
@@ -57,9 +58,31 @@ pub struct MatchArgs {
     target: PathBuf,
     /// The constituents to fit, comma-separated, each NAME or NAME=LO:HI: roughness (the top's
     /// α), tilt (°), coverage (0–1), tio2 (nm), thickness (the coat's, µm),
-    /// concentration:PIGMENT. The search stays within the bounds (see --bounds).
-    #[arg(long)]
+    /// concentration:PIGMENT. The search stays within the bounds (see --bounds). With
+    /// --select, the selected pigments' concentrations are varied too (and --vary may be left
+    /// out).
+    #[arg(long, default_value = "")]
     vary: String,
+    /// Select up to N pigments of gonio's library (`gonio pigments`) and add them to the
+    /// start's base (which must be kind = "kubelka-munk"): every combination of 1 to N of the
+    /// candidates is screened with its concentrations fitted (a fraction of the pigment's paint
+    /// in the layer, 0.001–1; seconds), then the full match runs on the best --finalists, each
+    /// concentration within a tenth to ten times its screened value (docs/formulation.md,
+    /// "Colorant selection"). Formulation programs use 3.
+    #[arg(long, value_name = "N")]
+    select: Option<usize>,
+    /// With --select: the candidates, library names comma-separated (default: the whole
+    /// library, less the pigments already in the start's base).
+    #[arg(long, value_name = "NAME,NAME,...", requires = "select")]
+    from: Option<String>,
+    /// With --select: how many of the screen's best combinations get the full match (each a
+    /// match of its own: tens of seconds for a metallic).
+    #[arg(long, value_name = "K", default_value_t = gonio_formulation::selection::FINALISTS, requires = "select")]
+    finalists: usize,
+    /// With --select and --json: how many of the screened combinations the JSON lists (best
+    /// first; it gives their count too).
+    #[arg(long, default_value_t = 20, requires = "select")]
+    shown: usize,
     /// Bounds of constituents named in --vary without them, NAME=LO:HI comma-separated.
     /// Default: α 0.005–0.3, tilt 2–40°, coverage 0.05–0.95, tio2 40–300 nm, thickness
     /// 5–200 µm, a concentration from 0.1 to 4 times the start's.
@@ -84,15 +107,16 @@ pub struct MatchArgs {
     /// points of the bounds.
     #[arg(long, default_value_t = gonio_formulation::matching::Settings::STARTS)]
     starts: usize,
-    /// What the match minimises: de00 (the mean CIEDE2000 over the standard's geometries, plus
-    /// the weighted gloss differences) or spectral (the rms difference of reflectance factors
-    /// over the target's bands and geometries: a target of reflectance factors, a .astm or a
-    /// .gbrdf; no --target-gloss). A spectral match is not metameric; ΔE00 is reported either
-    /// way.
-    #[arg(long, default_value = "de00")]
-    objective: gonio_formulation::matching::Objective,
+    /// What the match minimises: auto (spectral where the target gives reflectance factors —
+    /// a CSV of R_...nm, a .astm, a .gbrdf — and no --target-gloss is given, de00 otherwise),
+    /// de00 (the mean CIEDE2000 over the standard's geometries, plus the weighted gloss
+    /// differences) or spectral (the rms difference of reflectance factors over the target's
+    /// bands and geometries; no --target-gloss). A spectral match is not metameric; ΔE00 is
+    /// reported either way.
+    #[arg(long, default_value = "auto")]
+    objective: gonio_formulation::match_objective::ObjectiveChoice,
     /// The fitted formulation (TOML): the start's text with the varied values replaced,
-    /// comments kept.
+    /// comments kept (with --select, the chosen pigments added as `library = "NAME"`).
     #[arg(short, long)]
     output: PathBuf,
     /// Print the result as JSON.
@@ -494,7 +518,8 @@ fn sensitivity(a: SensitivityArgs) -> Result<()> {
 
 fn match_target(a: MatchArgs) -> Result<()> {
     use gonio_formulation::coating_sensitivity::Varied;
-    use gonio_formulation::matching::{self, Objective, Settings};
+    use gonio_formulation::matching::{self, Settings};
+    use gonio_formulation::selection;
     use gonio_formulation::target::{GlossTarget, read_target};
     let wavelengths = default_bands();
     let coating = read(&a.coating, &wavelengths)?;
@@ -505,6 +530,18 @@ fn match_target(a: MatchArgs) -> Result<()> {
         Some(s) => GlossTarget::parse_list(s).context("--target-gloss")?,
         None => vec![],
     };
+    let candidates = match a.select {
+        Some(_) => {
+            let from: Option<Vec<String>> = a
+                .from
+                .as_ref()
+                .map(|f| f.split(',').map(String::from).collect());
+            let list = selection::candidates(&coating, from.as_deref())
+                .with_context(|| format!("--select: {}", a.coating.display()))?;
+            Some(list)
+        }
+        None => None,
+    };
     let target = read_target(&a.target, geometries)?;
     let text =
         std::fs::read_to_string(&a.coating).with_context(|| a.coating.display().to_string())?;
@@ -512,11 +549,24 @@ fn match_target(a: MatchArgs) -> Result<()> {
         walks: a.walks,
         gloss_weight: a.gloss_weight,
         starts: a.starts,
-        objective: a.objective,
+        objective: a.objective.resolve(&target, gloss.len()),
         ..Settings::default()
     };
+    if let (Some(n), Some(candidates)) = (a.select, candidates) {
+        return select(
+            &a,
+            &coating,
+            &text,
+            &target,
+            &gloss,
+            &varied,
+            &candidates,
+            n,
+            &settings,
+        );
+    }
     eprintln!(
-        "{}: matching {} at {} geometries by {} ({} Nelder-Mead runs)",
+        "{}: matching {} at {} geometries by {} ({} Nelder-Mead runs, objective {})",
         a.coating.display(),
         a.target.display(),
         geometries.len(),
@@ -525,7 +575,8 @@ fn match_target(a: MatchArgs) -> Result<()> {
             .map(|v| v.name.as_str())
             .collect::<Vec<_>>()
             .join(", "),
-        settings.starts + 1
+        settings.starts + 1,
+        settings.objective
     );
     let m = matching::run(&coating, &target, &gloss, &varied, &settings, &mut |line| {
         eprintln!("{line}")
@@ -534,29 +585,146 @@ fn match_target(a: MatchArgs) -> Result<()> {
     let fitted =
         gonio_formulation::fitted_description::with_values(&text, &varied, &m.fitted.values)
             .with_context(|| a.coating.display().to_string())?;
-    gonio_io::write_atomic(
-        &a.output,
-        |w| std::io::Write::write_all(w, fitted.as_bytes()),
-        std::convert::identity,
-    )
-    .with_context(|| a.output.display().to_string())?;
-    let sigma = |i: usize| m.sigma.as_ref().map(|s| s[i]);
-    let mean = |d: &[f64]| d.iter().sum::<f64>() / d.len() as f64;
+    write_fitted(&a.output, &fitted)?;
     if a.json {
-        let mut json = serde_json::json!({
-            "file": a.coating.display().to_string(),
-            "target": a.target.display().to_string(),
-            "output": a.output.display().to_string(),
-        });
-        if let (Some(out), serde_json::Value::Object(fields)) =
-            (json.as_object_mut(), m.to_json(&target))
-        {
-            out.extend(fields);
-        }
-        println!("{}", serde_json::to_string_pretty(&json)?);
+        print_json(&a, m.to_json(&target))?;
         return Ok(());
     }
     println!("{} matched to {}", a.coating.display(), a.target.display());
+    print_match(&m, a.gloss_weight);
+    println!(
+        "{} readings in {:.1} s; wrote {}",
+        m.evaluations,
+        m.seconds,
+        a.output.display()
+    );
+    Ok(())
+}
+
+/// The fitted description written to `path`.
+fn write_fitted(path: &Path, text: &str) -> Result<()> {
+    gonio_io::write_atomic(
+        path,
+        |w| std::io::Write::write_all(w, text.as_bytes()),
+        std::convert::identity,
+    )
+    .with_context(|| path.display().to_string())
+}
+
+/// The match's (or selection's) JSON with the file names first.
+fn print_json(a: &MatchArgs, result: serde_json::Value) -> Result<()> {
+    let mut json = serde_json::json!({
+        "file": a.coating.display().to_string(),
+        "target": a.target.display().to_string(),
+        "output": a.output.display().to_string(),
+    });
+    if let (Some(out), serde_json::Value::Object(fields)) = (json.as_object_mut(), result) {
+        out.extend(fields);
+    }
+    println!("{}", serde_json::to_string_pretty(&json)?);
+    Ok(())
+}
+
+/// `gonio coating match --select N`: the library's pigments selected and fitted
+/// (`gonio_formulation::selection::run`), the screen's best, the finalists and the chosen
+/// match printed.
+#[allow(clippy::too_many_arguments)]
+fn select(
+    a: &MatchArgs,
+    coating: &Coating,
+    text: &str,
+    target: &gonio_instrument::multiangle_target::Target,
+    gloss: &[gonio_formulation::target::GlossTarget],
+    varied: &[gonio_formulation::coating_sensitivity::Varied],
+    candidates: &[&gonio_coating::pigment_library::LibraryPigment],
+    n: usize,
+    settings: &gonio_formulation::matching::Settings,
+) -> Result<()> {
+    use gonio_formulation::selection;
+    eprintln!(
+        "{}: selecting up to {n} of {} library pigments for {} (objective {}, {} finalists)",
+        a.coating.display(),
+        candidates.len(),
+        a.target.display(),
+        settings.objective,
+        a.finalists
+    );
+    let s = selection::run(
+        coating,
+        target,
+        gloss,
+        varied,
+        candidates,
+        n,
+        a.finalists,
+        settings,
+        &mut |line| eprintln!("{line}"),
+        &gonio_io::Cancel::default(),
+    )
+    .context("--select")?;
+    let fitted = s
+        .fitted_description(text)
+        .with_context(|| a.coating.display().to_string())?;
+    write_fitted(&a.output, &fitted)?;
+    if a.json {
+        return print_json(a, s.to_json(target, a.shown));
+    }
+    let unit = match settings.objective {
+        gonio_formulation::matching::Objective::De00 => "mean ΔE00",
+        gonio_formulation::matching::Objective::Spectral => "rms ΔR",
+    };
+    println!(
+        "{} combinations of up to {n} of {} pigments screened ({unit} at the fitted \
+         concentrations, the other constituents at the start's); the best {}:",
+        s.screen.tried.len(),
+        s.screen.candidates.len(),
+        s.screen.tried.len().min(10)
+    );
+    for t in s.screen.tried.iter().take(10) {
+        println!("  {}", selection::describe(t));
+    }
+    let mean = |d: &[f64]| d.iter().sum::<f64>() / d.len() as f64;
+    println!("finalists (full match; mean ΔE00, then ΔE00 per geometry):");
+    for (k, f) in s.finalists.iter().enumerate() {
+        let de = &f.result.fitted.de00;
+        println!(
+            "{} {}: {unit} {:.4}, mean ΔE00 {:.2} [{}]",
+            if k == s.best { "*" } else { " " },
+            f.screened.pigments.join(" + "),
+            f.result.fitted.objective,
+            mean(de),
+            f.result
+                .geometries
+                .iter()
+                .zip(de)
+                .map(|(g, d)| format!("{g} {d:.2}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    println!(
+        "chosen: {} ({} matched to {})",
+        s.chosen().screened.pigments.join(" + "),
+        a.coating.display(),
+        a.target.display()
+    );
+    print_match(&s.chosen().result, a.gloss_weight);
+    println!(
+        "{:.1} s in all (screen {:.1} s); wrote {}",
+        s.seconds,
+        s.screen.seconds,
+        a.output.display()
+    );
+    Ok(())
+}
+
+/// A match's table: the constituents with their uncertainties, ΔE00 per geometry, gloss and
+/// the objective.
+fn print_match(m: &gonio_formulation::matching::Match, gloss_weight: f64) {
+    use gonio_formulation::matching::Objective;
+    let varied = &m.varied;
+    let sigma = |i: usize| m.sigma.as_ref().map(|s| s[i]);
+    let mean = |d: &[f64]| d.iter().sum::<f64>() / d.len() as f64;
     println!(
         "{:>22} {:>10} {:>10} {:>10}   bounds",
         "constituent", "start", "fitted", "± 1 sd"
@@ -606,20 +774,13 @@ fn match_target(a: MatchArgs) -> Result<()> {
     match m.objective {
         Objective::De00 => println!(
             "objective (mean ΔE00 + {} × |ΔGU|): {:.3} → {:.3}; residual sd {:.3} (CIELAB)",
-            a.gloss_weight, m.start.objective, m.fitted.objective, m.residual_sd
+            gloss_weight, m.start.objective, m.fitted.objective, m.residual_sd
         ),
         Objective::Spectral => println!(
             "objective (rms ΔR): {:.5} → {:.5}; residual sd {:.5} (reflectance factor)",
             m.start.objective, m.fitted.objective, m.residual_sd
         ),
     }
-    println!(
-        "{} readings in {:.1} s; wrote {}",
-        m.evaluations,
-        m.seconds,
-        a.output.display()
-    );
-    Ok(())
 }
 
 fn study(a: StudyArgs) -> Result<()> {

@@ -16,6 +16,10 @@ pub enum FormulationError {
     /// A virtual instrument could not read a coating.
     #[error(transparent)]
     Instrument(#[from] gonio_instrument::InstrumentError),
+    /// The caller raised its [`gonio_io::Cancel`] flag before the computation finished: no
+    /// partial result is returned.
+    #[error("cancelled")]
+    Cancelled,
     /// A coating could not be built.
     #[error(transparent)]
     Coating(#[from] gonio_coating::CoatingError),

@@ -113,6 +113,49 @@ pub fn with_values(text: &str, varied: &[Varied], values: &[f64]) -> Result<Stri
     Ok(doc.to_string())
 }
 
+/// `text` (a coating description) with a `[[base.pigment]]` of gonio's library added for each
+/// of `names` (`library = "NAME"`, `concentration = 0`, to be set by [`with_values`]), after
+/// the base's own pigments, in the same form they are written in (tables or an inline array).
+/// Errors: no `[base]` table.
+pub fn with_library_pigments(text: &str, names: &[String]) -> Result<String> {
+    let mut doc: DocumentMut = text
+        .parse()
+        .map_err(|e| FormulationError::Invalid(format!("not TOML: {e}")))?;
+    let base = doc
+        .get_mut("base")
+        .and_then(Item::as_table_like_mut)
+        .ok_or_else(|| {
+            FormulationError::Invalid(
+                "the description has no [base] table to add pigments to".into(),
+            )
+        })?;
+    let pigments = base
+        .entry("pigment")
+        .or_insert_with(|| Item::ArrayOfTables(toml_edit::ArrayOfTables::new()));
+    for name in names {
+        match pigments {
+            Item::ArrayOfTables(tables) => {
+                let mut t = toml_edit::Table::new();
+                t.insert("library", toml_edit::value(name.as_str()));
+                t.insert("concentration", toml_edit::value(0.0));
+                tables.push(t);
+            }
+            Item::Value(Value::Array(array)) => {
+                let mut t = InlineTable::new();
+                t.insert("library", name.as_str().into());
+                t.insert("concentration", 0.0.into());
+                array.push(t);
+            }
+            _ => {
+                return Err(FormulationError::Invalid(
+                    "base.pigment is neither [[base.pigment]] tables nor an array of them".into(),
+                ));
+            }
+        }
+    }
+    Ok(doc.to_string())
+}
+
 /// Set the number `key` of `table` to `value`, keeping the comments around the old value;
 /// `None` when the key is missing.
 fn set(table: &mut dyn TableLike, key: &str, value: f64) -> Option<()> {

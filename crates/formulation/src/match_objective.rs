@@ -72,6 +72,56 @@ impl FromStr for Objective {
     }
 }
 
+/// The objective a front end asks for: `auto` (the default: spectral where the target gives
+/// reflectance factors — a spectral CSV, a `.astm`, a `.gbrdf` — and no gloss readings are
+/// matched, mean ΔE00 otherwise), or one of [`Objective`] given explicitly.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ObjectiveChoice {
+    #[default]
+    Auto,
+    Given(Objective),
+}
+
+impl ObjectiveChoice {
+    /// The objective for `target`, with `gloss_readings` gloss readings to match.
+    pub fn resolve(self, target: &Target, gloss_readings: usize) -> Objective {
+        match self {
+            ObjectiveChoice::Given(o) => o,
+            ObjectiveChoice::Auto if target.spectra.is_some() && gloss_readings == 0 => {
+                Objective::Spectral
+            }
+            ObjectiveChoice::Auto => Objective::De00,
+        }
+    }
+}
+
+impl fmt::Display for ObjectiveChoice {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ObjectiveChoice::Auto => f.write_str("auto"),
+            ObjectiveChoice::Given(o) => o.fmt(f),
+        }
+    }
+}
+
+impl FromStr for ObjectiveChoice {
+    type Err = FormulationError;
+
+    /// `auto`, `de00` or `spectral`.
+    fn from_str(s: &str) -> Result<Self> {
+        if s.trim().eq_ignore_ascii_case("auto") {
+            return Ok(ObjectiveChoice::Auto);
+        }
+        s.parse().map(ObjectiveChoice::Given).map_err(|_| {
+            FormulationError::Invalid(format!(
+                "objective '{}': auto (spectral where the target has spectra, else de00), \
+                 de00 (mean CIEDE2000) or spectral (rms of reflectance factors)",
+                s.trim()
+            ))
+        })
+    }
+}
+
 /// The target's reflectance factors; an error naming it when it gives CIELAB only.
 pub fn spectra_of(target: &Target) -> Result<&Spectra> {
     target.spectra.as_ref().ok_or_else(|| {
@@ -156,7 +206,7 @@ mod tests {
         assert_eq!(rms(&reflectance_differences(&own, &reading).unwrap()), 0.0);
         let lab = Target {
             spectra: None,
-            ..own
+            ..own.clone()
         };
         let e = reflectance_differences(&lab, &reading)
             .unwrap_err()
@@ -168,5 +218,15 @@ mod tests {
         );
         assert_eq!(Objective::default().to_string(), "de00");
         assert!("rms".parse::<Objective>().is_err());
+        // auto: spectral for a target of spectra without gloss readings, de00 otherwise.
+        let auto: ObjectiveChoice = "auto".parse().unwrap();
+        assert_eq!(auto, ObjectiveChoice::default());
+        assert_eq!(auto.resolve(&own, 0), Objective::Spectral);
+        assert_eq!(auto.resolve(&own, 1), Objective::De00);
+        assert_eq!(auto.resolve(&lab, 0), Objective::De00);
+        let de00: ObjectiveChoice = "de00".parse().unwrap();
+        assert_eq!(de00.resolve(&own, 0), Objective::De00);
+        let e = "rms".parse::<ObjectiveChoice>().unwrap_err().to_string();
+        assert!(e.contains("auto"), "{e}");
     }
 }

@@ -171,7 +171,7 @@ pub fn objective(
 
 /// Find the values of `varied` (within their bounds) that bring `start` closest to `target`
 /// (and to the `gloss` readings), reading each formulation with `settings`. `progress` gets a
-/// line per run and about every 10 s.
+/// line per run and about every 10 s. [`search`] then [`conclude`].
 pub fn run(
     start: &Coating,
     target: &Target,
@@ -181,6 +181,22 @@ pub fn run(
     progress: &mut dyn FnMut(&str),
 ) -> Result<Match> {
     let clock = Instant::now();
+    let runs = search(start, target, gloss, varied, settings, progress)?;
+    let mut m = conclude(start, target, gloss, varied, settings, runs)?;
+    m.seconds = clock.elapsed().as_secs_f64();
+    Ok(m)
+}
+
+/// Check a match's inputs: at least one constituent, each varied once and valid at its bounds,
+/// a spectral objective only with a target of spectra and without gloss readings, a finite
+/// gloss weight.
+fn check(
+    start: &Coating,
+    target: &Target,
+    gloss: &[GlossTarget],
+    varied: &[Varied],
+    settings: &Settings,
+) -> Result<()> {
     if varied.is_empty() {
         return Err(FormulationError::Invalid(
             "a match needs at least one constituent to vary".into(),
@@ -211,24 +227,67 @@ pub fn run(
         }
         v.check(start, &settings.wavelengths_nm)?;
     }
-    let reader = Reader::new(start, varied, target, gloss, settings);
-    let x0: Vec<f64> = varied
+    Ok(())
+}
+
+/// The start's values of `varied`, clamped into their bounds.
+fn start_values(start: &Coating, varied: &[Varied]) -> Result<Vec<f64>> {
+    varied
         .iter()
         .map(|v| Ok(v.constituent.value(start)?.clamp(v.lo, v.hi)))
-        .collect::<Result<_>>()?;
+        .collect()
+}
+
+/// The search of a match ([`run`]'s first half): the Nelder–Mead runs, the best one last but
+/// one, the final run from it last. Deterministic (seed 0), so that runs made elsewhere (a
+/// Dask worker) and passed to [`conclude`] give the match [`run`] gives.
+pub fn search(
+    start: &Coating,
+    target: &Target,
+    gloss: &[GlossTarget],
+    varied: &[Varied],
+    settings: &Settings,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Vec<Run>> {
+    check(start, target, gloss, varied, settings)?;
+    let reader = Reader::new(start, varied, target, gloss, settings);
+    let x0 = start_values(start, varied)?;
     let search = Search {
         starts: settings.starts,
         iterations: settings.iterations,
         tolerance: settings.tolerance * settings.objective.per_de00(),
     };
-    let runs = minimise(
+    minimise(
         varied,
         &x0,
         &search,
         &|x| reader.objective(x),
         &|x| reader.describe(x),
         progress,
-    )?;
+    )
+}
+
+/// A match from its search's `runs` ([`run`]'s second half): the best run's values rounded, the
+/// start and the fitted formulation read in full, the Gauss–Newton uncertainty. `seconds` is
+/// this half's time.
+pub fn conclude(
+    start: &Coating,
+    target: &Target,
+    gloss: &[GlossTarget],
+    varied: &[Varied],
+    settings: &Settings,
+    runs: Vec<Run>,
+) -> Result<Match> {
+    let clock = Instant::now();
+    check(start, target, gloss, varied, settings)?;
+    if runs.is_empty() || runs.iter().any(|r| r.to.len() != varied.len()) {
+        return Err(FormulationError::Invalid(format!(
+            "a match concludes from at least one run, each ending at {} values",
+            varied.len()
+        )));
+    }
+    let reader = Reader::new(start, varied, target, gloss, settings);
+    let x0 = start_values(start, varied)?;
     let mut evaluations: usize = runs.iter().map(|r| r.evaluations).sum();
     let best = best_run(&runs);
     let fitted_x: Vec<f64> = varied

@@ -9,6 +9,7 @@ mod coating;
 mod color;
 mod error;
 mod instruments;
+mod matching;
 mod render;
 mod surface;
 mod table;
@@ -43,6 +44,9 @@ fn _gonio(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(coating::read_coating, m)?)?;
     m.add_class::<coating::SensitivityPlan>()?;
     m.add_function(wrap_pyfunction!(coating::sensitivity_plan, m)?)?;
-    m.add_function(wrap_pyfunction!(coating::match_coating, m)?)?;
+    m.add_function(wrap_pyfunction!(matching::match_coating, m)?)?;
+    m.add_class::<matching::SelectionPlan>()?;
+    m.add_function(wrap_pyfunction!(matching::selection_plan, m)?)?;
+    m.add_function(wrap_pyfunction!(matching::selection_search, m)?)?;
     Ok(())
 }

@@ -151,7 +151,7 @@ def test_match_equals_the_cli_and_recovers_a_concentration(gonio_cli, tmp_path):
     again = gonio.coating.info(m.fitted)
     assert again["multiangle"][2]["L"] == pytest.approx(target["L"][2], abs=0.05)
     cli = cli_json(gonio_cli, "coating", "match", red, "--target", tmp_path / "target.csv",
-                   "--vary", "concentration:red=0.1:2", "--starts", "1",
+                   "--vary", "concentration:red=0.1:2", "--starts", "1", "--objective", "de00",
                    "-o", tmp_path / "fitted.toml", "--json")
     assert cli["constituents"][0]["fitted"] == pytest.approx(m.constituents["fitted"][0], abs=1e-6)
     assert [g["name"] for g in cli["geometries"]] == list(m.geometries["geometry"])
@@ -164,3 +164,77 @@ def test_match_equals_the_cli_and_recovers_a_concentration(gonio_cli, tmp_path):
     assert abs(s.constituents["fitted"][0] - 0.3) < 1e-3 and s.json["objective"] == "spectral"
     with pytest.raises(ValueError, match="spectr"):
         gonio.coating.match(red, target, "concentration:red=0.1:2", objective="spectral")
+
+
+WHITE = """# white
+[coat]
+index = 1.5
+thickness_um = 40
+
+[base]
+kind = "kubelka-munk"
+thickness_um = 30
+substrate = 0.6
+
+[[base.pigment]]
+library = "titanium_white"
+concentration = 1.0
+"""
+
+GREEN = WHITE + """
+[[base.pigment]]
+library = "phthalo_blue_green_shade"
+concentration = 0.04
+
+[[base.pigment]]
+library = "hansa_yellow_opaque"
+concentration = 0.15
+"""
+
+CANDIDATES = ["pyrrole_red", "hansa_yellow_opaque", "phthalo_blue_green_shade", "bone_black"]
+
+
+def _without_times(j: dict) -> dict:
+    j = dict(j, seconds=None)
+    j["selection"] = dict(j["selection"], seconds=None, screen_seconds=None)
+    return j
+
+
+def test_select_on_dask_equals_serial_and_the_cli(gonio_cli, tmp_path):
+    """A green of two library pigments in a white basecoat, matched from the white by selecting
+    up to 2 of 4 candidates: the true pigments chosen; the selection on a LocalCluster of two
+    worker processes (the finalists searched there) equals the serial one exactly (the times
+    aside); the CLI's selection is the same."""
+    distributed = pytest.importorskip("distributed")
+    (tmp_path / "white.toml").write_text(WHITE)
+    (tmp_path / "green.toml").write_text(GREEN)
+    spectra = gonio.coating.multiangle(tmp_path / "green.toml").drop(
+        columns=["L", "a", "b", "C", "h_deg", "X", "Y", "Z"])
+    args = dict(select=2, candidates=CANDIDATES, finalists=2)
+    serial = gonio.coating.match(tmp_path / "white.toml", spectra, **args)
+    assert sorted(serial.selection["pigments"]) == ["hansa_yellow_opaque",
+                                                    "phthalo_blue_green_shade"]
+    assert serial.selection["combinations"] == 10 and len(serial.tried) == 10
+    assert len(serial.finalists) == 2 and serial.json["objective"] == "spectral"
+    assert serial.mean_de00[1] < 0.05
+    assert 'library = "hansa_yellow_opaque"' in serial.toml
+    fitted = gonio.coating.info(serial.fitted)["multiangle"]
+    truth = gonio.coating.info(tmp_path / "green.toml")["multiangle"]
+    assert fitted[2]["L"] == pytest.approx(truth[2]["L"], abs=0.05)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True) as cluster:
+        with distributed.Client(cluster) as client:
+            parallel = gonio.coating.match(tmp_path / "white.toml", spectra, client=client,
+                                           **args)
+    assert _without_times(parallel.json) == _without_times(serial.json)
+    assert parallel.toml == serial.toml
+    spectra.to_csv(tmp_path / "green.csv", index=False)
+    cli = cli_json(gonio_cli, "coating", "match", tmp_path / "white.toml", "--target",
+                   tmp_path / "green.csv", "--select", "2", "--from", ",".join(CANDIDATES),
+                   "--finalists", "2", "-o", tmp_path / "fitted.toml", "--json")
+    assert cli["selection"]["pigments"] == serial.selection["pigments"]
+    assert cli["selection"]["finalists"][0]["concentrations"] == pytest.approx(
+        serial.selection["finalists"][0]["concentrations"], rel=1e-3)
+    with pytest.raises(ValueError, match="at least 1 pigment"):
+        gonio.coating.match(tmp_path / "white.toml", spectra, select=0)
+    with pytest.raises(ValueError, match="did you mean"):
+        gonio.coating.match(tmp_path / "white.toml", spectra, select=1, candidates=["pyrole_red"])

@@ -184,7 +184,8 @@ fn match_recovers_a_concentration_and_writes_the_formulation() {
         assert!(g["de00_start"].as_f64().unwrap() > 2.0, "{g}");
         assert!(g["de00_fitted"].as_f64().unwrap() < 0.05, "{g}");
     }
-    assert_eq!(json["objective"], "de00");
+    // The default objective, auto: spectral, the target giving reflectance factors.
+    assert_eq!(json["objective"], "spectral");
     let out = run(&args(
         "concentration:red=0.1:2",
         "target.csv",
@@ -279,6 +280,148 @@ fn match_recovers_a_concentration_and_writes_the_formulation() {
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(err.contains(says), "{a:?}: {err}");
     }
+}
+
+/// `--select`: a green made of two library pigments in a white basecoat (its reflectance
+/// factors written by `gonio multiangle --spectra`) is matched from the white alone, selecting
+/// up to 2 of 4 candidates: the 4 + 6 combinations screened and listed, 2 finalists with ΔE00
+/// per geometry, the true pigments chosen, and the fitted TOML (the pigments as library
+/// entries) reading as the green within 0.05 in L*, a*, b* (the fit of the target without
+/// noise: exact but for the search's tolerance). Bad selections exit 2 naming what is wrong.
+#[test]
+fn match_selects_library_pigments() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let white = "# white\n[coat]\nindex = 1.5\nthickness_um = 40\n\n[base]\nkind = \"kubelka-munk\"\nthickness_um = 30\nsubstrate = 0.6\n\n[[base.pigment]]\nlibrary = \"titanium_white\"\nconcentration = 1.0\n";
+    std::fs::write(d.join("white.toml"), white).unwrap();
+    std::fs::write(
+        d.join("green.toml"),
+        format!(
+            "{white}\n[[base.pigment]]\nlibrary = \"phthalo_blue_green_shade\"\nconcentration = 0.04\n\n[[base.pigment]]\nlibrary = \"hansa_yellow_opaque\"\nconcentration = 0.15\n"
+        ),
+    )
+    .unwrap();
+    ok_in(&["multiangle", "green.toml", "--spectra", "green.csv"], d);
+    let select = |extra: &[&str]| {
+        let mut a = vec![
+            "coating",
+            "match",
+            "white.toml",
+            "--target",
+            "green.csv",
+            "-o",
+            "fitted.toml",
+        ];
+        a.extend(extra);
+        gonio(&a, d)
+    };
+    let out = select(&[
+        "--select",
+        "2",
+        "--from",
+        "pyrrole_red,hansa_yellow_opaque,phthalo_blue_green_shade,bone_black",
+        "--finalists",
+        "2",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let sel = &json["selection"];
+    assert_eq!(sel["combinations"], 10);
+    assert_eq!(sel["tried"].as_array().unwrap().len(), 10);
+    let finalists = sel["finalists"].as_array().unwrap();
+    assert_eq!(finalists.len(), 2);
+    for f in finalists {
+        assert_eq!(f["de00"].as_array().unwrap().len(), 5, "{f}");
+    }
+    let mut chosen: Vec<&str> = sel["pigments"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p.as_str().unwrap())
+        .collect();
+    chosen.sort();
+    assert_eq!(chosen, ["hansa_yellow_opaque", "phthalo_blue_green_shade"]);
+    assert_eq!(json["objective"], "spectral");
+    assert!(json["mean_de00_fitted"].as_f64().unwrap() < 0.05, "{json}");
+    let fitted = std::fs::read_to_string(d.join("fitted.toml")).unwrap();
+    assert!(
+        fitted.contains("library = \"hansa_yellow_opaque\""),
+        "{fitted}"
+    );
+    assert!(fitted.starts_with("# white"), "{fitted}");
+    let colour = |file: &str| {
+        let out = ok_in(&["coating", "info", file, "--json"], d);
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        v["multiangle"].clone()
+    };
+    let (a, b) = (colour("fitted.toml"), colour("green.toml"));
+    for (x, y) in a.as_array().unwrap().iter().zip(b.as_array().unwrap()) {
+        for k in ["L", "a", "b"] {
+            let (x, y) = (x[k].as_f64().unwrap(), y[k].as_f64().unwrap());
+            assert!((x - y).abs() < 0.05, "{k}: {x} against {y}");
+        }
+    }
+    // The text report names the screen, the finalists and the choice.
+    let out = select(&["--select", "1", "--from", "pyrrole_red,bone_black"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("2 combinations of up to 1 of 2 pigments screened")
+            && text.contains("finalists")
+            && text.contains("chosen:"),
+        "{text}"
+    );
+    std::fs::write(
+        d.join("diffuse.toml"),
+        "[coat]\nindex = 1.5\nthickness_um = 40\n[base]\nkind = \"diffuse\"\nreflectance = 0.5\n",
+    )
+    .unwrap();
+    for (a, says) in [
+        (vec!["--select", "0"], "select at least 1 pigment"),
+        (
+            vec!["--select", "2", "--from", "pyrrole_red,phthalo_blu"],
+            "'phthalo_blu' is not a pigment of gonio's library",
+        ),
+        (
+            vec!["--select", "2", "--finalists", "0"],
+            "at least 1 finalist",
+        ),
+        (vec!["--from", "pyrrole_red"], "--select"),
+    ] {
+        let out = select(&a);
+        assert_eq!(out.status.code(), Some(2), "{a:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(says), "{a:?}: {err}");
+    }
+    let out = gonio(
+        &[
+            "coating",
+            "match",
+            "diffuse.toml",
+            "--target",
+            "green.csv",
+            "--select",
+            "2",
+            "-o",
+            "f.toml",
+        ],
+        d,
+    );
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("diffuse.toml") && err.contains("kind = \"kubelka-munk\""),
+        "{err}"
+    );
 }
 
 mod slow {

@@ -11,5 +11,6 @@ mod measured_samples;
 mod oracle;
 mod salib;
 mod search;
+mod selection;
 mod sensitivity;
 mod spectral_matching;

@@ -303,7 +303,11 @@ class Match:
     ``geometries`` (a DataFrame: ``geometry``, ``de00_start``, ``de00_fitted`` and CIELAB
     D65/10° of the target, the start and the fitted formulation: ``L_target``, ``a_target``,
     ..., ``b_fitted``), ``mean_de00`` (start, fitted) and ``json`` (``gonio coating match
-    --json``'s structure without the file names)."""
+    --json``'s structure without the file names). A selection (``match(..., select=N)``) adds
+    ``selection`` (``json["selection"]``), ``tried`` (a DataFrame of the best combinations
+    screened: ``pigments``, ``concentrations``, ``score``) and ``finalists`` (a DataFrame:
+    ``pigments``, ``screen_concentrations``, ``screen_score``, ``objective``, ``mean_de00``,
+    ``de00`` per geometry, ``concentrations``, ``sigma``, ``evaluations``); ``None`` without."""
 
     def __init__(self, result: dict, toml: str, fitted: Coating):
         self.json = result
@@ -320,6 +324,11 @@ class Match:
             rows.append(row)
         self.geometries = pd.DataFrame(rows)
         self.mean_de00 = (result["mean_de00_start"], result["mean_de00_fitted"])
+        self.selection = result.get("selection")
+        self.tried = self.finalists = None
+        if self.selection is not None:
+            self.tried = pd.DataFrame(self.selection["tried"])
+            self.finalists = pd.DataFrame(self.selection["finalists"])
 
     def save(self, path: str | os.PathLike) -> None:
         """Write the fitted description (TOML) to ``path``."""
@@ -331,30 +340,56 @@ class Match:
                 f"{self.json['evaluations']} readings)")
 
 
+def _selection_search(args: tuple, pigments: list, concentrations: list) -> list:
+    """One finalist's search of a selection (a Dask task: the start is rebuilt from its TOML
+    where it runs, the target read from its path or CSV text)."""
+    text, base_dir, *rest = args
+    start = _gonio.read_coating(None, text, False, base_dir)
+    return _gonio.selection_search(start, *rest, pigments, concentrations)
+
+
 def match(
     start: str | os.PathLike | Mapping[str, Any] | Coating,
     target: str | os.PathLike | pd.DataFrame,
-    vary: str | Mapping[str, tuple[float, float]] | Sequence[str],
+    vary: str | Mapping[str, tuple[float, float]] | Sequence[str] = "",
     standard: str = "e2194",
     target_gloss: Mapping[int, float] | None = None,
     gloss_weight: float = 0.1,
     walks: int = 1024,
     starts: int = 4,
-    objective: str = "de00",
+    objective: str = "auto",
+    select: int | None = None,
+    candidates: Sequence[str] | None = None,
+    finalists: int = 3,
+    shown: int = 20,
+    client: Any = None,
+    base_dir: str | os.PathLike = ".",
 ) -> Match:
     """The values of the ``vary``'d constituents (``"tilt=4:20,coverage=0.3:0.8"`` or
     ``{"tilt": (4, 20), ...}``, within the bounds) that make ``start`` look like ``target``
-    (``gonio coating match``): the mean CIEDE2000 over the ``standard``'s geometries (plus
-    ``gloss_weight`` ΔE00 per gloss unit of difference from ``target_gloss``, e.g.
-    ``{20: 85, 60: 92}``) is minimised by Nelder-Mead from the start formulation and
-    ``starts - 1`` other points, every reading with the same random numbers.
+    (``gonio coating match``): the objective over the ``standard``'s geometries is minimised
+    by Nelder-Mead from the start formulation and ``starts - 1`` other points, every reading
+    with the same random numbers.
 
     ``target``: a file (``.csv`` of CIELAB or reflectance factors per geometry, a measured BRDF
     ``.astm`` or a spectral ``.gbrdf``) or a DataFrame with a ``geometry`` column and ``L``,
     ``a``, ``b`` (or reflectance-factor columns ``R_400nm`` ... as :func:`multiangle` gives).
-    ``objective="spectral"`` minimises the rms difference of reflectance factors instead (a
-    target with spectra; the classic fit of a solid colour's pigments, free of metamerism,
-    docs/formulation.md)."""
+    ``objective``: ``"auto"`` (the default) minimises the rms difference of reflectance
+    factors where the target gives them (and no ``target_gloss`` is matched), the mean
+    CIEDE2000 otherwise; ``"de00"`` (plus ``gloss_weight`` ΔE00 per gloss unit of difference
+    from ``target_gloss``, e.g. ``{20: 85, 60: 92}``) and ``"spectral"`` choose
+    (docs/formulation.md).
+
+    ``select=N`` chooses up to N pigments of gonio's library (``candidates``: their names;
+    default the whole library less the start's pigments; the start's base must be
+    ``kind = "kubelka-munk"``) and fits their concentrations with ``vary``: every combination
+    is screened, then the full match runs on the best ``finalists`` (``gonio coating match
+    --select``); ``json["selection"]`` lists the ``shown`` best combinations tried and the
+    finalists, and ``toml`` adds the chosen pigments as ``library = "NAME"`` entries. With
+    ``client`` (a ``dask.distributed.Client``) the finalists are searched on its workers, each
+    rebuilding the start from its TOML (relative file names in it start in ``base_dir``) and
+    reading the target from its path (which the workers must see) or its CSV text; the result
+    equals the serial one, every reading being made with the same random numbers."""
     vary = _vary(vary)
     gloss = None
     if target_gloss:
@@ -364,8 +399,22 @@ def match(
         csv = target.to_csv(index=False)
     else:
         path = os.fspath(target)
-    result, toml, fitted = _gonio.match_coating(
-        read(start), path, csv, vary, standard, gloss, float(gloss_weight), int(walks), int(starts),
-        objective,
-    )
+    coating = start if isinstance(start, Coating) else read(start, base_dir)
+    rest = (path, csv, vary, standard, gloss, float(gloss_weight), int(walks), int(starts),
+            objective)
+    if select is None:
+        result, toml, fitted = _gonio.match_coating(coating, *rest)
+        return Match(json.loads(result), toml, fitted)
+    plan = _gonio.selection_plan(
+        coating, *rest, int(select), None if candidates is None else list(candidates),
+        int(finalists))
+    chosen = plan.finalists()
+    if client is None:
+        runs = [plan.search(k) for k in range(len(chosen))]
+    else:
+        args = (coating.toml, os.fspath(base_dir), *rest)
+        futures = [client.submit(_selection_search, args, p, c, pure=False)
+                   for p, c, _ in chosen]
+        runs = client.gather(futures)
+    result, toml, fitted = plan.conclude(runs, int(shown))
     return Match(json.loads(result), toml, fitted)
