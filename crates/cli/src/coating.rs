@@ -92,6 +92,12 @@ pub struct MatchArgs {
     /// e2539 (adds 45as-15 and 15° illumination).
     #[arg(long, default_value = "e2194")]
     standard: String,
+    /// Match these geometries instead of the standard's, each as illumination and aspecular
+    /// angle in degrees, comma-separated (e.g. `--geometry 45as-15,45as15,45as25,45as45,45as75,
+    /// 45as110`: E2539's geometries lit at 45°, leaving those lit at 15° for `gonio coating
+    /// predict`). The target must hold each of them.
+    #[arg(long, value_delimiter = ',', value_parser = crate::multiangle::parse_geometry)]
+    geometry: Vec<multiangle::Geometry>,
     /// Gloss readings to match too, ANGLE=GU comma-separated (20, 60 or 85°; e.g. 20=85,60=92).
     #[arg(long)]
     target_gloss: Option<String>,
@@ -525,7 +531,11 @@ fn match_target(a: MatchArgs) -> Result<()> {
     let coating = read(&a.coating, &wavelengths)?;
     let varied = Varied::resolve_list(&a.vary, a.bounds.as_deref(), &coating, &wavelengths)
         .context("--vary")?;
-    let geometries = multiangle::standard(&a.standard).context("--standard")?;
+    let geometries: &[multiangle::Geometry] = if a.geometry.is_empty() {
+        multiangle::standard(&a.standard).context("--standard")?
+    } else {
+        &a.geometry
+    };
     let gloss = match &a.target_gloss {
         Some(s) => GlossTarget::parse_list(s).context("--target-gloss")?,
         None => vec![],

@@ -61,7 +61,7 @@ enum Standard {
     E2539,
 }
 
-fn parse_geometry(s: &str) -> std::result::Result<Geometry, String> {
+pub(crate) fn parse_geometry(s: &str) -> std::result::Result<Geometry, String> {
     Geometry::parse(s).map_err(|e| e.to_string())
 }
 

@@ -228,6 +228,25 @@ fn match_recovers_a_concentration_and_writes_the_formulation() {
          45as75,30,40,20\n45as110,30,40,20\n",
     )
     .unwrap();
+    // --geometry matches the target's own geometries, where the standard's are refused.
+    let out = run(&args(
+        "concentration:red=0.1:2",
+        "two.csv",
+        &["--geometry", "45as15,45as45", "--starts", "1", "--json"],
+    ));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let names: Vec<&str> = v["geometries"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|g| g["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["45as15", "45as45"]);
     for (a, says) in [
         (args("gloss=0:1", "target.csv", &[]), "vary one of"),
         (
@@ -273,6 +292,22 @@ fn match_recovers_a_concentration_and_writes_the_formulation() {
                 &["--standard", "e2539"],
             ),
             "no geometry 45as-15",
+        ),
+        (
+            args(
+                "concentration:red=0.1:2",
+                "two.csv",
+                &["--geometry", "45as15,45as45,15as15"],
+            ),
+            "no geometry 15as15",
+        ),
+        (
+            args(
+                "concentration:red=0.1:2",
+                "two.csv",
+                &["--geometry", "45as15,45as500"],
+            ),
+            "45as500",
         ),
     ] {
         let out = run(&a);
