@@ -7,6 +7,7 @@
 //! is left out and said so in the provenance); with a rough top it holds everything the coating
 //! reflects.
 
+use crate::basecoat;
 use crate::cell::{self, CellWalks, luminance_weights};
 use crate::clear_coat::{self, AtWavelength, Base, ClearCoatOverBase, Coat};
 use crate::error::{CoatingError, Result};
@@ -132,6 +133,13 @@ impl Coating {
         }
         if let Some(f) = &self.flakes {
             f.check()?;
+            if f.depth.is_some() && !matches!(self.base, Base::KubelkaMunk { .. }) {
+                return Err(CoatingError::Invalid(
+                    "flakes.depth places the flakes inside a pigmented basecoat: it needs [base] \
+                     kind = \"kubelka-munk\" (leave depth out for flakes over a diffuse base)"
+                        .into(),
+                ));
+            }
         }
         Ok(())
     }
@@ -169,6 +177,8 @@ impl Coating {
                     .collect::<Result<Vec<_>>>()?;
                 let bottom = match &self.flakes {
                     None => FlakeLayer::bare(rho),
+                    // Inside the basecoat the flakes are the basecoat walk's.
+                    Some(f) if f.depth.is_some() => FlakeLayer::bare(rho),
                     Some(f) => {
                         let optics = wl
                             .iter()
@@ -177,10 +187,18 @@ impl Coating {
                         FlakeLayer::new(f, optics, rho)
                     }
                 };
+                let basecoat = match &self.flakes {
+                    Some(f) => f
+                        .depth
+                        .map(|depth| basecoat::embedded(f, depth, &self.base, n, &wl))
+                        .transpose()?,
+                    None => None,
+                };
                 let walk = Walk {
                     top: Interface::new(n, self.roughness),
                     tau,
                     bottom,
+                    basecoat,
                 };
                 Ok((bands, walk))
             })
@@ -359,6 +377,14 @@ impl Coating {
         if walks.base == 0 {
             return Err(CoatingError::Invalid(
                 "samples: at least one random walk per cell is needed".into(),
+            ));
+        }
+        let embedded = self.flakes.as_ref().is_some_and(|f| f.depth.is_some());
+        if glint_left_out && embedded {
+            return Err(CoatingError::Invalid(
+                "the flakes' glint drawn flake by flake (discrete flakes) is not modelled for \
+                 flakes inside the basecoat (flakes.depth): render them smooth"
+                    .into(),
             ));
         }
         let mut evaluator = self.evaluator(wavelengths_nm)?;

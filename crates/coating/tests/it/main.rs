@@ -9,6 +9,7 @@
 //! function its tests reach, where these link the library's compiled copy. One test binary per
 //! crate (one link instead of one per file); each module is one subject.
 
+mod basecoat;
 mod clear_coat;
 mod flakes;
 mod glint;

@@ -397,6 +397,7 @@ fn system(
         coverage,
         tilt_deg,
         diameter_um: Flakes::DEFAULT_DIAMETER_UM,
+        depth: None,
     };
     let interface = Interface::new(n, top);
     let stack = Stack {
@@ -413,6 +414,7 @@ fn system(
         top: interface,
         tau: vec![tau],
         bottom: FlakeLayer::new(&flakes, vec![flakes.optics(n, lambda).unwrap()], vec![rho]),
+        basecoat: None,
     };
     (stack, walk)
 }
