@@ -118,7 +118,7 @@ impl EmbeddedFlakes {
         }
         let h = h.normalize();
         let cos = v.dot(h);
-        let d = self.orientation.d(upper(h) * h.z.signum());
+        let d = self.orientation.d(h * h.z.signum());
         (d / (4.0 * self.projected(v)), cos)
     }
 

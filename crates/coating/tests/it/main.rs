@@ -21,3 +21,4 @@ mod system;
 mod thin_film;
 mod tmm_oracle;
 mod walk_brute_force;
+mod walk_brute_force_basecoat;
