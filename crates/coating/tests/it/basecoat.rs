@@ -340,3 +340,95 @@ json.dump(out, sys.stdout)
         eprintln!("largest |walk − Kubelka-Munk|: {worst:.4}");
     }
 }
+
+/// `[flakes] depth` reads a fraction (a sheet) or "spread"; a depth out of 0–1, another word,
+/// a spread coverage of 1, a depth over a diffuse base and discrete flakes (the renderer's
+/// glint) inside the basecoat are refused with errors naming what is wrong. The example's
+/// coating goes through the basecoat's walk.
+#[test]
+fn depth_in_the_description() {
+    use gonio_coating::description::parse;
+    let wl = [450.0, 550.0, 650.0];
+    let text = |depth: &str, coverage: f64, base: &str| {
+        format!(
+            "[coat]\nindex = 1.5\nthickness_um = 40\n[flakes]\nkind = \"aluminium\"\n\
+             coverage = {coverage}\ntilt_deg = 12\n{depth}\n{base}"
+        )
+    };
+    let km = "[base]\nkind = \"kubelka-munk\"\nthickness_um = 15\nsubstrate = 0.3\n\
+              [[base.pigment]]\nlibrary = \"phthalo_blue_green_shade\"\nconcentration = 0.05\n";
+    let diffuse = "[base]\nkind = \"diffuse\"\nreflectance = 0.3\n";
+    let depth_of = |t: String| parse(&t, &wl).map(|c| c.flakes.unwrap().depth);
+    assert_eq!(
+        depth_of(text("depth = \"spread\"", 0.6, km)).unwrap(),
+        Some(FlakeDepth::Spread)
+    );
+    assert_eq!(
+        depth_of(text("depth = 0.25", 0.6, km)).unwrap(),
+        Some(FlakeDepth::Sheet(0.25))
+    );
+    assert_eq!(depth_of(text("", 0.6, km)).unwrap(), None);
+    for (depth, coverage, base, says) in [
+        ("depth = 1.5", 0.6, km, "from 0"),
+        ("depth = \"deep\"", 0.6, km, "'deep'"),
+        ("depth = \"spread\"", 1.0, km, "below 1"),
+        ("depth = 0.5", 0.6, diffuse, "kubelka-munk"),
+    ] {
+        let e = depth_of(text(depth, coverage, base)).unwrap_err().to_string();
+        assert!(e.contains("depth") || e.contains("coverage"), "{e}");
+        assert!(e.contains(says), "{depth}: {e}");
+    }
+    let coating = parse(&text("depth = \"spread\"", 0.6, km), &wl).unwrap();
+    let e = coating
+        .table_without_glint(
+            gonio_brdf::table::Resolution::isotropic(4, 4, 4),
+            &wl,
+            4,
+            gonio_brdf::table::Provenance::default(),
+            &gonio_io::Cancel::default(),
+        )
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("inside the basecoat"), "{e}");
+    let gonio_coating::system::Evaluator::Walks(groups) = coating.evaluator(&wl).unwrap() else {
+        panic!("flakes are walked");
+    };
+    let basecoat = groups[0].1.basecoat.as_ref().expect("the basecoat's walk");
+    // The library's K and S per µm (0.5 × concentration × relative) converted: σa = K/2.
+    let km_at = gonio_coating::basecoat::mixture_at(
+        match &coating.base {
+            Base::KubelkaMunk { pigments, .. } => pigments,
+            Base::Diffuse { .. } => unreachable!(),
+        },
+        550.0,
+    )
+    .unwrap();
+    assert_eq!(basecoat.absorption[1], km_at.k / 2.0);
+    assert_eq!(basecoat.scattering[1], km_at.s * 4.0 / 3.0);
+}
+
+/// A table of the basecoat's walks is the same, bit for bit, on one thread and on two (each
+/// cell's walks seeded by the pair, `layered/stream.rs`).
+#[test]
+fn table_does_not_depend_on_the_thread_count() {
+    use gonio_brdf::table::{Provenance, Resolution};
+    let wl = [450.0, 550.0, 650.0];
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/coatings/blue_metallic_embedded.toml");
+    let coating = gonio_coating::description::read(&path, &wl).unwrap();
+    let on = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| {
+                coating
+                    .table(Resolution::isotropic(8, 8, 6), &wl, 4, Provenance::default())
+                    .unwrap()
+            })
+    };
+    let bits = |t: &gonio_brdf::table::BrdfTable| {
+        t.values().iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+    };
+    assert!(bits(&on(1)) == bits(&on(2)), "the tables differ");
+}
