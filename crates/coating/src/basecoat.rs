@@ -16,11 +16,13 @@
 //! Gemert, Phys. Med. Biol. 33, 437, 1988: `S = (3/4) σs (1 − g) − σa/4`) is the worse one. So
 //! `σa = K/2`, `σs = (4/3) S / (1 − g)` ([`transport_coefficients`]), with g = 0. Its error,
 //! measured here against the adding-doubling solution of the slab (iadpython, index-matched,
-//! diffuse illumination; `tests/it/basecoat_oracle.rs`): the opaque reflectance is low by
-//! 0.0048 at single-scattering albedo 0.3 (R∞ 0.0744 against 0.0696), 0.0085 at 0.6, 0.0065 at
-//! 0.9, 0.0029 at 0.97 and under 0.001 above 0.99; thin layers (optical thickness 1) by up to
-//! 0.016 at albedo 0.97. The conversion assumes diffuse light, which Kubelka-Munk assumes too;
-//! the walk then carries the collimated light of a real instrument, which Kubelka-Munk cannot.
+//! diffuse illumination): the opaque reflectance is low by
+//! 0.0048 at single-scattering albedo 0.3 (R∞ 0.0696 against 0.0744), 0.0085 at 0.6, 0.0065 at
+//! 0.9, 0.0029 at 0.97 and under 0.001 from 0.99; layers of optical thickness 1 by up to 0.018
+//! (albedo 0.999); the walk's reflectance of such layers, over substrates 0 and 0.5, is within
+//! 0.020 of Kubelka-Munk's (`tests/it/basecoat.rs`). The conversion assumes diffuse light, as
+//! Kubelka-Munk does; the walk then carries the collimated light of a real instrument, which
+//! Kubelka-Munk cannot.
 //!
 //! **The phase function** is isotropic (g = 0): a pigment's K and S alone do not fix g, and the
 //! transparent toners of a metallic basecoat (phthalocyanines, quinacridones, perylenes milled to
@@ -63,12 +65,12 @@ impl FlakeDepth {
     /// Check the fraction (0 to 1) and, spread, the coverage (below 1).
     pub fn check(&self, coverage: f64) -> Result<()> {
         match *self {
-            FlakeDepth::Sheet(f) if !(0.0..=1.0).contains(&f) => Err(CoatingError::Invalid(
-                format!(
+            FlakeDepth::Sheet(f) if !(0.0..=1.0).contains(&f) => {
+                Err(CoatingError::Invalid(format!(
                     "flakes.depth {f}: a fraction of the basecoat's thickness from 0 (its top) to \
                      1 (the substrate), or \"spread\""
-                ),
-            )),
+                )))
+            }
             FlakeDepth::Spread if coverage >= 1.0 => Err(CoatingError::Invalid(format!(
                 "flakes.coverage {coverage} with depth = \"spread\": must be below 1 (spread \
                  flakes hide 1 − exp(−a d) of a normal ray, never all of it)"
@@ -76,6 +78,17 @@ impl FlakeDepth {
             _ => Ok(()),
         }
     }
+}
+
+/// The error of the flakes' glint drawn flake by flake ([`crate::glint`], the renderer's
+/// discrete flakes and the texture camera) for flakes inside the basecoat, which it does not
+/// model (the glint would cross no pigment).
+pub fn glint_not_modelled() -> CoatingError {
+    CoatingError::Invalid(
+        "the flakes' glint drawn flake by flake (discrete flakes, texture) is not modelled for \
+         flakes inside the basecoat (flakes.depth): render them smooth"
+            .into(),
+    )
 }
 
 /// The radiative-transfer coefficients `(σa, σs)` (1/µm, isotropic scattering) of a medium of

@@ -114,10 +114,8 @@ impl Base {
                 pigments,
                 thickness_um,
                 substrate,
-            } => {
-                Ok(crate::basecoat::mixture_at(pigments, wavelength_nm)?
-                    .reflectance(*thickness_um, substrate.value_at(wavelength_nm)))
-            }
+            } => Ok(crate::basecoat::mixture_at(pigments, wavelength_nm)?
+                .reflectance(*thickness_um, substrate.value_at(wavelength_nm))),
         }
     }
 }

@@ -381,11 +381,7 @@ impl Coating {
         }
         let embedded = self.flakes.as_ref().is_some_and(|f| f.depth.is_some());
         if glint_left_out && embedded {
-            return Err(CoatingError::Invalid(
-                "the flakes' glint drawn flake by flake (discrete flakes) is not modelled for \
-                 flakes inside the basecoat (flakes.depth): render them smooth"
-                    .into(),
-            ));
+            return Err(basecoat::glint_not_modelled());
         }
         let mut evaluator = self.evaluator(wavelengths_nm)?;
         if glint_left_out && let Evaluator::Walks(groups) = &mut evaluator {

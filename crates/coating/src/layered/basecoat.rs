@@ -191,7 +191,16 @@ impl Basecoat {
         let first = walks.start;
         for k in walks {
             let before = tally.as_ref().map_or(0.0, |(w, _)| weighted(w, sums));
-            self.one_walk(walk, wo, wi, k, seed, max_events, &mut scratch.basecoat, sums);
+            self.one_walk(
+                walk,
+                wo,
+                wi,
+                k,
+                seed,
+                max_events,
+                &mut scratch.basecoat,
+                sums,
+            );
             if let Some((w, values)) = tally.as_mut() {
                 values[k - first] += weighted(w, sums) - before;
             }
@@ -244,14 +253,18 @@ impl Basecoat {
             v.resize(nb, 0.0);
         }
         // Towards the light: through the top and the coat, and per unit depth in the slab.
-        let up_rate = self.flakes.as_ref().map_or(0.0, |fl| rate * fl.projected(up));
+        let up_rate = self
+            .flakes
+            .as_ref()
+            .map_or(0.0, |fl| rate * fl.projected(up));
         for b in 0..nb {
             light[b] = wis.weight() * walk.across(b, up.z);
             let passed = self
                 .flakes
                 .as_ref()
                 .map_or(0.0, |fl| fl.optics.tilted_transmittance(b, up.z));
-            towards[b] = (self.absorption[b] + self.scattering[b] + up_rate * (1.0 - passed)) / up.z;
+            towards[b] =
+                (self.absorption[b] + self.scattering[b] + up_rate * (1.0 - passed)) / up.z;
         }
         let through_sheet = |b: usize| {
             self.flakes
@@ -286,8 +299,8 @@ impl Basecoat {
             true
         };
         let mut w = wos.wi;
-        for b in 0..nb {
-            f[b] = wos.weight() * walk.across(b, w.z.abs());
+        for (b, x) in f.iter_mut().enumerate() {
+            *x = wos.weight() * walk.across(b, w.z.abs());
         }
         p.fill(1.0);
         let mut zeta = 0.0;
@@ -300,8 +313,15 @@ impl Basecoat {
             }
             // The free flight: to a collision, the sheet or the slab's boundary.
             let mu = w.z;
-            let flake_rate = self.flakes.as_ref().map_or(0.0, |fl| rate * fl.projected(w));
-            let to_boundary = if mu < 0.0 { (d - zeta) / -mu } else { zeta / mu };
+            let flake_rate = self
+                .flakes
+                .as_ref()
+                .map_or(0.0, |fl| rate * fl.projected(w));
+            let to_boundary = if mu < 0.0 {
+                (d - zeta) / -mu
+            } else {
+                zeta / mu
+            };
             let to_sheet = match sheet {
                 Some(s) if mu < 0.0 && (zeta < s || (zeta == s && !on_sheet)) => (s - zeta) / -mu,
                 Some(s) if mu > 0.0 && (zeta > s || (zeta == s && !on_sheet)) => (zeta - s) / mu,
@@ -387,15 +407,15 @@ impl Basecoat {
                     radius * phi.sin(),
                     (1.0 - u.x).max(1e-12).sqrt(),
                 );
-                for b in 0..nb {
-                    f[b] *= self.substrate[b];
+                for (x, rho) in f.iter_mut().zip(&self.substrate) {
+                    *x *= rho;
                 }
             } else {
                 // The top of the basecoat: across the clear coat, the top's underside reflects
                 // the walk back down (what it transmits leaves) and across the coat again.
                 zeta = 0.0;
-                for b in 0..nb {
-                    f[b] *= walk.across(b, w.z);
+                for (b, x) in f.iter_mut().enumerate() {
+                    *x *= walk.across(b, w.z);
                 }
                 let Some(s) = top.sample(
                     -w,
@@ -408,8 +428,8 @@ impl Basecoat {
                 };
                 w = s.wi;
                 let weight = s.weight();
-                for b in 0..nb {
-                    f[b] *= weight * walk.across(b, w.z.abs());
+                for (b, x) in f.iter_mut().enumerate() {
+                    *x *= weight * walk.across(b, w.z.abs());
                 }
             }
         }
@@ -455,8 +475,8 @@ impl Basecoat {
             }
             *w = reflected;
         } else {
-            for b in 0..nb {
-                f[b] *= fl.optics.flake_transmittance(b, cos) / (1.0 - reflect_share);
+            for (b, x) in f.iter_mut().enumerate() {
+                *x *= fl.optics.flake_transmittance(b, cos) / (1.0 - reflect_share);
             }
         }
         true

@@ -45,9 +45,9 @@
 mod basecoat;
 mod stream;
 
-pub use basecoat::{Basecoat, EmbeddedFlakes};
 use crate::flakes::FlakeLayer;
 use crate::interface::{Interface, Lobes, Sample, Transport};
+pub use basecoat::{Basecoat, EmbeddedFlakes};
 use glam::DVec3;
 use stream::Stream;
 

@@ -25,8 +25,8 @@ fn bare(n: f64, roughness: Option<Microfacet>, tau: &[f64], rho: &[f64]) -> Walk
         top: Interface::new(n, roughness),
         tau: tau.to_vec(),
         bottom: FlakeLayer::bare(rho.to_vec()),
-    },
         basecoat: None,
+    }
 }
 
 /// Mean and standard error over `batches` estimates of `per_batch` walks each, per band.

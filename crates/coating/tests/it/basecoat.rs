@@ -125,7 +125,12 @@ pub(crate) fn body_albedo(walk: &Walk, wi: DVec3, count: usize, seed: u64) -> Ve
 #[test]
 fn without_scattering_it_is_beer_lambert() {
     let (d, sigma_a, rho, tau) = (10.0, [0.02, 0.1], 0.6, 0.05);
-    let walk = over(1.5, None, &[tau; 2], slab(d, &sigma_a, &[0.0; 2], &[rho; 2]));
+    let walk = over(
+        1.5,
+        None,
+        &[tau; 2],
+        slab(d, &sigma_a, &[0.0; 2], &[rho; 2]),
+    );
     let exact = |b: usize| {
         ClearCoatOverBase {
             coat: Coat {
@@ -374,7 +379,9 @@ fn depth_in_the_description() {
         ("depth = \"spread\"", 1.0, km, "below 1"),
         ("depth = 0.5", 0.6, diffuse, "kubelka-munk"),
     ] {
-        let e = depth_of(text(depth, coverage, base)).unwrap_err().to_string();
+        let e = depth_of(text(depth, coverage, base))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("depth") || e.contains("coverage"), "{e}");
         assert!(e.contains(says), "{depth}: {e}");
     }
@@ -387,6 +394,10 @@ fn depth_in_the_description() {
             gonio_brdf::table::Provenance::default(),
             &gonio_io::Cancel::default(),
         )
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("inside the basecoat"), "{e}");
+    let e = gonio_coating::glint::Glint::new(&coating, &wl)
         .unwrap_err()
         .to_string();
     assert!(e.contains("inside the basecoat"), "{e}");
@@ -423,7 +434,12 @@ fn table_does_not_depend_on_the_thread_count() {
             .unwrap()
             .install(|| {
                 coating
-                    .table(Resolution::isotropic(8, 8, 6), &wl, 4, Provenance::default())
+                    .table(
+                        Resolution::isotropic(8, 8, 6),
+                        &wl,
+                        4,
+                        Provenance::default(),
+                    )
                     .unwrap()
             })
     };
