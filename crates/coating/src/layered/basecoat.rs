@@ -328,6 +328,30 @@ impl Basecoat {
                 _ => f64::INFINITY,
             };
             let end = to_boundary.min(to_sheet);
+            // Next-event estimation at every spread flake this flight could meet, integrated
+            // along it (module documentation); the flake the flight meets then adds none.
+            if flake_rate > 0.0
+                && let Some(fl) = &self.flakes
+            {
+                let (density, cos) = fl.kernel(-w, up);
+                if density > 0.0 {
+                    fl.optics.reflectances(cos, r);
+                    let scale = flake_rate * density / up.z;
+                    for b in 0..nb {
+                        // ∫₀ᴸ exp(−σ s) exp(−e (ζ − μ s)) ds, e the attenuation per unit depth
+                        // towards the light.
+                        let rate = self.absorption[b] + self.scattering[b] + flake_rate
+                            - towards[b] * mu;
+                        let along = if (rate * end).abs() < 1e-12 {
+                            end
+                        } else {
+                            -(-rate * end).exp_m1() / rate
+                        };
+                        out[b] += f[b] * scale * r[b] * (-towards[b] * zeta).exp() * along
+                            * light[b];
+                    }
+                }
+            }
             let hero_rate = self.scattering[hero] + flake_rate;
             let t = if hero_rate > 0.0 {
                 -(1.0 - rng.next()).ln() / hero_rate
@@ -362,12 +386,6 @@ impl Basecoat {
                         break;
                     }
                     let fl = self.flakes.as_ref().expect("a flake event needs flakes");
-                    let (density, cos) = fl.kernel(-w, up);
-                    if density > 0.0 {
-                        fl.optics.reflectances(cos, r);
-                        let scale = density / up.z;
-                        nee(zeta, below, f, &|b| r[b] * scale, out);
-                    }
                     if !self.flake_event(fl, &mut w, &mut rng, f, r, false) {
                         break;
                     }
@@ -384,13 +402,15 @@ impl Basecoat {
                 zeta = s;
                 on_sheet = true;
                 let fl = self.flakes.as_ref().expect("the sheet has flakes");
+                // Next-event estimation at the flake the crossing meets with probability c,
+                // weighted by c whether it meets one or not.
+                let (density, cos) = fl.kernel(-w, up);
+                if density > 0.0 {
+                    fl.optics.reflectances(cos, r);
+                    let scale = fl.coverage * density / fl.projected(up);
+                    nee(zeta, false, f, &|b| r[b] * scale, out);
+                }
                 if rng.next() < fl.coverage {
-                    let (density, cos) = fl.kernel(-w, up);
-                    if density > 0.0 {
-                        fl.optics.reflectances(cos, r);
-                        let scale = density / fl.projected(up);
-                        nee(zeta, false, f, &|b| r[b] * scale, out);
-                    }
                     if !self.flake_event(fl, &mut w, &mut rng, f, r, true) {
                         break;
                     }
