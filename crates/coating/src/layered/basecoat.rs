@@ -21,6 +21,21 @@
 //! direction inside is a delta (smooth top) or sampled (rough top), and the walk's escapes are
 //! not counted, which keeps the estimator unbiased without weights between strategies.
 //!
+//! **The flakes' next event, in expectation.** A metallic's face is the light one flake mirrors,
+//! and whether a walk met a flake or flew past to the substrate made most of its noise (on the
+//! blue example, relative standard deviation per walk 0.95 at 45as15). So the walk joins to the
+//! light every flake a flight could meet, not the one it meets: along a flight of direction w
+//! from depth ζ₀ the flakes' kernel towards the light is fixed and every attenuation is
+//! exponential in the distance s, so `∫₀ᴸ σf e^{−σ s} e^{−e (ζ₀ − μ s)} ds · a_f D R / (4 N cos)`
+//! (σ the band's extinction along w, e its attenuation per unit depth towards the light, μ = w_z)
+//! is added in closed form, and a flake the flight then meets adds no next event of its own. In
+//! a sheet, the flake a crossing meets with probability c is joined with weight c at every
+//! crossing. Each replaces a term by its expectation given the walk so far (the path before the
+//! flight weighted by the spectral MIS of its own sampling, below), so the estimate stays
+//! unbiased; the relative standard deviation per walk fell to 0.16 at 45as15, 0.30 at 45as45
+//! and 1.07 at 45as110 (from 0.91 and 1.42; the flake layer over the base has 0.11, 0.14 and
+//! 0.43 there, its flank helped by the light's own walk, which this walk does not have).
+//!
 //! **Spectral.** The bands share the walk's directions, but σ differs from band to band (a cyan
 //! toner absorbs red tenfold more than blue). The free flights are sampled with the coefficients
 //! of one band, the hero, chosen uniformly per walk, and each band's contribution is weighted by
@@ -340,15 +355,15 @@ impl Basecoat {
                     for b in 0..nb {
                         // ∫₀ᴸ exp(−σ s) exp(−e (ζ − μ s)) ds, e the attenuation per unit depth
                         // towards the light.
-                        let rate = self.absorption[b] + self.scattering[b] + flake_rate
-                            - towards[b] * mu;
+                        let rate =
+                            self.absorption[b] + self.scattering[b] + flake_rate - towards[b] * mu;
                         let along = if (rate * end).abs() < 1e-12 {
                             end
                         } else {
                             -(-rate * end).exp_m1() / rate
                         };
-                        out[b] += f[b] * scale * r[b] * (-towards[b] * zeta).exp() * along
-                            * light[b];
+                        out[b] +=
+                            f[b] * scale * r[b] * (-towards[b] * zeta).exp() * along * light[b];
                     }
                 }
             }
