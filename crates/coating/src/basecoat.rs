@@ -50,6 +50,7 @@ use crate::error::{CoatingError, Result};
 use crate::flakes::{FlakeLayer, Flakes};
 use crate::kubelka_munk::Coefficients;
 use crate::layered::{Basecoat, EmbeddedFlakes};
+use gonio_color::Spectrum;
 
 /// Where the flakes lie in a Kubelka-Munk basecoat (`[flakes] depth`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -120,7 +121,8 @@ pub fn spread_extinction_per_um(coverage: f64, thickness_um: f64) -> f64 {
 /// The walk's basecoat ([`crate::layered::Basecoat`]) for `flakes` placed in the Kubelka-Munk
 /// `base` at `flakes.depth`, in a binder of index `binder`, at `wavelengths_nm`: the pigments'
 /// mixture (Duncan) converted by [`transport_coefficients`], the substrate's reflectance, the
-/// flakes' optics. An error when the base is not a Kubelka-Munk layer or has no thickness.
+/// flakes' optics. An error when the base is not a Kubelka-Munk layer or has no thickness
+/// ([`layer_of`]).
 pub fn embedded(
     flakes: &Flakes,
     depth: FlakeDepth,
@@ -128,6 +130,35 @@ pub fn embedded(
     binder: f64,
     wavelengths_nm: &[f64],
 ) -> Result<Basecoat> {
+    let (pigments, thickness_um, substrate) = layer_of(base)?;
+    let (mut absorption, mut scattering, mut rho) = (Vec::new(), Vec::new(), Vec::new());
+    for &w in wavelengths_nm {
+        let (sa, ss) = transport_coefficients(mixture_at(pigments, w)?);
+        absorption.push(sa);
+        scattering.push(ss);
+        rho.push(substrate.value_at(w));
+    }
+    let optics = wavelengths_nm
+        .iter()
+        .map(|&w| flakes.optics(binder, w))
+        .collect::<Result<Vec<_>>>()?;
+    Ok(Basecoat {
+        thickness_um,
+        absorption,
+        scattering,
+        flakes: Some(EmbeddedFlakes {
+            depth,
+            coverage: flakes.coverage,
+            orientation: flakes.orientation(),
+            optics: FlakeLayer::new(flakes, optics, rho.clone()),
+        }),
+        substrate: rho,
+    })
+}
+
+/// The pigments, thickness (µm) and substrate of the Kubelka-Munk `base` that holds flakes
+/// (`flakes.depth`); an error when the base is not a Kubelka-Munk layer or has no thickness.
+pub fn layer_of(base: &Base) -> Result<(&[Pigment], f64, &Spectrum)> {
     let Base::KubelkaMunk {
         pigments,
         thickness_um,
@@ -146,29 +177,7 @@ pub fn embedded(
              basecoat of some thickness"
         )));
     }
-    let (mut absorption, mut scattering, mut rho) = (Vec::new(), Vec::new(), Vec::new());
-    for &w in wavelengths_nm {
-        let (sa, ss) = transport_coefficients(mixture_at(pigments, w)?);
-        absorption.push(sa);
-        scattering.push(ss);
-        rho.push(substrate.value_at(w));
-    }
-    let optics = wavelengths_nm
-        .iter()
-        .map(|&w| flakes.optics(binder, w))
-        .collect::<Result<Vec<_>>>()?;
-    Ok(Basecoat {
-        thickness_um: *thickness_um,
-        absorption,
-        scattering,
-        flakes: Some(EmbeddedFlakes {
-            depth,
-            coverage: flakes.coverage,
-            orientation: flakes.orientation(),
-            optics: FlakeLayer::new(flakes, optics, rho.clone()),
-        }),
-        substrate: rho,
-    })
+    Ok((pigments, *thickness_um, substrate))
 }
 
 /// The Kubelka-Munk coefficients of `pigments` mixed by Duncan's rule at `wavelength_nm`.

@@ -133,12 +133,8 @@ impl Coating {
         }
         if let Some(f) = &self.flakes {
             f.check()?;
-            if f.depth.is_some() && !matches!(self.base, Base::KubelkaMunk { .. }) {
-                return Err(CoatingError::Invalid(
-                    "flakes.depth places the flakes inside a pigmented basecoat: it needs [base] \
-                     kind = \"kubelka-munk\" (leave depth out for flakes over a diffuse base)"
-                        .into(),
-                ));
+            if f.depth.is_some() {
+                basecoat::layer_of(&self.base)?;
             }
         }
         Ok(())
