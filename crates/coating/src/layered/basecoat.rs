@@ -425,10 +425,8 @@ impl Basecoat {
                     let scale = fl.coverage * density / fl.projected(up);
                     nee(zeta, false, f, &|b| r[b] * scale, out);
                 }
-                if rng.next() < fl.coverage {
-                    if !self.flake_event(fl, &mut w, &mut rng, f, r, true) {
-                        break;
-                    }
+                if rng.next() < fl.coverage && !self.flake_event(fl, &mut w, &mut rng, f, r, true) {
+                    break;
                 }
             } else if mu < 0.0 {
                 // The substrate: Lambertian.
