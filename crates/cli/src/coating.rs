@@ -384,8 +384,14 @@ fn info(a: InfoArgs) -> Result<()> {
         ),
     }
     if let Some(f) = &coating.flakes {
+        use gonio_coating::basecoat::FlakeDepth;
+        let place = match f.depth {
+            None => "over the base".to_string(),
+            Some(FlakeDepth::Spread) => "spread through the basecoat".to_string(),
+            Some(FlakeDepth::Sheet(x)) => format!("in a sheet at {x} of the basecoat's depth"),
+        };
         println!(
-            "flakes: {} cover {:.0}% of the base, rms tilt {}°",
+            "flakes: {} cover {:.0}% of the base, rms tilt {}°, {place}",
             match f.pigment {
                 gonio_coating::flakes::FlakePigment::Metal { .. } => "metal",
                 gonio_coating::flakes::FlakePigment::Interference { .. } => "interference",
