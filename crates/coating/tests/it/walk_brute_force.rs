@@ -90,7 +90,7 @@ pub(crate) fn erfc(x: f64) -> f64 {
 pub(crate) struct Stack {
     pub(crate) n: f64,
     pub(crate) tau: f64,
-    rough: Option<Interface>,
+    pub(crate) rough: Option<Interface>,
     pub(crate) coverage: f64,
     slope: f64,
     /// The flakes' index relative to the binder.

@@ -18,11 +18,12 @@
 use super::walk_brute_force::{
     Estimate, Photon, Stack, compare, in_plane, photons, snell, system, walks,
 };
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use gonio_brdf::fresnel::dielectric;
+use gonio_brdf::microfacet::Microfacet;
 use gonio_coating::basecoat::FlakeDepth;
 use gonio_coating::flakes::{FlakeLayer, FlakePigment, Flakes, aluminium};
-use gonio_coating::interface::Interface;
+use gonio_coating::interface::{Interface, Lobes, Transport};
 use gonio_coating::layered::{Basecoat, EmbeddedFlakes, Walk};
 use rand::RngExt;
 use rand_pcg::Pcg64Mcg;
@@ -68,8 +69,16 @@ impl Pigmented {
 impl Photon for Pigmented {
     fn photon(&self, wi: DVec3, rng: &mut Pcg64Mcg, escape: &mut dyn FnMut(DVec3, f64)) {
         let n = self.stack.n;
-        let mut weight = 1.0 - dielectric(wi.z, n);
-        let mut d = snell(-wi, n);
+        let (mut weight, mut d) = match &self.stack.rough {
+            None => (1.0 - dielectric(wi.z, n), snell(-wi, n)),
+            Some(top) => {
+                let u = DVec2::new(rng.random(), rng.random());
+                match top.sample(wi, rng.random(), u, Transport::Importance, Lobes::Both) {
+                    Some(s) if s.wi.z < 0.0 => (s.weight(), s.wi),
+                    _ => return,
+                }
+            }
+        };
         weight *= self.stack.across(d);
         let mut depth = 0.0;
         // Whether the photon sits on the sheet (it has just crossed it or met a flake there).
@@ -138,12 +147,30 @@ impl Photon for Pigmented {
             } else {
                 depth = 0.0;
                 weight *= self.stack.across(d);
-                let total_reflection = n * n * (1.0 - d.z * d.z) >= 1.0;
-                if !total_reflection && rng.random::<f64>() >= dielectric(d.z, 1.0 / n) {
-                    escape(snell(d, 1.0 / n), weight);
-                    return;
+                match &self.stack.rough {
+                    None => {
+                        let total_reflection = n * n * (1.0 - d.z * d.z) >= 1.0;
+                        if !total_reflection && rng.random::<f64>() >= dielectric(d.z, 1.0 / n) {
+                            escape(snell(d, 1.0 / n), weight);
+                            return;
+                        }
+                        d.z = -d.z;
+                    }
+                    Some(top) => {
+                        let u = DVec2::new(rng.random(), rng.random());
+                        let Some(s) =
+                            top.sample(-d, rng.random(), u, Transport::Importance, Lobes::Both)
+                        else {
+                            return;
+                        };
+                        weight *= s.weight();
+                        if s.wi.z > 0.0 {
+                            escape(s.wi, weight);
+                            return;
+                        }
+                        d = s.wi;
+                    }
                 }
-                d.z = -d.z;
                 weight *= self.stack.across(d);
             }
         }
@@ -152,8 +179,11 @@ impl Photon for Pigmented {
 
 /// Aluminium flakes (coverage `coverage`, tilt `tilt_deg`) in a basecoat of thickness `d`
 /// (σa, σs) over a substrate `rho`, at `depth`, under a smooth top of n 1.5 and a clear coat of
-/// optical thickness `tau`: as the photons and as the walk.
+/// optical thickness `tau` (a rough top with `top`, the photons scattered by the interface's own
+/// sampler as in `walk_brute_force`): as the photons and as the walk.
+#[allow(clippy::too_many_arguments)]
 fn pigmented(
+    top: Option<Microfacet>,
     tau: f64,
     d: f64,
     sigma: (f64, f64),
@@ -162,7 +192,7 @@ fn pigmented(
     rho: f64,
     depth: FlakeDepth,
 ) -> (Pigmented, Walk) {
-    let (stack, _) = system(None, tau, coverage, tilt_deg, rho);
+    let (stack, _) = system(top, tau, coverage, tilt_deg, rho);
     let (n, lambda) = (1.5, 550.0);
     let (al_n, al_k) = aluminium();
     let flakes = Flakes {
@@ -174,7 +204,7 @@ fn pigmented(
     };
     let optics = FlakeLayer::new(&flakes, vec![flakes.optics(n, lambda).unwrap()], vec![rho]);
     let walk = Walk {
-        top: Interface::new(n, None),
+        top: Interface::new(n, top),
         tau: vec![tau],
         bottom: FlakeLayer::bare(vec![rho]),
         basecoat: Some(Basecoat {
@@ -231,7 +261,7 @@ mod slow {
     #[test]
     fn basecoat_walks_equal_the_photons() {
         for depth in [FlakeDepth::Spread, FlakeDepth::Sheet(1.0 / 3.0)] {
-            let (p, walk) = pigmented(0.02, 15.0, (0.03, 0.1), 0.6, 12.0, 0.3, depth);
+            let (p, walk) = pigmented(None, 0.02, 15.0, (0.03, 0.1), 0.6, 12.0, 0.3, depth);
             for (ti, views) in [
                 (15.0, vec![-75.0, -45.0, -15.0, 0.0, 30.0, 65.0]),
                 (45.0, vec![-75.0, -60.0, -30.0, -20.0, 0.0, 30.0, 65.0]),
@@ -240,6 +270,35 @@ mod slow {
                 let z = compare(&format!("{depth:?}"), ti, &views, &ph, &wa);
                 assert!(z.iter().all(|z| z.abs() < 4.0), "{depth:?} θi {ti}°: {z:?}");
             }
+        }
+    }
+
+    /// The same basecoat with the flakes spread, under a rough top (GGX α 0.1; the photons
+    /// scattered by the interface's sampler, `Interface::sample`, tested on its own in
+    /// `interface`): the walk's next event through a sampled direction of the rough top and its
+    /// sampled reflections below it. Within 2.2 joint standard errors at 4 million photons
+    /// (printed); a run with 32 million at 15° (views 0, 30°) and 45° (0, 65°) within 0.35
+    /// (photon errors 0.5–1.5%).
+    #[test]
+    fn rough_top_basecoat_walks_equal_the_photons() {
+        let top = Some(Microfacet::ggx(0.1));
+        let (p, walk) = pigmented(
+            top,
+            0.02,
+            15.0,
+            (0.03, 0.1),
+            0.6,
+            12.0,
+            0.3,
+            FlakeDepth::Spread,
+        );
+        for (ti, views) in [
+            (15.0, vec![-75.0, -15.0, 0.0, 30.0]),
+            (45.0, vec![-60.0, -30.0, 0.0, 65.0]),
+        ] {
+            let (ph, wa) = both(&p, &walk, ti, &views);
+            let z = compare("rough, spread", ti, &views, &ph, &wa);
+            assert!(z.iter().all(|z| z.abs() < 4.0), "θi {ti}°: {z:?}");
         }
     }
 }
