@@ -57,10 +57,10 @@ pub struct MatchArgs {
     #[arg(long)]
     target: PathBuf,
     /// The constituents to fit, comma-separated, each NAME or NAME=LO:HI: roughness (the top's
-    /// α), tilt (°), coverage (0–1), tio2 (nm), thickness (the coat's, µm),
-    /// concentration:PIGMENT. The search stays within the bounds (see --bounds). With
-    /// --select, the selected pigments' concentrations are varied too (and --vary may be left
-    /// out).
+    /// α), tilt (°), coverage (0–1), tio2 (nm), thickness (the coat's, µm), base_thickness
+    /// (the Kubelka-Munk basecoat's, µm), concentration:PIGMENT. The search stays within the
+    /// bounds (see --bounds). With --select, the selected pigments' concentrations are varied
+    /// too (and --vary may be left out).
     #[arg(long, default_value = "")]
     vary: String,
     /// Select up to N pigments of gonio's library (`gonio pigments`) and add them to the
@@ -85,7 +85,7 @@ pub struct MatchArgs {
     shown: usize,
     /// Bounds of constituents named in --vary without them, NAME=LO:HI comma-separated.
     /// Default: α 0.005–0.3, tilt 2–40°, coverage 0.05–0.95, tio2 40–300 nm, thickness
-    /// 5–200 µm, a concentration from 0.1 to 4 times the start's.
+    /// 5–200 µm, base_thickness 5–60 µm, a concentration from 0.1 to 4 times the start's.
     #[arg(long)]
     bounds: Option<String>,
     /// The geometries matched: e2194 (45° illumination; aspecular 15, 25, 45, 75, 110°) or
@@ -136,12 +136,13 @@ pub struct SensitivityArgs {
     coating: PathBuf,
     /// The constituents to vary, comma-separated, each NAME or NAME=LO:HI; NAME as `coating
     /// study --vary` takes it: roughness (the top's α), tilt (°), coverage (0–1), tio2 (nm),
-    /// thickness (the coat's, µm), concentration:PIGMENT.
+    /// thickness (the coat's, µm), base_thickness (the Kubelka-Munk basecoat's, µm),
+    /// concentration:PIGMENT.
     #[arg(long)]
     vary: String,
     /// Bounds of constituents named in --vary without them, NAME=LO:HI comma-separated.
     /// Default: α 0.005–0.3, tilt 2–40°, coverage 0.05–0.95, tio2 40–300 nm, thickness
-    /// 5–200 µm, a concentration from 0.1 to 4 times the base's.
+    /// 5–200 µm, base_thickness 5–60 µm, a concentration from 0.1 to 4 times the base's.
     #[arg(long)]
     bounds: Option<String>,
     /// The readings to analyse, comma-separated: gu20, gu60, gu85 (ISO 2813 gloss, GU), haze
@@ -418,8 +419,14 @@ fn info(a: InfoArgs) -> Result<()> {
         ),
     }
     if let Some(f) = &coating.flakes {
+        use gonio_coating::basecoat::FlakeDepth;
+        let place = match f.depth {
+            None => "over the base".to_string(),
+            Some(FlakeDepth::Spread) => "spread through the basecoat".to_string(),
+            Some(FlakeDepth::Sheet(x)) => format!("in a sheet at {x} of the basecoat's depth"),
+        };
         println!(
-            "flakes: {} cover {:.0}% of the base, rms tilt {}°",
+            "flakes: {} cover {:.0}% of the base, rms tilt {}°, {place}",
             match f.pigment {
                 gonio_coating::flakes::FlakePigment::Metal { .. } => "metal",
                 gonio_coating::flakes::FlakePigment::Interference { .. } => "interference",

@@ -26,7 +26,6 @@
 //! surface reflection (the base is taken index-matched to the coat's binder).
 
 use crate::error::{CoatingError, Result};
-use crate::kubelka_munk::Coefficients;
 use gonio_brdf::fresnel::dielectric;
 use gonio_brdf::quadrature::gauss_legendre_on;
 use gonio_brdf::table::{BrdfTable, Channels, Provenance, Resolution, TableBuilder};
@@ -115,21 +114,8 @@ impl Base {
                 pigments,
                 thickness_um,
                 substrate,
-            } => {
-                let parts = pigments
-                    .iter()
-                    .map(|p| {
-                        Coefficients::new(
-                            p.k_per_um.value_at(wavelength_nm),
-                            p.s_per_um.value_at(wavelength_nm),
-                        )
-                        .map(|c| (p.concentration, c))
-                        .map_err(|e| CoatingError::Invalid(format!("pigment {}: {e}", p.name)))
-                    })
-                    .collect::<Result<Vec<_>>>()?;
-                Ok(Coefficients::mixture(&parts)?
-                    .reflectance(*thickness_um, substrate.value_at(wavelength_nm)))
-            }
+            } => Ok(crate::basecoat::mixture_at(pigments, wavelength_nm)?
+                .reflectance(*thickness_um, substrate.value_at(wavelength_nm))),
         }
     }
 }

@@ -32,6 +32,7 @@
 //! flakes at different depths in the coat, the edges of the flakes (diffraction and their
 //! sparkle), the flakes' own roughness.
 
+use crate::basecoat::FlakeDepth;
 use crate::error::{CoatingError, Result};
 use crate::thin_film::interference_flake;
 use glam::{DVec2, DVec3};
@@ -68,6 +69,9 @@ pub struct Flakes {
     /// ([`Flakes::DEFAULT_DIAMETER_UM`] unless given). The smooth BRDF does not depend on it;
     /// the renderer's discrete flakes (sparkle) do.
     pub diameter_um: f64,
+    /// Where the flakes lie in a Kubelka-Munk basecoat ([`crate::basecoat`]); `None`: at the
+    /// bottom of the clear coat, over the base (the flake layer of this module).
+    pub depth: Option<FlakeDepth>,
 }
 
 /// Aluminium's complex index at visible wavelengths: H.-J. Hagemann, W. Gudat & C. Kunz,
@@ -114,6 +118,9 @@ impl Flakes {
                  normals; 5–25° is usual)",
                 self.tilt_deg
             )));
+        }
+        if let Some(depth) = self.depth {
+            depth.check(self.coverage)?;
         }
         if let FlakePigment::Interference {
             tio2_nm,
@@ -553,6 +560,25 @@ impl FlakeLayer {
         for b in 0..nb {
             out[b] += scale * (r0[b] + t * (r1[b] - r0[b]));
         }
+    }
+
+    /// A flake's reflectance per band at the local cosine `cos_h` into `out`.
+    pub fn reflectances(&self, cos_h: f64, out: &mut [f64]) {
+        out.fill(0.0);
+        self.add_reflectance(cos_h, 1.0, out);
+    }
+
+    /// Whether the flakes transmit (interference flakes; metal ones do not).
+    pub fn transmits(&self) -> bool {
+        self.optics.iter().any(|o| o.t.iter().any(|&t| t > 0.0))
+    }
+
+    /// The flakes' transmittance in band `b` from a direction of cosine `mu` to the layer's
+    /// normal, averaged over the tilts that direction meets (T̃; 0 for metal).
+    pub fn tilted_transmittance(&self, b: usize, mu: f64) -> f64 {
+        self.optics
+            .get(b)
+            .map_or(0.0, |o| o.tilted_transmittance(mu))
     }
 
     /// A flake's own transmittance in band `b` at the local cosine `cos_h` (0 for metal).

@@ -52,11 +52,15 @@ pub struct Glint {
 }
 
 impl Glint {
-    /// The glint of `coating`'s flakes at `wavelengths_nm`; `None` without flakes.
+    /// The glint of `coating`'s flakes at `wavelengths_nm`; `None` without flakes; an error for
+    /// flakes inside the basecoat ([`crate::basecoat::glint_not_modelled`]).
     pub fn new(coating: &Coating, wavelengths_nm: &[f64]) -> Result<Option<Glint>> {
         let Some(flakes) = &coating.flakes else {
             return Ok(None);
         };
+        if flakes.depth.is_some() {
+            return Err(crate::basecoat::glint_not_modelled());
+        }
         coating.check(wavelengths_nm)?;
         let eta = coating.coat.index.at(550.0);
         let optics = wavelengths_nm

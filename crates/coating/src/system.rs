@@ -7,6 +7,7 @@
 //! is left out and said so in the provenance); with a rough top it holds everything the coating
 //! reflects.
 
+use crate::basecoat;
 use crate::cell::{self, CellWalks, luminance_weights};
 use crate::clear_coat::{self, AtWavelength, Base, ClearCoatOverBase, Coat};
 use crate::error::{CoatingError, Result};
@@ -132,6 +133,9 @@ impl Coating {
         }
         if let Some(f) = &self.flakes {
             f.check()?;
+            if f.depth.is_some() {
+                basecoat::layer_of(&self.base)?;
+            }
         }
         Ok(())
     }
@@ -169,6 +173,8 @@ impl Coating {
                     .collect::<Result<Vec<_>>>()?;
                 let bottom = match &self.flakes {
                     None => FlakeLayer::bare(rho),
+                    // Inside the basecoat the flakes are the basecoat walk's.
+                    Some(f) if f.depth.is_some() => FlakeLayer::bare(rho),
                     Some(f) => {
                         let optics = wl
                             .iter()
@@ -177,10 +183,18 @@ impl Coating {
                         FlakeLayer::new(f, optics, rho)
                     }
                 };
+                let basecoat = match &self.flakes {
+                    Some(f) => f
+                        .depth
+                        .map(|depth| basecoat::embedded(f, depth, &self.base, n, &wl))
+                        .transpose()?,
+                    None => None,
+                };
                 let walk = Walk {
                     top: Interface::new(n, self.roughness),
                     tau,
                     bottom,
+                    basecoat,
                 };
                 Ok((bands, walk))
             })
@@ -360,6 +374,10 @@ impl Coating {
             return Err(CoatingError::Invalid(
                 "samples: at least one random walk per cell is needed".into(),
             ));
+        }
+        let embedded = self.flakes.as_ref().is_some_and(|f| f.depth.is_some());
+        if glint_left_out && embedded {
+            return Err(basecoat::glint_not_modelled());
         }
         let mut evaluator = self.evaluator(wavelengths_nm)?;
         if glint_left_out && let Evaluator::Walks(groups) = &mut evaluator {

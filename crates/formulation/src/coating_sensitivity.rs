@@ -91,7 +91,8 @@ impl Varied {
     /// `--bounds`): a formulator's working range. The top's α 0.005–0.3 (a high-gloss to a satin
     /// clear coat: 60° gloss from about 90 to under 10 GU), flake tilt 2–40° (aligned to
     /// disordered), coverage 0.05–0.95, TiO2 40–300 nm (interference flakes' first orders
-    /// across the visible), coat thickness 5–200 µm, a pigment's concentration from a tenth to
+    /// across the visible), coat thickness 5–200 µm, basecoat thickness 5–60 µm (metallic
+    /// basecoats are about 12–20 µm dry, solid colours up to about 40), a pigment's concentration from a tenth to
     /// four times its value in `base` (0.001–1 when it is 0).
     pub fn default_bounds(constituent: &Constituent, base: &Coating) -> Result<(f64, f64)> {
         Ok(match constituent {
@@ -100,6 +101,7 @@ impl Varied {
             Constituent::FlakeCoverage => (0.05, 0.95),
             Constituent::Tio2 => (40.0, 300.0),
             Constituent::CoatThickness => (5.0, 200.0),
+            Constituent::BaseThickness => (5.0, 60.0),
             Constituent::Concentration(_) => {
                 let c = constituent.value(base)?;
                 if c > 0.0 {

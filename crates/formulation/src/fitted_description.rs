@@ -12,7 +12,7 @@ use toml_edit::{DocumentMut, InlineTable, Item, TableLike, Value};
 /// top's roughness α (`[top] roughness = { distribution, alpha }`; a roughness given as Sq and a
 /// correlation length or a height map becomes `alpha`, Beckmann's rms slope, as
 /// `Constituent::apply` reads it; 0 removes `[top]`, a smooth top), `[flakes]` `tilt_deg`,
-/// `coverage`, `tio2_nm`, `[coat] thickness_um`, or the `concentration` of the
+/// `coverage`, `tio2_nm`, `[coat] thickness_um`, `[base] thickness_um`, or the `concentration` of the
 /// `[[base.pigment]]` of that name. Errors name the field that is missing.
 pub fn with_values(text: &str, varied: &[Varied], values: &[f64]) -> Result<String> {
     let mut doc: DocumentMut = text
@@ -71,6 +71,13 @@ pub fn with_values(text: &str, varied: &[Varied], values: &[f64]) -> Result<Stri
                     .and_then(Item::as_table_like_mut)
                     .ok_or_else(|| missing("[flakes] table"))?;
                 set(flakes, key, value).ok_or_else(|| missing(&format!("flakes.{key}")))?;
+            }
+            Constituent::BaseThickness => {
+                let base = root
+                    .get_mut("base")
+                    .and_then(Item::as_table_like_mut)
+                    .ok_or_else(|| missing("[base] table"))?;
+                set(base, "thickness_um", value).ok_or_else(|| missing("base.thickness_um"))?;
             }
             Constituent::CoatThickness => {
                 let coat = root
@@ -216,6 +223,7 @@ mod tests {
             ("roughness=0:0.1", 0.07),
             ("roughness=0:0.1", 0.0),
             ("concentration:white=0:1", 0.25),
+            ("base_thickness=5:60", 12.5),
         ] {
             let v = varied(s);
             let text = with_values(rough, &v, &[x]).unwrap();

@@ -40,6 +40,9 @@ pub enum Constituent {
     Concentration(String),
     /// The clear coat's thickness, µm.
     CoatThickness,
+    /// The Kubelka-Munk basecoat's thickness, µm (with flakes inside it, `[flakes] depth`, the
+    /// layer that holds them).
+    BaseThickness,
 }
 
 impl Constituent {
@@ -51,12 +54,13 @@ impl Constituent {
             "coverage" => Constituent::FlakeCoverage,
             "tio2" => Constituent::Tio2,
             "thickness" => Constituent::CoatThickness,
+            "base_thickness" => Constituent::BaseThickness,
             _ => match s.strip_prefix("concentration:") {
                 Some(name) if !name.is_empty() => Constituent::Concentration(name.to_string()),
                 _ => {
                     return Err(InstrumentError::Invalid(format!(
-                        "'{s}': vary one of roughness, tilt, coverage, tio2, thickness or \
-                         concentration:NAME (a pigment of the base)"
+                        "'{s}': vary one of roughness, tilt, coverage, tio2, thickness, \
+                         base_thickness or concentration:NAME (a pigment of the base)"
                     )));
                 }
             },
@@ -72,6 +76,7 @@ impl Constituent {
             Constituent::Tio2 => "TiO2 thickness, nm".into(),
             Constituent::Concentration(name) => format!("concentration of {name}"),
             Constituent::CoatThickness => "coat thickness, µm".into(),
+            Constituent::BaseThickness => "basecoat thickness, µm".into(),
         }
     }
 
@@ -124,6 +129,10 @@ impl Constituent {
                 }
             },
             Constituent::CoatThickness => coating.coat.thickness_um,
+            Constituent::BaseThickness => match &coating.base {
+                Base::KubelkaMunk { thickness_um, .. } => *thickness_um,
+                Base::Diffuse { .. } => return Err(not_a_layer()),
+            },
         })
     }
 
@@ -180,9 +189,21 @@ impl Constituent {
                 }
             },
             Constituent::CoatThickness => c.coat.thickness_um = value,
+            Constituent::BaseThickness => match &mut c.base {
+                Base::KubelkaMunk { thickness_um, .. } => *thickness_um = value,
+                Base::Diffuse { .. } => return Err(not_a_layer()),
+            },
         }
         Ok(c)
     }
+}
+
+/// The error of `base_thickness` on a base that is not a Kubelka-Munk layer.
+fn not_a_layer() -> InstrumentError {
+    InstrumentError::Invalid(
+        "base_thickness: the base is not a Kubelka-Munk layer of pigments (kind = \"kubelka-munk\")"
+            .into(),
+    )
 }
 
 /// A coating as a gloss meter's specimen at one wavelength. The top interface's own reflection

@@ -5,7 +5,7 @@
 use serde_json::{Value, json};
 
 /// Each example's name (its file's stem) and text.
-pub const EXAMPLES: [(&str, &str); 9] = [
+pub const EXAMPLES: [(&str, &str); 10] = [
     (
         "silver_metallic",
         include_str!("../../../examples/coatings/silver_metallic.toml"),
@@ -37,6 +37,10 @@ pub const EXAMPLES: [(&str, &str); 9] = [
     (
         "cayman_start",
         include_str!("../../../examples/coatings/cayman_start.toml"),
+    ),
+    (
+        "blue_metallic_embedded",
+        include_str!("../../../examples/coatings/blue_metallic_embedded.toml"),
     ),
     (
         "cayman_tinted_start",

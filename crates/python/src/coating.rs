@@ -176,8 +176,8 @@ impl Coating {
     }
 
     /// A formulation study as JSON text (`gonio coating study --json`): `vary` (roughness, tilt,
-    /// coverage, tio2, thickness or concentration:NAME) at `values`, the multi-angle reading at
-    /// `standard`'s geometries with `samples` walks each, the gloss meter with a sixty-fourth.
+    /// coverage, tio2, thickness, base_thickness or concentration:NAME) at `values`, the
+    /// multi-angle reading at `standard`'s geometries with `samples` walks each, the gloss meter with a sixty-fourth.
     #[pyo3(signature = (vary, values, standard, samples))]
     fn study_json(
         &self,

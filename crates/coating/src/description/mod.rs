@@ -25,14 +25,19 @@
 //! # library = "phthalo_blue_green_shade" (a pigment of gonio's library, [`crate::pigment_library`])
 //! # and concentration (name optional: the library's name).
 //!
-//! [flakes]                        # optional: effect flakes at the bottom of the coat
+//! [flakes]                        # optional: effect flakes at the bottom of the coat, or in
+//!                                 # the basecoat (depth)
 //! kind = "aluminium"              # or "metal" (with n and k spectra) or "interference"
 //! coverage = 0.5                  # fraction of the base covered
 //! tilt_deg = 15                   # rms tilt of the flakes
 //! diameter_um = 20                # mean flake diameter (sparkle; default 20)
+//! # depth = 0.5                   # inside a kubelka-munk basecoat: one sheet at this fraction
+//! #                               # of its thickness below its top, or "spread" through it
+//! #                               # (crate::basecoat); left out, the flakes lie over the base
 //! # kind = "interference": tio2_nm, mica_nm (default 300), mica_index (default 1.58)
 //! ```
 
+use crate::basecoat::FlakeDepth;
 use crate::clear_coat::{Base, Coat, Dispersion, Pigment};
 use crate::error::{CoatingError, Result};
 use crate::flakes::{FlakePigment, Flakes, aluminium};
@@ -90,12 +95,16 @@ enum FlakeFields {
         tilt_deg: f64,
         #[serde(default = "default_diameter_um")]
         diameter_um: f64,
+        #[serde(default)]
+        depth: Option<DepthField>,
     },
     Metal {
         coverage: f64,
         tilt_deg: f64,
         #[serde(default = "default_diameter_um")]
         diameter_um: f64,
+        #[serde(default)]
+        depth: Option<DepthField>,
         n: SpectrumField,
         k: SpectrumField,
     },
@@ -104,12 +113,35 @@ enum FlakeFields {
         tilt_deg: f64,
         #[serde(default = "default_diameter_um")]
         diameter_um: f64,
+        #[serde(default)]
+        depth: Option<DepthField>,
         tio2_nm: f64,
         #[serde(default = "default_mica_nm")]
         mica_nm: f64,
         #[serde(default = "default_mica_index")]
         mica_index: f64,
     },
+}
+
+/// `[flakes] depth`: a fraction of the basecoat's thickness, or `"spread"`.
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum DepthField {
+    Fraction(f64),
+    Word(String),
+}
+
+impl DepthField {
+    fn depth(self) -> Result<FlakeDepth> {
+        match self {
+            DepthField::Fraction(f) => Ok(FlakeDepth::Sheet(f)),
+            DepthField::Word(w) if w == "spread" => Ok(FlakeDepth::Spread),
+            DepthField::Word(w) => Err(CoatingError::Invalid(format!(
+                "flakes.depth '{w}': a fraction of the basecoat's thickness from 0 (its top) to 1 \
+                 (the substrate), or \"spread\""
+            ))),
+        }
+    }
 }
 
 /// Mica platelets of pearlescent pigments are a few hundred nanometres thick.
@@ -274,6 +306,7 @@ fn flakes(f: FlakeFields) -> Result<Flakes> {
             coverage,
             tilt_deg,
             diameter_um,
+            depth,
         } => {
             let (n, k) = aluminium();
             Flakes {
@@ -281,12 +314,14 @@ fn flakes(f: FlakeFields) -> Result<Flakes> {
                 coverage,
                 tilt_deg,
                 diameter_um,
+                depth: depth.map(DepthField::depth).transpose()?,
             }
         }
         FlakeFields::Metal {
             coverage,
             tilt_deg,
             diameter_um,
+            depth,
             n,
             k,
         } => Flakes {
@@ -297,11 +332,13 @@ fn flakes(f: FlakeFields) -> Result<Flakes> {
             coverage,
             tilt_deg,
             diameter_um,
+            depth: depth.map(DepthField::depth).transpose()?,
         },
         FlakeFields::Interference {
             coverage,
             tilt_deg,
             diameter_um,
+            depth,
             tio2_nm,
             mica_nm,
             mica_index,
@@ -314,6 +351,7 @@ fn flakes(f: FlakeFields) -> Result<Flakes> {
             coverage,
             tilt_deg,
             diameter_um,
+            depth: depth.map(DepthField::depth).transpose()?,
         },
     })
 }

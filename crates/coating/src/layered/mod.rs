@@ -42,10 +42,12 @@
 //! All bands of one walk share the directions (the coat's index is the same for them); their
 //! throughputs differ through the absorption, the flakes' optics and the base.
 
+mod basecoat;
 mod stream;
 
 use crate::flakes::FlakeLayer;
 use crate::interface::{Interface, Lobes, Sample, Transport};
+pub use basecoat::{Basecoat, EmbeddedFlakes};
 use glam::DVec3;
 use stream::Stream;
 
@@ -56,6 +58,9 @@ pub struct Walk {
     /// σ d per band: the coat's optical thickness at normal incidence.
     pub tau: Vec<f64>,
     pub bottom: FlakeLayer,
+    /// A pigmented basecoat holding the flakes under the clear coat: when present, the walk
+    /// goes through it ([`Basecoat`]) and `bottom` is not used.
+    pub basecoat: Option<Basecoat>,
 }
 
 /// Scratch space for one thread's walks.
@@ -71,6 +76,8 @@ pub struct Scratch {
     carried: Vec<f64>,
     /// The flakes' lobe at a single visit, left out of the estimate without the glint.
     lobe: Vec<f64>,
+    /// The basecoat's walk.
+    basecoat: basecoat::Buffers,
 }
 
 /// A visit of the flake layer by the light's walk ([`Walk::light_walk`]): the light arrives
@@ -390,6 +397,15 @@ impl Walk {
         sums: &mut [f64],
         mut tally: Option<(&[f64], &mut [f64])>,
     ) {
+        if let Some(basecoat) = &self.basecoat {
+            let events = if max_depth == Self::MAX_DEPTH {
+                Basecoat::MAX_EVENTS
+            } else {
+                max_depth
+            };
+            basecoat.add_walks(self, wo, wi, walks, seed, events, scratch, sums, tally);
+            return;
+        }
         let nb = self.bands();
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return;

@@ -25,6 +25,7 @@ fn bare(n: f64, roughness: Option<Microfacet>, tau: &[f64], rho: &[f64]) -> Walk
         top: Interface::new(n, roughness),
         tau: tau.to_vec(),
         bottom: FlakeLayer::bare(rho.to_vec()),
+        basecoat: None,
     }
 }
 
@@ -160,12 +161,14 @@ fn an_index_matched_top_shows_the_flake_layer() {
         coverage: 0.5,
         tilt_deg: 10.0,
         diameter_um: Flakes::DEFAULT_DIAMETER_UM,
+        depth: None,
     };
     let layer = FlakeLayer::new(&flakes, vec![flakes.optics(1.0, 550.0).unwrap()], vec![0.4]);
     let walk = Walk {
         top: Interface::new(1.0, None),
         tau: vec![0.0],
         bottom: layer.clone(),
+        basecoat: None,
     };
     let mut scratch = Scratch::default();
     for (wi, wo) in [
@@ -195,12 +198,14 @@ fn reciprocal() {
         coverage: 0.5,
         tilt_deg: 10.0,
         diameter_um: Flakes::DEFAULT_DIAMETER_UM,
+        depth: None,
     };
     let n = 1.5;
     let walk = Walk {
         top: Interface::new(n, Some(Microfacet::ggx(0.1))),
         tau: vec![0.05],
         bottom: FlakeLayer::new(&flakes, vec![flakes.optics(n, 550.0).unwrap()], vec![0.3]),
+        basecoat: None,
     };
     for (a, b) in [
         (dir(20.0, 0.0), dir(50.0, 150.0)),

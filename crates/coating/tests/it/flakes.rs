@@ -19,6 +19,7 @@ fn pearl(tio2_nm: f64) -> Flakes {
         coverage: 0.6,
         tilt_deg: 12.0,
         diameter_um: Flakes::DEFAULT_DIAMETER_UM,
+        depth: None,
     }
 }
 
@@ -31,6 +32,7 @@ fn tabulation_follows_the_formulas() {
         coverage: 0.5,
         tilt_deg: 10.0,
         diameter_um: Flakes::DEFAULT_DIAMETER_UM,
+        depth: None,
     };
     let al = metal.optics(1.5, 550.0).unwrap();
     let index = Complex64::new(aluminium().0.value_at(550.0), aluminium().1.value_at(550.0)) / 1.5;

@@ -9,6 +9,7 @@
 //! function its tests reach, where these link the library's compiled copy. One test binary per
 //! crate (one link instead of one per file); each module is one subject.
 
+mod basecoat;
 mod clear_coat;
 mod flakes;
 mod glint;
@@ -20,3 +21,4 @@ mod system;
 mod thin_film;
 mod tmm_oracle;
 mod walk_brute_force;
+mod walk_brute_force_basecoat;

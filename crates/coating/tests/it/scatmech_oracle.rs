@@ -86,6 +86,7 @@ fn flakes_under_a_smooth_coat_agree_with_scatmech() {
             coverage: 1.0,
             tilt_deg,
             diameter_um: Flakes::DEFAULT_DIAMETER_UM,
+            depth: None,
         };
         let slope = f64::tan(tilt_deg.to_radians());
         let walk = Walk {
@@ -96,6 +97,7 @@ fn flakes_under_a_smooth_coat_agree_with_scatmech() {
                 vec![flakes.optics(binder, lambda_nm).unwrap()],
                 vec![0.0],
             ),
+            basecoat: None,
         };
         let input = serde_json::json!({
             "lambda_um": lambda_nm / 1000.0, "n": n, "k": k, "overcoat": binder,

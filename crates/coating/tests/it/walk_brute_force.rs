@@ -68,7 +68,7 @@ use std::f64::consts::{FRAC_1_SQRT_2, PI};
 
 /// The complementary error function, W. H. Press et al., *Numerical Recipes* (2nd ed., §6.2,
 /// `erfcc`): a Chebyshev fit with fractional error below 1.2e-7 everywhere.
-fn erfc(x: f64) -> f64 {
+pub(crate) fn erfc(x: f64) -> f64 {
     let z = x.abs();
     let t = 1.0 / (1.0 + 0.5 * z);
     let poly = -z * z - 1.265_512_23
@@ -87,15 +87,15 @@ fn erfc(x: f64) -> f64 {
 /// a rough one, a coat of optical thickness `tau`, metal flakes covering `coverage` of a
 /// Lambertian base of reflectance `rho`, their normals Beckmann of rms slope `slope`.
 #[derive(Clone)]
-struct Stack {
-    n: f64,
-    tau: f64,
-    rough: Option<Interface>,
-    coverage: f64,
+pub(crate) struct Stack {
+    pub(crate) n: f64,
+    pub(crate) tau: f64,
+    pub(crate) rough: Option<Interface>,
+    pub(crate) coverage: f64,
     slope: f64,
     /// The flakes' index relative to the binder.
     metal: Complex64,
-    rho: f64,
+    pub(crate) rho: f64,
     /// False for a mutant that loses the light the top's underside totally reflects.
     tir: bool,
 }
@@ -105,7 +105,7 @@ impl Stack {
     /// slope²/2 each and h ∝ (−x, −y, 1), `D(h) cos θh dω_h` is the slopes' density and
     /// `w·h / cos θh = μ − s` with `s = −(x w.x + y w.y) ~ N(0, σ²)`, `σ = slope sin θ/√2`, so
     /// `N = E[max(0, μ − s)] = μ Φ(μ/σ) + σ φ(μ/σ)`.
-    fn projected_area(&self, w: DVec3) -> f64 {
+    pub(crate) fn projected_area(&self, w: DVec3) -> f64 {
         let mu = w.z;
         let sigma = self.slope * (w.x * w.x + w.y * w.y).sqrt() * FRAC_1_SQRT_2;
         if sigma < 1e-12 {
@@ -116,7 +116,7 @@ impl Stack {
     }
 
     /// The coat's transmittance along `d`.
-    fn across(&self, d: DVec3) -> f64 {
+    pub(crate) fn across(&self, d: DVec3) -> f64 {
         if self.tau > 0.0 {
             (-self.tau / d.z.abs()).exp()
         } else {
@@ -127,7 +127,7 @@ impl Stack {
     /// A flake met from direction `w` (pointing away from the flake's face, w.z > 0): its
     /// normal drawn from `D(h) cos θh` and the weight that turns that into the projected area
     /// w meets, `D(h) max(0, w·h)/N(w)`; None for a flake w sees edge-on or from behind.
-    fn meet_flake(&self, rng: &mut Pcg64Mcg, w: DVec3) -> Option<(DVec3, f64)> {
+    pub(crate) fn meet_flake(&self, rng: &mut Pcg64Mcg, w: DVec3) -> Option<(DVec3, f64)> {
         let (u1, u2): (f64, f64) = (rng.random(), rng.random());
         let r = self.slope * (-(1.0 - u1).ln()).sqrt();
         let phi = 2.0 * PI * u2;
@@ -137,14 +137,14 @@ impl Stack {
     }
 
     /// The flake's reflectance at the local cosine `c`.
-    fn reflectance(&self, c: f64) -> f64 {
+    pub(crate) fn reflectance(&self, c: f64) -> f64 {
         polarised(c, self.metal).unpolarised()
     }
 
     /// One photon arriving from `wi`; `escape` receives the direction and weight of what
     /// leaves after having been inside the coat (the top's own reflection is not counted: the
     /// walks' `eval_body` leaves it out too).
-    fn trace(&self, wi: DVec3, rng: &mut Pcg64Mcg, escape: &mut impl FnMut(DVec3, f64)) {
+    fn trace(&self, wi: DVec3, rng: &mut Pcg64Mcg, escape: &mut dyn FnMut(DVec3, f64)) {
         let (mut weight, mut d) = match &self.rough {
             None => (1.0 - dielectric(wi.z, self.n), snell(-wi, self.n)),
             Some(top) => {
@@ -231,9 +231,21 @@ impl Stack {
     }
 }
 
+/// A photon simulation: one photon from `wi`, what escapes after having been inside the coat
+/// into `escape` (direction, weight).
+pub(crate) trait Photon {
+    fn photon(&self, wi: DVec3, rng: &mut Pcg64Mcg, escape: &mut dyn FnMut(DVec3, f64));
+}
+
+impl Photon for Stack {
+    fn photon(&self, wi: DVec3, rng: &mut Pcg64Mcg, escape: &mut dyn FnMut(DVec3, f64)) {
+        self.trace(wi, rng, escape);
+    }
+}
+
 /// Snell's law at a horizontal interface: `d` (travelling) entering a medium of index `eta`
 /// relative to the one it leaves; the caller has checked that it is not totally reflected.
-fn snell(d: DVec3, eta: f64) -> DVec3 {
+pub(crate) fn snell(d: DVec3, eta: f64) -> DVec3 {
     let (x, y) = (d.x / eta, d.y / eta);
     let z = (1.0 - x * x - y * y).max(0.0).sqrt();
     DVec3::new(x, y, z.copysign(d.z))
@@ -241,7 +253,7 @@ fn snell(d: DVec3, eta: f64) -> DVec3 {
 
 /// The in-plane direction at signed polar angle `deg` (positive towards +x, where the light
 /// comes from).
-fn in_plane(deg: f64) -> DVec3 {
+pub(crate) fn in_plane(deg: f64) -> DVec3 {
     let t = deg.to_radians();
     DVec3::new(t.sin(), 0.0, t.cos())
 }
@@ -249,7 +261,7 @@ fn in_plane(deg: f64) -> DVec3 {
 /// A direction drawn uniformly over the cap of half-angle `delta` about `axis`, with the
 /// weight `cos θ / (cos θa (1 + cos δ)/2)` that makes the mean of `f × weight` the cap's
 /// projected-solid-angle average of f.
-fn in_cone(axis: DVec3, delta: f64, u: DVec2) -> (DVec3, f64) {
+pub(crate) fn in_cone(axis: DVec3, delta: f64, u: DVec2) -> (DVec3, f64) {
     let cos_t = 1.0 - u.x * (1.0 - delta.cos());
     let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
     let phi = 2.0 * PI * u.y;
@@ -261,15 +273,21 @@ fn in_cone(axis: DVec3, delta: f64, u: DVec2) -> (DVec3, f64) {
 
 /// Mean and standard error.
 #[derive(Clone, Copy, Debug)]
-struct Estimate {
-    mean: f64,
-    se: f64,
+pub(crate) struct Estimate {
+    pub(crate) mean: f64,
+    pub(crate) se: f64,
 }
 
 /// The photons' estimate of the BRDF averaged over the cones of half-angle `delta` about
 /// `views`, for light from `wi`: `photons` photons in 64 chunks of their own random streams
 /// (the sum does not depend on the thread count).
-fn photons(stack: &Stack, wi: DVec3, views: &[DVec3], delta: f64, photons: usize) -> Vec<Estimate> {
+pub(crate) fn photons(
+    stack: &(impl Photon + Sync),
+    wi: DVec3,
+    views: &[DVec3],
+    delta: f64,
+    photons: usize,
+) -> Vec<Estimate> {
     let cos_delta = delta.cos();
     let chunks = 64;
     let per = photons / chunks;
@@ -279,7 +297,7 @@ fn photons(stack: &Stack, wi: DVec3, views: &[DVec3], delta: f64, photons: usize
             let mut rng = Pcg64Mcg::seed_from_u64(1_000 + c as u64);
             let mut t = vec![(0.0, 0.0); views.len()];
             for _ in 0..per {
-                stack.trace(wi, &mut rng, &mut |e, w| {
+                stack.photon(wi, &mut rng, &mut |e, w| {
                     for (k, a) in views.iter().enumerate() {
                         if e.dot(*a) >= cos_delta {
                             t[k].0 += w;
@@ -312,7 +330,7 @@ fn photons(stack: &Stack, wi: DVec3, views: &[DVec3], delta: f64, photons: usize
 
 /// The walks' estimate of the same averages: `batches` batches of `per_batch` walks, each
 /// walk with its own `wo` drawn over the cone ([`in_cone`]) and its own random stream.
-fn walks(
+pub(crate) fn walks(
     walk: &Walk,
     wi: DVec3,
     views: &[DVec3],
@@ -351,7 +369,7 @@ fn walks(
 }
 
 /// The deviations of the photons from the walks in joint standard errors, printed.
-fn compare(
+pub(crate) fn compare(
     what: &str,
     ti: f64,
     views: &[f64],
@@ -380,7 +398,7 @@ fn compare(
 /// Aluminium flakes (Hagemann et al.'s index at 550 nm) covering `coverage` of a base of
 /// reflectance `rho`, tilt `tilt_deg`, in a binder of index n under `top`, as the photons and
 /// as the walk.
-fn system(
+pub(crate) fn system(
     top: Option<Microfacet>,
     tau: f64,
     coverage: f64,
@@ -397,6 +415,7 @@ fn system(
         coverage,
         tilt_deg,
         diameter_um: Flakes::DEFAULT_DIAMETER_UM,
+        depth: None,
     };
     let interface = Interface::new(n, top);
     let stack = Stack {
@@ -413,6 +432,7 @@ fn system(
         top: interface,
         tau: vec![tau],
         bottom: FlakeLayer::new(&flakes, vec![flakes.optics(n, lambda).unwrap()], vec![rho]),
+        basecoat: None,
     };
     (stack, walk)
 }

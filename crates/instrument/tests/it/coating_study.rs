@@ -108,3 +108,19 @@ mod slow {
         assert!((far[0] - far[2]).abs() < 1.0, "{far:?}");
     }
 }
+
+/// `base_thickness` reads and sets the Kubelka-Munk basecoat's thickness, and is refused on a
+/// diffuse base. Fails before the constituent existed (`parse` refused the name).
+#[test]
+fn base_thickness_is_the_basecoats() {
+    let text = "[coat]\nindex = 1.5\nthickness_um = 40\n[base]\nkind = \"kubelka-munk\"\n\
+                thickness_um = 15\nsubstrate = 0.3\n[[base.pigment]]\n\
+                library = \"phthalo_blue_green_shade\"\nconcentration = 0.2\n";
+    let coating = gonio_coating::description::parse(text, &[450.0, 550.0]).unwrap();
+    let c = Constituent::parse("base_thickness").unwrap();
+    assert_eq!(c.value(&coating).unwrap(), 15.0);
+    let thicker = c.apply(&coating, 25.0).unwrap();
+    assert_eq!(c.value(&thicker).unwrap(), 25.0);
+    assert_eq!(thicker.coat, coating.coat);
+    assert!(c.apply(&red("1.5", ""), 10.0).is_err());
+}
