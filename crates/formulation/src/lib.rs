@@ -21,5 +21,6 @@ pub mod search;
 pub mod sensitivity;
 pub mod sensitivity_report;
 pub mod target;
+pub mod watch;
 
 pub use error::{FormulationError, Result};

@@ -35,6 +35,8 @@ use gonio_coating::system::Coating;
 use gonio_instrument::gloss::GlossReport;
 use gonio_instrument::multiangle::{Geometry, MultiangleReading};
 use gonio_instrument::multiangle_target::Target;
+use crate::watch::{Progress, Watch};
+use std::cell::Cell;
 use std::time::Instant;
 
 /// How a match reads each formulation and searches.
@@ -169,18 +171,18 @@ pub fn objective(
     Reader::new(start, varied, target, gloss, settings).objective(x)
 }
 
-/// Find the values of `varied` (within their bounds) that bring `start` closest to `target`
-/// (and to the `gloss` readings), reading each formulation with `settings`. `progress` gets a
-/// line per run and about every 10 s.
-pub fn run(
+/// Check a match before it reads anything: at least one constituent, none twice, each one's
+/// bounds increasing and valid for `start` ([`Varied::check`]), a start and an iteration for the
+/// search, a non-negative gloss weight, and for the spectral objective a target with spectra and
+/// no gloss readings. [`run`] makes these checks first; a front end calls this to refuse a bad
+/// request at once.
+pub fn check(
     start: &Coating,
     target: &Target,
     gloss: &[GlossTarget],
     varied: &[Varied],
     settings: &Settings,
-    progress: &mut dyn FnMut(&str),
-) -> Result<Match> {
-    let clock = Instant::now();
+) -> Result<()> {
     if varied.is_empty() {
         return Err(FormulationError::Invalid(
             "a match needs at least one constituent to vary".into(),
@@ -202,6 +204,13 @@ pub fn run(
             settings.gloss_weight
         )));
     }
+    if settings.starts == 0 || settings.iterations == 0 || settings.walks == 0 {
+        return Err(FormulationError::Invalid(format!(
+            "a match needs at least one start, one iteration and one walk per geometry ({} \
+             starts, {} iterations, {} walks)",
+            settings.starts, settings.iterations, settings.walks
+        )));
+    }
     for (i, v) in varied.iter().enumerate() {
         if varied[..i].iter().any(|w| w.constituent == v.constituent) {
             return Err(FormulationError::Invalid(format!(
@@ -211,6 +220,45 @@ pub fn run(
         }
         v.check(start, &settings.wavelengths_nm)?;
     }
+    Ok(())
+}
+
+/// Find the values of `varied` (within their bounds) that bring `start` closest to `target`
+/// (and to the `gloss` readings), reading each formulation with `settings`. `progress` gets a
+/// line per run and about every 10 s.
+pub fn run(
+    start: &Coating,
+    target: &Target,
+    gloss: &[GlossTarget],
+    varied: &[Varied],
+    settings: &Settings,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Match> {
+    run_watched(
+        start,
+        target,
+        gloss,
+        varied,
+        settings,
+        Watch::default(),
+        progress,
+    )
+}
+
+/// [`run`] under `watch`: told the readings made and the lowest objective after every reading
+/// of the search, and stopped (`InstrumentError::Cancelled`) before the next reading once its
+/// flag is raised.
+pub fn run_watched(
+    start: &Coating,
+    target: &Target,
+    gloss: &[GlossTarget],
+    varied: &[Varied],
+    settings: &Settings,
+    watch: Watch,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Match> {
+    let clock = Instant::now();
+    check(start, target, gloss, varied, settings)?;
     let reader = Reader::new(start, varied, target, gloss, settings);
     let x0: Vec<f64> = varied
         .iter()
@@ -221,14 +269,28 @@ pub fn run(
         iterations: settings.iterations,
         tolerance: settings.tolerance * settings.objective.per_de00(),
     };
+    let (readings, best) = (Cell::new(0), Cell::new(f64::INFINITY));
+    let watched = |x: &[f64]| {
+        watch.check()?;
+        let f = reader.objective(x)?;
+        readings.set(readings.get() + 1);
+        best.set(best.get().min(f));
+        watch.report(Progress {
+            readings: readings.get(),
+            total: None,
+            best: Some(best.get()),
+        });
+        Ok(f)
+    };
     let runs = minimise(
         varied,
         &x0,
         &search,
-        &|x| reader.objective(x),
+        &watched,
         &|x| reader.describe(x),
         progress,
     )?;
+    watch.check()?;
     let mut evaluations: usize = runs.iter().map(|r| r.evaluations).sum();
     let best = best_run(&runs);
     let fitted_x: Vec<f64> = varied
