@@ -24,11 +24,11 @@ use crate::error::{FormulationError, Result};
 use crate::sensitivity::morris::{self, MorrisEffects};
 use crate::sensitivity::sobol::{self, SobolIndices};
 use crate::sensitivity::{self, Input, Problem};
+use crate::watch::{Progress, Watch};
 use gonio_coating::system::Coating;
 use gonio_instrument::coating_study::{self, Constituent, Reading};
 use gonio_instrument::multiangle::{E2194, Geometry};
 use ndarray::Array2;
-use crate::watch::{Progress, Watch};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 

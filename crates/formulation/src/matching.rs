@@ -31,11 +31,11 @@ use crate::match_reader::Reader;
 pub use crate::search::Run;
 use crate::search::{Search, best_run, minimise};
 use crate::target::GlossTarget;
+use crate::watch::{Progress, Watch};
 use gonio_coating::system::Coating;
 use gonio_instrument::gloss::GlossReport;
 use gonio_instrument::multiangle::{Geometry, MultiangleReading};
 use gonio_instrument::multiangle_target::Target;
-use crate::watch::{Progress, Watch};
 use std::cell::Cell;
 use std::time::Instant;
 

@@ -226,7 +226,13 @@ impl MatchPlan {
             watch,
             line,
         )
-        .map_err(|e| if cancelled() { ApiError::Cancelled } else { bad(e) })?;
+        .map_err(|e| {
+            if cancelled() {
+                ApiError::Cancelled
+            } else {
+                bad(e)
+            }
+        })?;
         let toml = gonio_formulation::fitted_description::with_values(
             &self.text,
             &self.varied,

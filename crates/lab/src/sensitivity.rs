@@ -75,8 +75,8 @@ impl SensitivityRequest {
                 .collect::<Result<Vec<_>, _>>()?,
             None => Output::all(geometries),
         };
-        let method = Method::parse(self.method.as_deref().unwrap_or("morris"), self.samples)
-            .map_err(bad)?;
+        let method =
+            Method::parse(self.method.as_deref().unwrap_or("morris"), self.samples).map_err(bad)?;
         let defaults = Settings::default();
         let settings = Settings {
             geometries: geometries.to_vec(),
@@ -86,7 +86,9 @@ impl SensitivityRequest {
         };
         let threshold = self.threshold.unwrap_or(THRESHOLD);
         if !(threshold.is_finite() && threshold > 0.0 && threshold < 1.0) {
-            return Err(bad(format!("threshold {threshold}: a number between 0 and 1")));
+            return Err(bad(format!(
+                "threshold {threshold}: a number between 0 and 1"
+            )));
         }
         coating_sensitivity::check(&coating, &varied, &outputs, method, &settings).map_err(bad)?;
         Ok(SensitivityPlan {
@@ -113,7 +115,13 @@ impl SensitivityPlan {
             &self.settings,
             watch,
         )
-        .map_err(|e| if cancelled() { ApiError::Cancelled } else { bad(e) })?;
+        .map_err(|e| {
+            if cancelled() {
+                ApiError::Cancelled
+            } else {
+                bad(e)
+            }
+        })?;
         let mut value = s.to_json(&self.varied, self.threshold);
         value["words"] = self.outputs.iter().map(|o| json!(o.words())).collect();
         Ok(value)
