@@ -871,7 +871,7 @@ function showMatch(m) {
   const values = el('table', { class: 'numbers', id: 'match-values' },
     el('tr', {}, el('th', {}, 'constituent'), el('th', {}, 'start'), el('th', {}, 'fitted'), el('th', {}, 'σ (1 sd)'), el('th', {}, 'bounds')),
     ...m.constituents.map((c) => el('tr', { title: c.at_bound ? 'at a bound: σ describes a constrained value; widen the bounds' : '' },
-      el('td', {}, c.name), el('td', {}, String(round(c.start))), el('td', {}, String(round(c.fitted)) + (c.at_bound ? ' (at a bound)' : '')),
+      el('td', {}, c.name), el('td', {}, String(round(c.start))), el('td', {}, String(round(c.fitted)), ...(c.at_bound ? [el('br'), el('span', { class: 'unit' }, 'at a bound')] : [])),
       el('td', {}, sd(c)), el('td', {}, `${round(c.lo)} – ${round(c.hi)}`))));
   $('match-result').replaceChildren(
     el('div', { class: 'verdict' }, `Mean ΔE00 ${fmt(m.mean_de00_start, 2)} → ${fmt(m.mean_de00_fitted, 2)} at the ${m.standard} geometries the target has (${m.objective} objective; residual sd ${fmt(m.residual_sd, 2)}).`),
@@ -898,8 +898,16 @@ async function startSensitivity() {
 // Two significant figures, an exponent below 0.01.
 const short = (v) => !Number.isFinite(v) ? '–' : v === 0 ? '0' : Math.abs(v) < 0.01 ? v.toExponential(0) : String(Number(v.toPrecision(2)));
 const PALETTE = ['#1f5fa8', '#b5561c', '#2e8540', '#8a3ea8', '#b0931c', '#1c9aa0', '#a8324a', '#555555'];
+let lastSensitivity = null;
 function showSensitivity(s) {
+  lastSensitivity = s;
   $('sens-summary').textContent = s.summary;
+  drawSensitivity(s);
+}
+
+// Drawn at the chart's own width in pixels (its text stays legible in a narrow window), again
+// whenever that width changes.
+function drawSensitivity(s) {
   const svg = $('sens-chart');
   svg.removeAttribute('hidden');
   const NS = 'http://www.w3.org/2000/svg';
@@ -961,6 +969,11 @@ function showSensitivity(s) {
 }
 
 function startPanels() {
+  let drawnWidth = 0;
+  new ResizeObserver(() => {
+    const w = $('sens-chart').clientWidth;
+    if (lastSensitivity && w && Math.abs(w - drawnWidth) > 1) { drawnWidth = w; drawSensitivity(lastSensitivity); }
+  }).observe($('sensitivity-card'));
   $('match-run').addEventListener('click', startMatch);
   $('sens-run').addEventListener('click', startSensitivity);
   $('sens-method').addEventListener('change', () => {

@@ -12,3 +12,4 @@ mod salib;
 mod search;
 mod sensitivity;
 mod spectral_matching;
+mod watch;
