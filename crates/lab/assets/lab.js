@@ -895,8 +895,8 @@ async function startSensitivity() {
 // The chart: for each reading, one bar per constituent. Morris: μ* over the largest μ* of that
 // reading (so that readings in GU and in L* share one axis), the figure μ* ± its 95% interval in
 // the reading's units; Sobol: the total index ST ± its 95% interval.
-// Two significant figures, an exponent below 0.01.
-const short = (v) => !Number.isFinite(v) ? '–' : v === 0 ? '0' : Math.abs(v) < 0.01 ? v.toExponential(0) : String(Number(v.toPrecision(2)));
+// Three significant figures, an exponent below 0.01.
+const short = (v) => !Number.isFinite(v) ? '–' : v === 0 ? '0' : Math.abs(v) < 0.01 ? v.toExponential(0) : String(Number(v.toPrecision(3)));
 const PALETTE = ['#1f5fa8', '#b5561c', '#2e8540', '#8a3ea8', '#b0931c', '#1c9aa0', '#a8324a', '#555555'];
 let lastSensitivity = null;
 function showSensitivity(s) {
@@ -933,8 +933,10 @@ function drawSensitivity(s) {
     lx += w + 10;
   });
   let y = ly + 14;
-  svg.append(make('text', { x: x0, y, class: 'chart-note' }, morris ? 'bar: μ* ÷ the largest μ* of the reading; figure: μ* ± 95% in the reading\'s units' : 'bar: total Sobol index ST; figure: ST ± 95%'));
-  y += 10;
+  $('sens-note').textContent = morris
+    ? 'Each bar: μ* divided by the largest μ* of that reading (readings in GU and in L* share one axis), its 95% interval as a whisker; beside it μ* ± that interval in the reading\'s own units.'
+    : 'Each bar: the total Sobol index ST, its 95% interval as a whisker; beside it ST ± that interval.';
+  y -= 4;
   const X = (v) => x0 + Math.max(0, Math.min(1.1, v)) / 1.1 * (x1 - x0);
   s.outputs.forEach((o, k) => {
     const idx = o.indices;
@@ -961,7 +963,7 @@ function drawSensitivity(s) {
   });
   // The axis: 0 and 1 (the largest μ*, or ST = 1).
   for (const t of [0, 0.5, 1]) {
-    svg.append(make('line', { x1: X(t), x2: X(t), y1: ly + 28, y2: y, class: 'grid' }));
+    svg.append(make('line', { x1: X(t), x2: X(t), y1: ly + 12, y2: y, class: 'grid' }));
     svg.append(make('text', { x: X(t), y: y + 12, 'text-anchor': 'middle' }, String(t)));
   }
   svg.setAttribute('viewBox', `0 0 ${W} ${y + 18}`);

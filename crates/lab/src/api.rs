@@ -442,8 +442,8 @@ async fn start_match(
     raw: Result<Bytes, BytesRejection>,
 ) -> Result<(StatusCode, axum::Json<Value>), ApiError> {
     let request: MatchRequest = parse(raw, &lab)?;
-    lab.uploaded(UploadKind::Target, &request.target)?;
     let plan = request.plan(|f| coating_of(&lab, f))?;
+    lab.uploaded(UploadKind::Target, &request.target)?;
     let target = run(&lab.clone(), Cancel::new(), {
         let (lab, id, options) = (lab.clone(), request.target.clone(), plan.options.clone());
         move |cancel| lab.target(&id, &options, cancel)
