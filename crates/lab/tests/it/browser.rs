@@ -122,8 +122,10 @@ mod slow {
             "{de:?}"
         );
         let values = rows("match_values_rows");
-        assert_eq!(values.len(), 5, "{values:?}");
-        assert!(values.iter().any(|r| r.contains('±')), "{values:?}");
+        // A head and the three constituents, with a σ column (a dash where Gauss–Newton cannot
+        // give one: here the coverage ends at its bound after 3 iterations).
+        assert_eq!(values.len(), 4, "{values:?}");
+        assert!(values[0].contains("σ (1 sd)"), "{values:?}");
         assert_ne!(
             seen["coverage_before"], seen["coverage_after"],
             "the form was not filled"

@@ -175,7 +175,7 @@ fn bad_requests_are_refused_with_their_reason() {
                          "vary": [{"name": "concentration:phthalo_bleu"}],
                          "pigments": {"from": "library", "names": ["phthalo_bleu"]}}),
             400,
-            "did you mean 'phthalo_blue",
+            "'phthalo_bleu' is not a pigment of gonio's library",
         ),
         (
             "match",
