@@ -871,7 +871,7 @@ function showMatch(m) {
   const values = el('table', { class: 'numbers', id: 'match-values' },
     el('tr', {}, el('th', {}, 'constituent'), el('th', {}, 'start'), el('th', {}, 'fitted'), el('th', {}, 'σ (1 sd)'), el('th', {}, 'bounds')),
     ...m.constituents.map((c) => el('tr', { title: c.at_bound ? 'at a bound: σ describes a constrained value; widen the bounds' : '' },
-      el('td', {}, c.name), el('td', {}, String(round(c.start))), el('td', {}, String(round(c.fitted)), ...(c.at_bound ? [el('br'), el('span', { class: 'unit' }, 'at a bound')] : [])),
+      el('td', {}, ...c.name.split(':').flatMap((part, i) => i ? [':', el('wbr'), part] : [part])), el('td', {}, String(round(c.start))), el('td', {}, String(round(c.fitted)), ...(c.at_bound ? [el('br'), el('span', { class: 'unit' }, 'at a bound')] : [])),
       el('td', {}, sd(c)), el('td', {}, `${round(c.lo)} – ${round(c.hi)}`))));
   $('match-result').replaceChildren(
     el('div', { class: 'verdict' }, `Mean ΔE00 ${fmt(m.mean_de00_start, 2)} → ${fmt(m.mean_de00_fitted, 2)} at the ${m.standard} geometries the target has (${m.objective} objective; residual sd ${fmt(m.residual_sd, 2)}).`),
