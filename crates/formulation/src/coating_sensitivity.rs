@@ -24,11 +24,13 @@ use crate::error::{FormulationError, Result};
 use crate::sensitivity::morris::{self, MorrisEffects};
 use crate::sensitivity::sobol::{self, SobolIndices};
 use crate::sensitivity::{self, Input, Problem};
+use crate::watch::{Progress, Watch};
 use gonio_coating::system::Coating;
 use gonio_instrument::coating_study::{self, Constituent, Reading};
 use gonio_instrument::multiangle::{E2194, Geometry};
 use ndarray::Array2;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// One varied constituent and its bounds.
 #[derive(Clone, Debug, PartialEq)]
@@ -111,6 +113,35 @@ impl Varied {
                 }
             }
         })
+    }
+
+    /// Every constituent `base` has, named as [`Constituent::parse`] reads it, with its
+    /// [`Varied::default_bounds`]: the top's roughness and the coat's thickness, the flakes'
+    /// tilt and coverage (with flakes), the TiO2 thickness (interference flakes) and each
+    /// pigment's concentration (a Kubelka-Munk base). What a front end offers to vary.
+    pub fn available(base: &Coating) -> Result<Vec<Self>> {
+        let mut names: Vec<String> = ["roughness", "tilt", "coverage", "tio2", "thickness"]
+            .map(String::from)
+            .to_vec();
+        if let gonio_coating::clear_coat::Base::KubelkaMunk { pigments, .. } = &base.base {
+            names.extend(pigments.iter().map(|p| format!("concentration:{}", p.name)));
+        }
+        let mut list = Vec::new();
+        for name in names {
+            let constituent = Constituent::parse(&name)?;
+            // A constituent the coating does not have (no flakes, no interference) has no value.
+            if constituent.value(base).is_err() {
+                continue;
+            }
+            let (lo, hi) = Varied::default_bounds(&constituent, base)?;
+            list.push(Varied {
+                name,
+                constituent,
+                lo,
+                hi,
+            });
+        }
+        Ok(list)
     }
 
     /// The constituents of `vary` (comma-separated `NAME=LO:HI` or `NAME`) with their bounds:
@@ -334,8 +365,7 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// Check the run (at least one output, the bounds make valid coatings) and read the base
-    /// formulation.
+    /// Check the run ([`check`]) and read the base formulation.
     pub fn new(
         base: &Coating,
         varied: &[Varied],
@@ -343,26 +373,7 @@ impl Plan {
         method: Method,
         settings: &Settings,
     ) -> Result<Plan> {
-        if outputs.is_empty() {
-            return Err(FormulationError::Invalid(
-                "a sensitivity needs at least one output".into(),
-            ));
-        }
-        if settings.geometries.is_empty() {
-            return Err(FormulationError::Invalid(
-                "a sensitivity needs the standard's geometries".into(),
-            ));
-        }
-        let problem = Problem::new(
-            varied
-                .iter()
-                .map(|v| Input::new(&v.name, v.lo, v.hi))
-                .collect(),
-        )?;
-        // Every bound must make a valid coating, so that a bad range fails before the readings.
-        for v in varied {
-            v.check(base, &settings.wavelengths_nm)?;
-        }
+        let problem = check(base, varied, outputs, method, settings)?;
         let mut geometries = settings.geometries.clone();
         for g in outputs.iter().flat_map(Output::geometries) {
             if !geometries.contains(&g) {
@@ -496,6 +507,54 @@ impl Plan {
     }
 }
 
+/// Check a sensitivity run before it reads anything: at least one output and the standard's
+/// geometries, the inputs' bounds increasing and valid for `base` ([`Varied::check`]), and
+/// the method's design possible (e.g. Morris needs two trajectories or more). Returns the
+/// problem. [`Plan::new`] makes these checks first; a front end calls this to refuse a bad
+/// request at once.
+pub fn check(
+    base: &Coating,
+    varied: &[Varied],
+    outputs: &[Output],
+    method: Method,
+    settings: &Settings,
+) -> Result<Problem> {
+    if outputs.is_empty() {
+        return Err(FormulationError::Invalid(
+            "a sensitivity needs at least one output".into(),
+        ));
+    }
+    if settings.geometries.is_empty() {
+        return Err(FormulationError::Invalid(
+            "a sensitivity needs the standard's geometries".into(),
+        ));
+    }
+    if settings.walks == 0 {
+        return Err(FormulationError::Invalid(
+            "a sensitivity needs at least one walk per geometry".into(),
+        ));
+    }
+    let problem = Problem::new(
+        varied
+            .iter()
+            .map(|v| Input::new(&v.name, v.lo, v.hi))
+            .collect(),
+    )?;
+    // Every bound must make a valid coating, so that a bad range fails before the readings.
+    for v in varied {
+        v.check(base, &settings.wavelengths_nm)?;
+    }
+    // The design is cheap (no reading): drawing it checks the method's sample size.
+    match method {
+        Method::Sobol { base } => sobol::sample(&problem, base, settings.seed as u32)?,
+        Method::Morris {
+            trajectories,
+            levels,
+        } => morris::sample(&problem, trajectories, levels, settings.seed)?,
+    };
+    Ok(problem)
+}
+
 /// `coating` read at `geometries` as `settings` say, from the streams of `seed`.
 fn read(
     coating: &Coating,
@@ -522,9 +581,46 @@ pub fn run(
     method: Method,
     settings: &Settings,
 ) -> Result<Sensitivity> {
+    run_watched(base, varied, outputs, method, settings, Watch::default())
+}
+
+/// [`run`] under `watch`: told the readings made of the run's total (the base formulation, the
+/// design's points, the noise repeats) after every reading, and stopped
+/// (`InstrumentError::Cancelled`) before the next reading once its flag is raised.
+pub fn run_watched(
+    base: &Coating,
+    varied: &[Varied],
+    outputs: &[Output],
+    method: Method,
+    settings: &Settings,
+    watch: Watch,
+) -> Result<Sensitivity> {
+    let total = method.evaluations(varied.len()) + 1 + settings.noise_repeats;
+    let done = AtomicUsize::new(0);
+    let tick = || {
+        watch.report(Progress {
+            readings: done.fetch_add(1, Ordering::Relaxed) + 1,
+            total: Some(total),
+            best: None,
+        })
+    };
+    watch.check()?;
     let plan = Plan::new(base, varied, outputs, method, settings)?;
+    tick();
     let points = plan.design()?;
-    let values = sensitivity::evaluate(&points, outputs.len(), |x| plan.read_point(x))?;
+    let values = sensitivity::evaluate(&points, outputs.len(), |x| {
+        watch.check()?;
+        let y = plan.read_point(x)?;
+        tick();
+        Ok(y)
+    });
+    // A cancelled point is reported as the point's error: say it was cancelled.
+    watch.check()?;
+    let values = values?;
     let noise = plan.noise()?;
+    watch.check()?;
+    for _ in 0..settings.noise_repeats {
+        tick();
+    }
     plan.analyze(points, values, noise)
 }

@@ -26,5 +26,6 @@ pub mod selection;
 pub mod sensitivity;
 pub mod sensitivity_report;
 pub mod target;
+pub mod watch;
 
 pub use error::{FormulationError, Result};

@@ -31,10 +31,12 @@ use crate::match_reader::Reader;
 pub use crate::search::Run;
 use crate::search::{Search, best_run, minimise};
 use crate::target::GlossTarget;
+use crate::watch::{Progress, Watch};
 use gonio_coating::system::Coating;
 use gonio_instrument::gloss::GlossReport;
 use gonio_instrument::multiangle::{Geometry, MultiangleReading};
 use gonio_instrument::multiangle_target::Target;
+use std::cell::Cell;
 use std::time::Instant;
 
 /// How a match reads each formulation and searches.
@@ -169,28 +171,12 @@ pub fn objective(
     Reader::new(start, varied, target, gloss, settings).objective(x)
 }
 
-/// Find the values of `varied` (within their bounds) that bring `start` closest to `target`
-/// (and to the `gloss` readings), reading each formulation with `settings`. `progress` gets a
-/// line per run and about every 10 s. [`search`] then [`conclude`].
-pub fn run(
-    start: &Coating,
-    target: &Target,
-    gloss: &[GlossTarget],
-    varied: &[Varied],
-    settings: &Settings,
-    progress: &mut dyn FnMut(&str),
-) -> Result<Match> {
-    let clock = Instant::now();
-    let runs = search(start, target, gloss, varied, settings, progress)?;
-    let mut m = conclude(start, target, gloss, varied, settings, runs)?;
-    m.seconds = clock.elapsed().as_secs_f64();
-    Ok(m)
-}
-
-/// Check a match's inputs: at least one constituent, each varied once and valid at its bounds,
-/// a spectral objective only with a target of spectra and without gloss readings, a finite
-/// gloss weight.
-fn check(
+/// Check a match before it reads anything: at least one constituent, none twice, each one's
+/// bounds increasing and valid for `start` ([`Varied::check`]), a start and an iteration for the
+/// search, a non-negative gloss weight, and for the spectral objective a target with spectra and
+/// no gloss readings. [`run`] makes these checks first; a front end calls this to refuse a bad
+/// request at once.
+pub fn check(
     start: &Coating,
     target: &Target,
     gloss: &[GlossTarget],
@@ -218,6 +204,13 @@ fn check(
             settings.gloss_weight
         )));
     }
+    if settings.starts == 0 || settings.iterations == 0 || settings.walks == 0 {
+        return Err(FormulationError::Invalid(format!(
+            "a match needs at least one start, one iteration and one walk per geometry ({} \
+             starts, {} iterations, {} walks)",
+            settings.starts, settings.iterations, settings.walks
+        )));
+    }
     for (i, v) in varied.iter().enumerate() {
         if varied[..i].iter().any(|w| w.constituent == v.constituent) {
             return Err(FormulationError::Invalid(format!(
@@ -228,6 +221,47 @@ fn check(
         v.check(start, &settings.wavelengths_nm)?;
     }
     Ok(())
+}
+
+/// Find the values of `varied` (within their bounds) that bring `start` closest to `target`
+/// (and to the `gloss` readings), reading each formulation with `settings`. `progress` gets a
+/// line per run and about every 10 s. [`search`] then [`conclude`].
+pub fn run(
+    start: &Coating,
+    target: &Target,
+    gloss: &[GlossTarget],
+    varied: &[Varied],
+    settings: &Settings,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Match> {
+    run_watched(
+        start,
+        target,
+        gloss,
+        varied,
+        settings,
+        Watch::default(),
+        progress,
+    )
+}
+
+/// [`run`] under `watch`: told the readings made and the lowest objective after every reading
+/// of the search, and stopped (`InstrumentError::Cancelled`) before the next reading once its
+/// flag is raised.
+pub fn run_watched(
+    start: &Coating,
+    target: &Target,
+    gloss: &[GlossTarget],
+    varied: &[Varied],
+    settings: &Settings,
+    watch: Watch,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Match> {
+    let clock = Instant::now();
+    let runs = search_watched(start, target, gloss, varied, settings, &watch, progress)?;
+    let mut m = conclude(start, target, gloss, varied, settings, runs)?;
+    m.seconds = clock.elapsed().as_secs_f64();
+    Ok(m)
 }
 
 /// The start's values of `varied`, clamped into their bounds.
@@ -249,6 +283,27 @@ pub fn search(
     settings: &Settings,
     progress: &mut dyn FnMut(&str),
 ) -> Result<Vec<Run>> {
+    search_watched(
+        start,
+        target,
+        gloss,
+        varied,
+        settings,
+        &Watch::default(),
+        progress,
+    )
+}
+
+/// [`search`] under `watch` (see [`run_watched`]).
+fn search_watched(
+    start: &Coating,
+    target: &Target,
+    gloss: &[GlossTarget],
+    varied: &[Varied],
+    settings: &Settings,
+    watch: &Watch,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Vec<Run>> {
     check(start, target, gloss, varied, settings)?;
     let reader = Reader::new(start, varied, target, gloss, settings);
     let x0 = start_values(start, varied)?;
@@ -257,14 +312,29 @@ pub fn search(
         iterations: settings.iterations,
         tolerance: settings.tolerance * settings.objective.per_de00(),
     };
-    minimise(
+    let (readings, best) = (Cell::new(0), Cell::new(f64::INFINITY));
+    let watched = |x: &[f64]| {
+        watch.check()?;
+        let f = reader.objective(x)?;
+        readings.set(readings.get() + 1);
+        best.set(best.get().min(f));
+        watch.report(Progress {
+            readings: readings.get(),
+            total: None,
+            best: Some(best.get()),
+        });
+        Ok(f)
+    };
+    let runs = minimise(
         varied,
         &x0,
         &search,
-        &|x| reader.objective(x),
+        &watched,
         &|x| reader.describe(x),
         progress,
-    )
+    )?;
+    watch.check()?;
+    Ok(runs)
 }
 
 /// A match from its search's `runs` ([`run`]'s second half): the best run's values rounded, the

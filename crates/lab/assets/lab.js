@@ -323,17 +323,17 @@ function buildForm() {
     spectrum(base, { path: ['base', 'substrate'], label: 'substrate', min: 0, max: 1, fallback: 0.8 });
     (f.base.pigment || []).forEach((p, i) => {
       const box = el('div', { class: 'pigment' },
-        el('div', {}, el('span', { class: 'name' }, p.name), ' ',
+        el('div', {}, el('span', { class: 'name' }, p.name ?? p.library), ' ',
           el('button', { type: 'button', title: 'remove this pigment', onclick: () => { f.base.pigment.splice(i, 1); buildForm(); changed(); } }, 'remove')));
       slider(box, { path: ['base', 'pigment', i, 'concentration'], label: 'concentration', unit: '', min: 0.001, max: 10, log: true,
         title: 'multiplies the pigment\'s K and S (per µm)' });
       base.append(box);
     });
-    const names = new Set((f.base.pigment || []).map((p) => p.name));
+    const names = new Set((f.base.pigment || []).map((p) => p.name ?? p.library));
     const offer = state.pigments.filter((p) => !names.has(p.name));
     if (offer.length) {
       const add = el('select', { 'aria-label': 'add a pigment' }, el('option', { value: '' }, 'add a pigment…'),
-        ...offer.map((p) => el('option', { value: p.name }, `${p.name} (from ${p.example})`)));
+        ...offer.map((p) => el('option', { value: p.name }, p.library ? `${p.name} (library, ${p.colour_index})` : `${p.name} (from ${p.example})`)));
       add.addEventListener('change', () => {
         const p = state.pigments.find((q) => q.name === add.value);
         if (!p) return;
@@ -439,6 +439,7 @@ function changed() {
   saveToUrl();
   readings.go();
   picture.go();
+  constituentsSoon();
 }
 
 // ---------------------------------------------------------------- showing the readings
@@ -649,6 +650,7 @@ async function uploadTarget(file) {
     const r = await api(`/api/upload/target?standard=${$('standard').value}&name=` + encodeURIComponent(file.name), file);
     state.target = r;
     $('target-name').textContent = `target: ${r.name}`;
+    showMatchReady();
     $('clear-target').hidden = false;
     showError('');
     readings.go();
@@ -695,6 +697,305 @@ function setFormulation(f) {
   changed();
 }
 
+// ---------------------------------------------------------------- the way back: match, sensitivity
+
+// What the two panels vary: per panel, the constituents the formulation offers (from the server:
+// name, label, value and default bounds) and the user's choices {on, lo, hi} by name, kept while
+// the formulation changes.
+const panels = {
+  match: { table: 'match-vary', offered: [], chosen: {}, defaultOn: (n) => n === 'tilt' || n === 'coverage' || n.startsWith('concentration:') },
+  sens: { table: 'sens-vary', offered: [], chosen: {}, defaultOn: (n) => n !== 'tio2' },
+};
+let outputsOffered = [];
+const outputsChosen = {};
+const outputDefault = (name) => /^(gu20|gu60|haze|doi|flop|dE00|L@.*)$/.test(name);
+
+function matchPigments() {
+  const from = document.querySelector('input[name=match-pigments]:checked').value;
+  if (from === 'library') {
+    const names = [...document.querySelectorAll('#match-library input:checked')].map((i) => i.value);
+    return { from, names };
+  }
+  return { from };
+}
+
+// The constituents of the formulation (the match's with its pigments choice), refreshed a moment
+// after the last change.
+let constituentsTimer = null;
+function constituentsSoon() {
+  clearTimeout(constituentsTimer);
+  constituentsTimer = setTimeout(refreshConstituents, 250);
+}
+
+async function refreshConstituents() {
+  const standard = $('standard').value;
+  try {
+    const own = await api('/api/constituents', { formulation: state.f, standard });
+    panels.sens.offered = own.constituents;
+    outputsOffered = own.outputs;
+    showOutputs();
+    const pigments = matchPigments();
+    const m = pigments.from === 'formulation' ? own : await api('/api/constituents', { formulation: state.f, standard, pigments });
+    panels.match.offered = m.constituents;
+    $('match-state').textContent = '';
+  } catch (e) {
+    // A formulation the library refuses is marked in the form; a pigment choice here.
+    if (e.status === 400 && matchPigments().from !== 'formulation') setState('match-state', e.message, 'error');
+    panels.match.offered = [];
+  }
+  showVary(panels.match);
+  showVary(panels.sens);
+  showMatchReady();
+}
+
+function showVary(panel) {
+  const head = el('tr', {}, el('th', {}, 'vary'), el('th', {}, 'constituent'), el('th', {}, 'now'), el('th', {}, 'from'), el('th', {}, 'to'));
+  const rows = panel.offered.map((c) => {
+    const chosen = panel.chosen[c.name] ?? (panel.chosen[c.name] = { on: panel.defaultOn(c.name), lo: c.lo, hi: c.hi });
+    const box = el('input', { type: 'checkbox', 'aria-label': 'vary ' + c.name, 'data-name': c.name });
+    box.checked = chosen.on;
+    box.addEventListener('change', () => { chosen.on = box.checked; showMatchReady(); });
+    const bound = (key) => {
+      const input = el('input', { type: 'number', step: 'any', 'aria-label': `${c.name} ${key === 'lo' ? 'from' : 'to'}`, 'data-name': c.name, 'data-bound': key });
+      input.value = chosen[key];
+      input.addEventListener('change', () => { if (input.value !== '' && Number.isFinite(Number(input.value))) chosen[key] = Number(input.value); });
+      return input;
+    };
+    return el('tr', {}, el('td', {}, box), el('td', { class: 'name', title: c.name }, c.label), el('td', {}, String(round(c.value))),
+      el('td', {}, bound('lo')), el('td', {}, bound('hi')));
+  });
+  $(panel.table).replaceChildren(head, ...rows);
+}
+
+function varyOf(panel) {
+  return panel.offered.filter((c) => panel.chosen[c.name]?.on).map((c) => ({ name: c.name, lo: panel.chosen[c.name].lo, hi: panel.chosen[c.name].hi }));
+}
+
+function showOutputs() {
+  const list = document.querySelector('#sens-outputs .output-list');
+  list.replaceChildren(...outputsOffered.map((o) => {
+    if (outputsChosen[o.name] === undefined) outputsChosen[o.name] = outputDefault(o.name);
+    const box = el('input', { type: 'checkbox', value: o.name });
+    box.checked = outputsChosen[o.name];
+    box.addEventListener('change', () => { outputsChosen[o.name] = box.checked; countOutputs(); });
+    return el('label', { title: o.name }, box, ' ' + o.words);
+  }));
+  countOutputs();
+}
+
+function countOutputs() {
+  const n = outputsOffered.filter((o) => outputsChosen[o.name]).length;
+  document.querySelector('#sens-outputs summary').textContent = `readings judged: ${n} of ${outputsOffered.length} (choose)`;
+}
+
+function showMatchReady() {
+  const ready = state.target && varyOf(panels.match).length > 0 && !jobs.match;
+  $('match-run').disabled = !ready;
+  $('match-hint').hidden = !!state.target;
+}
+
+const number = (id) => { const v = $(id).value; return v === '' ? undefined : Number(v); };
+
+// A job on the server (docs/lab.md, "Jobs"): started by POST, followed by polling, cancelled by
+// its Cancel button. `show(job)` gets every answer; `done(result)` the result.
+const jobs = { match: null, sens: null };
+async function runJob(kind, path, body, { progress, line, run, cancel, show, done }) {
+  $(progress).hidden = false;
+  $(progress).removeAttribute('value');
+  $(line).textContent = 'starting…';
+  $(run).disabled = true;
+  let job;
+  try {
+    job = await api(path, body);
+  } catch (e) {
+    $(progress).hidden = true;
+    $(line).textContent = '';
+    $(run).disabled = false;
+    showError(e.message);
+    if (kind === 'match') showMatchReady();
+    return;
+  }
+  showError('');
+  jobs[kind] = job.id;
+  $(cancel).disabled = false;
+  $(cancel).onclick = () => { api(`/api/jobs/${job.id}/cancel`, {}).catch((e) => showError(e.message)); };
+  while (true) {
+    await new Promise((r) => setTimeout(r, 400));
+    try { job = await api('/api/jobs/' + job.id); } catch (e) { showError(e.message); break; }
+    if (job.total) { $(progress).max = job.total; $(progress).value = job.readings; }
+    show(job);
+    if (job.state !== 'running' && job.state !== 'cancelling') break;
+  }
+  jobs[kind] = null;
+  $(cancel).disabled = true;
+  $(run).disabled = false;
+  $(progress).hidden = job.state === 'done' ? true : $(progress).hidden;
+  if (job.state === 'done') done(job.result);
+  else if (job.state === 'failed') showError(job.error);
+  $(progress).hidden = true;
+  if (kind === 'match') showMatchReady();
+}
+
+const seconds = (s) => s < 90 ? `${s.toFixed(0)} s` : `${(s / 60).toFixed(1)} min`;
+
+async function startMatch() {
+  const body = { formulation: state.f, target: state.target.id, standard: $('standard').value, vary: varyOf(panels.match),
+    pigments: matchPigments(), walks: number('match-walks'), starts: number('match-starts'), iterations: number('match-iterations') };
+  $('match-result').replaceChildren();
+  await runJob('match', '/api/match', body, {
+    progress: 'match-progress', line: 'match-line', run: 'match-run', cancel: 'match-cancel',
+    show: (j) => {
+      const best = j.best === null ? '' : ` · best mean ΔE00 so far ${fmt(j.best, 2)}`;
+      const what = j.state === 'cancelled' ? `cancelled after ${j.readings} readings` : j.state === 'failed' ? 'failed' : `${j.readings} readings${best}`;
+      $('match-line').textContent = `${what} · ${seconds(j.seconds)}` + (j.line && j.state === 'running' ? ` · ${j.line}` : '');
+    },
+    done: showMatch,
+  });
+}
+
+// The match's result: the fitted formulation fills the form (its readings against the target
+// follow), and its ΔE00 per geometry, start against fitted, and its values with σ are shown.
+function showMatch(m) {
+  state.pinned = null;
+  $('picture-a').hidden = true;
+  setFormulation(m.formulation);
+  $('match-line').textContent = `done: ${m.evaluations} readings in ${seconds(m.seconds)}; the form holds the fitted formulation`;
+  const cls = (a, b) => b < a - 0.005 ? 'better' : b > a + 0.005 ? 'worse' : '';
+  const de = el('table', { class: 'numbers', id: 'match-de00' },
+    el('tr', {}, el('th', {}, 'geometry'), el('th', {}, 'ΔE00 start'), el('th', {}, 'ΔE00 fitted')),
+    ...m.geometries.map((g) => el('tr', {}, el('td', {}, g.name), el('td', {}, fmt(g.de00_start, 2)),
+      el('td', { class: cls(g.de00_start, g.de00_fitted) }, fmt(g.de00_fitted, 2)))),
+    el('tr', {}, el('td', {}, 'mean'), el('td', {}, fmt(m.mean_de00_start, 2)),
+      el('td', { class: cls(m.mean_de00_start, m.mean_de00_fitted) }, fmt(m.mean_de00_fitted, 2))));
+  const sd = (c) => c.sigma === null ? '–' : `± ${round(c.sigma)}`;
+  const values = el('table', { class: 'numbers', id: 'match-values' },
+    el('tr', {}, el('th', {}, 'constituent'), el('th', {}, 'start'), el('th', {}, 'fitted'), el('th', {}, 'σ (1 sd)'), el('th', {}, 'bounds')),
+    ...m.constituents.map((c) => el('tr', { title: c.at_bound ? 'at a bound: σ describes a constrained value; widen the bounds' : '' },
+      el('td', {}, ...c.name.split(':').flatMap((part, i) => i ? [':', el('wbr'), part] : [part])), el('td', {}, String(round(c.start))), el('td', {}, String(round(c.fitted)), ...(c.at_bound ? [el('br'), el('span', { class: 'unit' }, 'at a bound')] : [])),
+      el('td', {}, sd(c)), el('td', {}, `${round(c.lo)} – ${round(c.hi)}`))));
+  $('match-result').replaceChildren(
+    el('div', { class: 'verdict' }, `Mean ΔE00 ${fmt(m.mean_de00_start, 2)} → ${fmt(m.mean_de00_fitted, 2)} at the ${m.standard} geometries the target has (${m.objective} objective; residual sd ${fmt(m.residual_sd, 2)}).`),
+    el('div', { class: 'plots' }, de, values));
+}
+
+async function startSensitivity() {
+  const outputs = outputsOffered.filter((o) => outputsChosen[o.name]).map((o) => o.name);
+  const body = { formulation: state.f, standard: $('standard').value, vary: varyOf(panels.sens), outputs,
+    method: $('sens-method').value, samples: number('sens-samples'), walks: number('sens-walks') };
+  await runJob('sens', '/api/sensitivity', body, {
+    progress: 'sens-progress', line: 'sens-line', run: 'sens-run', cancel: 'sens-cancel',
+    show: (j) => {
+      const what = j.state === 'cancelled' ? 'cancelled after' : 'readings';
+      $('sens-line').textContent = `${what} ${j.readings} of ${j.total} · ${seconds(j.seconds)}`;
+    },
+    done: showSensitivity,
+  });
+}
+
+// The chart: for each reading, one bar per constituent. Morris: μ* over the largest μ* of that
+// reading (so that readings in GU and in L* share one axis), the figure μ* ± its 95% interval in
+// the reading's units; Sobol: the total index ST ± its 95% interval.
+// Three significant figures, an exponent below 0.01.
+const short = (v) => !Number.isFinite(v) ? '–' : v === 0 ? '0' : Math.abs(v) < 0.01 ? v.toExponential(0) : String(Number(v.toPrecision(3)));
+const PALETTE = ['#1f5fa8', '#b5561c', '#2e8540', '#8a3ea8', '#b0931c', '#1c9aa0', '#a8324a', '#555555'];
+let lastSensitivity = null;
+function showSensitivity(s) {
+  lastSensitivity = s;
+  $('sens-summary').textContent = s.summary;
+  drawSensitivity(s);
+}
+
+// Drawn at the chart's own width in pixels (its text stays legible in a narrow window), again
+// whenever that width changes.
+function drawSensitivity(s) {
+  const svg = $('sens-chart');
+  svg.removeAttribute('hidden');
+  const NS = 'http://www.w3.org/2000/svg';
+  const make = (tag, attrs, text) => {
+    const e = document.createElementNS(NS, tag);
+    for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
+    if (text !== undefined) e.textContent = text;
+    return e;
+  };
+  const morris = s.method === 'morris';
+  const inputs = s.inputs.map((i) => i.name);
+  const W = Math.max(300, svg.clientWidth || 600);
+  const nameW = Math.min(150, 0.3 * W), figW = 88, barH = 13, gap = 3;
+  const x0 = nameW + 6, x1 = W - figW - 6;
+  svg.replaceChildren();
+  // Legend: one swatch per constituent.
+  let lx = 0, ly = 14;
+  inputs.forEach((name, i) => {
+    const w = 22 + 7 * name.length;
+    if (lx + w > W) { lx = 0; ly += 18; }
+    svg.append(make('rect', { x: lx, y: ly - 10, width: 12, height: 12, fill: PALETTE[i % PALETTE.length] }));
+    svg.append(make('text', { x: lx + 16, y: ly }, name));
+    lx += w + 10;
+  });
+  let y = ly + 14;
+  $('sens-note').textContent = morris
+    ? 'Each bar: μ* divided by the largest μ* of that reading (readings in GU and in L* share one axis), its 95% interval as a whisker; beside it μ* ± that interval in the reading\'s own units.'
+    : 'Each bar: the total Sobol index ST, its 95% interval as a whisker; beside it ST ± that interval.';
+  y -= 4;
+  const X = (v) => x0 + Math.max(0, Math.min(1.1, v)) / 1.1 * (x1 - x0);
+  s.outputs.forEach((o, k) => {
+    const idx = o.indices;
+    const value = (n) => morris ? idx.mu_star[n] : idx.st[n];
+    const conf = (n) => morris ? idx.mu_star_conf[n] : idx.st_conf[n];
+    const scale = morris ? Math.max(...inputs.map(value)) || 1 : 1;
+    const top = y + 6;
+    const h = inputs.length * (barH + gap);
+    svg.append(make('line', { x1: 0, x2: W, y1: top - 3, y2: top - 3, class: 'grid' }));
+    const words = s.words?.[k] ?? o.output;
+    const label = make('text', { x: 0, y: top + h / 2 + 4, class: 'chart-output' }, 6.6 * words.length <= nameW ? words : o.output);
+    label.append(make('title', {}, `${o.output}: base ${fmt(o.base, 2)}, noise sd ${fmt(o.noise, 3)}`));
+    svg.append(label);
+    inputs.forEach((n, i) => {
+      const by = top + i * (barH + gap);
+      const v = value(n) / scale, c = conf(n) / scale;
+      const bar = make('rect', { x: x0, y: by, width: Math.max(0.5, X(v) - x0), height: barH, fill: PALETTE[i % PALETTE.length], class: 'bar', 'data-output': o.output, 'data-input': n });
+      bar.append(make('title', {}, `${n} → ${o.output}: ${morris ? 'μ*' : 'ST'} ${fmt(value(n), 3)} ± ${fmt(conf(n), 3)}`));
+      svg.append(bar);
+      svg.append(make('line', { x1: X(v - c), x2: X(v + c), y1: by + barH / 2, y2: by + barH / 2, stroke: '#222', 'stroke-width': 1.2 }));
+      svg.append(make('text', { x: x1 + 6, y: by + barH - 2, class: 'chart-figure' }, `${short(value(n))} ± ${short(conf(n))}`));
+    });
+    y = top + h + 4;
+  });
+  // The axis: 0 and 1 (the largest μ*, or ST = 1).
+  for (const t of [0, 0.5, 1]) {
+    svg.append(make('line', { x1: X(t), x2: X(t), y1: ly + 12, y2: y, class: 'grid' }));
+    svg.append(make('text', { x: X(t), y: y + 12, 'text-anchor': 'middle' }, String(t)));
+  }
+  svg.setAttribute('viewBox', `0 0 ${W} ${y + 18}`);
+  svg.setAttribute('height', y + 18);
+}
+
+function startPanels() {
+  let drawnWidth = 0;
+  new ResizeObserver(() => {
+    const w = $('sens-chart').clientWidth;
+    if (lastSensitivity && w && Math.abs(w - drawnWidth) > 1) { drawnWidth = w; drawSensitivity(lastSensitivity); }
+  }).observe($('sensitivity-card'));
+  $('match-run').addEventListener('click', startMatch);
+  $('sens-run').addEventListener('click', startSensitivity);
+  $('sens-method').addEventListener('change', () => {
+    const morris = $('sens-method').value === 'morris';
+    $('sens-samples-label').textContent = morris ? 'trajectories' : 'base points';
+    $('sens-samples').placeholder = morris ? '20' : '32';
+  });
+  const library = state.pigments.filter((p) => p.library);
+  $('match-library').replaceChildren(...library.map((p) => {
+    const box = el('input', { type: 'checkbox', value: p.name });
+    box.addEventListener('change', refreshConstituents);
+    return el('label', { title: p.colour_index }, box, ` ${p.name.replace(/_/g, ' ')} (${p.colour_index})`);
+  }));
+  document.querySelectorAll('input[name=match-pigments]').forEach((r) => r.addEventListener('change', () => {
+    $('match-library').hidden = matchPigments().from !== 'library';
+    refreshConstituents();
+  }));
+  $('standard').addEventListener('change', refreshConstituents);
+}
+
 // ---------------------------------------------------------------- start
 
 async function start() {
@@ -727,11 +1028,13 @@ async function start() {
   $('open-target').addEventListener('change', (ev) => { uploadTarget(ev.target.files[0]); ev.target.value = ''; });
   $('clear-target').addEventListener('click', () => {
     state.target = null;
+    showMatchReady();
     $('target-name').textContent = '';
     $('clear-target').hidden = true;
     readings.go();
   });
   $('pin').addEventListener('click', pin);
+  startPanels();
   $('export-png').addEventListener('click', async () => {
     if (!pictureUrl) return;
     download(await (await fetch(pictureUrl)).blob(), 'coating.png');

@@ -11,6 +11,9 @@ use crate::compute;
 use crate::error::ApiError;
 use crate::examples;
 use crate::formulation;
+use crate::jobs::Job;
+use crate::matching::{ConstituentsRequest, MatchRequest};
+use crate::sensitivity::SensitivityRequest;
 use crate::state::{CancelOnDrop, Lab, Upload, UploadKind};
 use axum::Router;
 use axum::body::Bytes;
@@ -19,6 +22,7 @@ use axum::extract::{DefaultBodyLimit, Path, Query, State};
 use axum::http::{StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
+use gonio_formulation::watch::Watch;
 use gonio_io::Cancel;
 use gonio_render::panel::live::Quality;
 use serde::Deserialize;
@@ -56,6 +60,11 @@ pub fn router(lab: Arc<Lab>) -> Router {
         .route("/api/readings", post(readings))
         .route("/api/picture", post(picture))
         .route("/api/export/{format}", post(export))
+        .route("/api/constituents", post(constituents))
+        .route("/api/match", post(start_match))
+        .route("/api/sensitivity", post(start_sensitivity))
+        .route("/api/jobs/{id}", get(job))
+        .route("/api/jobs/{id}/cancel", post(cancel_job))
         .layer(DefaultBodyLimit::max(lab.limits.json_bytes))
         .merge(uploads)
         .fallback(|| async {
@@ -381,4 +390,102 @@ async fn upload_target(
         move |id, _, cancel| Ok(kept.target(id, &options, cancel)?.to_json()),
     )
     .await
+}
+
+/// The constituents a formulation (with the pigments chosen) offers to vary, and the readings a
+/// sensitivity run can judge it by.
+async fn constituents(
+    State(lab): Shared,
+    raw: Result<Bytes, BytesRejection>,
+) -> Result<axum::Json<Value>, ApiError> {
+    let request: ConstituentsRequest = parse(raw, &lab)?;
+    let options = compute::ReadingOptions::parse(request.standard.as_deref(), None)?;
+    let f = crate::matching::with_pigments(&request.formulation, request.pigments.as_ref())?;
+    let (coating, _) = coating_of(&lab, &f)?;
+    Ok(axum::Json(crate::matching::constituents(
+        &f, &coating, &options,
+    )?))
+}
+
+/// Start `work` as a job of `kind` on `channel` (default: the kind; a newer job there cancels
+/// this one) and answer 202 with its id at once. `work` gets the job (for its progress lines)
+/// and the watch that reports its readings and carries its cancellation.
+fn start_job(
+    lab: Arc<Lab>,
+    kind: &'static str,
+    channel: Option<&str>,
+    work: impl FnOnce(&Job, Watch) -> Result<Value, ApiError> + Send + 'static,
+) -> (StatusCode, axum::Json<Value>) {
+    let cancel = lab.begin(Some(channel.unwrap_or(kind)));
+    let job = Arc::new(Job::new(kind, cancel.clone()));
+    let id = lab.add_job(job.clone());
+    let answer = job.to_json(&id);
+    tokio::spawn(async move {
+        let working = job.clone();
+        let outcome = run(&lab.clone(), cancel, move |cancel| {
+            let progress = |p| working.progress(p);
+            let watch = Watch {
+                cancel: Some(cancel),
+                progress: Some(&progress),
+            };
+            work(&working, watch)
+        })
+        .await;
+        job.end(outcome);
+    });
+    (StatusCode::ACCEPTED, axum::Json(answer))
+}
+
+/// Check a match (its target read, its constituents and bounds, its pigments) and start it.
+async fn start_match(
+    State(lab): Shared,
+    raw: Result<Bytes, BytesRejection>,
+) -> Result<(StatusCode, axum::Json<Value>), ApiError> {
+    let request: MatchRequest = parse(raw, &lab)?;
+    let plan = request.plan(|f| coating_of(&lab, f))?;
+    lab.uploaded(UploadKind::Target, &request.target)?;
+    let target = run(&lab.clone(), Cancel::new(), {
+        let (lab, id, options) = (lab.clone(), request.target.clone(), plan.options.clone());
+        move |cancel| lab.target(&id, &options, cancel)
+    })
+    .await?;
+    plan.check(&target)?;
+    Ok(start_job(
+        lab,
+        "match",
+        request.channel.as_deref(),
+        move |job, watch| plan.run(&target, watch, &mut |line| job.line(line)),
+    ))
+}
+
+/// Check a sensitivity run (its constituents and ranges, outputs, method and sample) and start
+/// it.
+async fn start_sensitivity(
+    State(lab): Shared,
+    raw: Result<Bytes, BytesRejection>,
+) -> Result<(StatusCode, axum::Json<Value>), ApiError> {
+    let request: SensitivityRequest = parse(raw, &lab)?;
+    let (coating, _) = coating_of(&lab, &request.formulation)?;
+    let plan = request.plan(coating)?;
+    Ok(start_job(
+        lab,
+        "sensitivity",
+        request.channel.as_deref(),
+        move |_, watch| plan.run(watch),
+    ))
+}
+
+/// How far a job is, and its result or error once it has ended.
+async fn job(State(lab): Shared, Path(id): Path<String>) -> Result<axum::Json<Value>, ApiError> {
+    Ok(axum::Json(lab.job(&id)?.to_json(&id)))
+}
+
+/// Stop a job (it ends as `cancelled` before its next reading).
+async fn cancel_job(
+    State(lab): Shared,
+    Path(id): Path<String>,
+) -> Result<axum::Json<Value>, ApiError> {
+    let job = lab.job(&id)?;
+    job.cancel.cancel();
+    Ok(axum::Json(job.to_json(&id)))
 }

@@ -73,7 +73,10 @@ pub fn list() -> Value {
 }
 
 /// Every Kubelka-Munk pigment of the examples (`[[base.pigment]]`), once per name:
-/// `[{name, example, pigment}]`, `pigment` the table as a formulation holds it.
+/// `[{name, example, pigment}]`, then every pigment of gonio's library
+/// (`gonio_coating::pigment_library`): `[{name, library: true, colour_index, pigment}]`;
+/// `pigment` is the table as a formulation holds it (a library pigment's
+/// `{"library": NAME, "concentration": LIBRARY_START_CONCENTRATION}`).
 pub fn pigments() -> Value {
     let mut seen = std::collections::BTreeSet::new();
     let mut out = Vec::new();
@@ -95,6 +98,15 @@ pub fn pigments() -> Value {
                 out.push(json!({ "name": pigment, "example": name, "pigment": p }));
             }
         }
+    }
+    for p in gonio_coating::pigment_library::pigments() {
+        out.push(json!({
+            "name": p.name, "library": true, "colour_index": p.colour_index,
+            "pigment": {
+                "library": p.name,
+                "concentration": crate::formulation::LIBRARY_START_CONCENTRATION,
+            },
+        }));
     }
     Value::Array(out)
 }

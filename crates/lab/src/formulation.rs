@@ -69,6 +69,57 @@ pub fn coating(formulation: &Value, uploads: &Path) -> Result<(Coating, String),
     Ok((coating, text))
 }
 
+/// The concentration a library pigment new to a formulation starts at: a tenth of the paint as
+/// it comes (the masstone is 1), so that `Varied::default_bounds` (a tenth to four times the
+/// value) span 0.01–0.4, from a faint tint to a strong one.
+pub const LIBRARY_START_CONCENTRATION: f64 = 0.1;
+
+/// `formulation` with its base's pigments replaced by the library pigments `names`, each
+/// `{"library": NAME, "concentration": c}` as a description names one (docs/coatings.md): a
+/// pigment the formulation already has under that name (or library name) keeps its
+/// concentration, another starts at [`LIBRARY_START_CONCENTRATION`]. The base must be a
+/// Kubelka-Munk layer; an unknown name is refused with the library's message (the closest name).
+pub fn with_library_pigments(formulation: &Value, names: &[String]) -> Result<Value, ApiError> {
+    let bad = |m: String| ApiError::BadRequest(m);
+    if names.is_empty() {
+        return Err(bad("pigments from the library: name at least one".into()));
+    }
+    if formulation.pointer("/base/kind").and_then(Value::as_str) != Some("kubelka-munk") {
+        return Err(bad(
+            "library pigments go in a Kubelka-Munk base: set the base to pigments \
+             (base.kind = \"kubelka-munk\") first"
+                .into(),
+        ));
+    }
+    let own = formulation
+        .pointer("/base/pigment")
+        .and_then(Value::as_array)
+        .cloned()
+        .unwrap_or_default();
+    let mut pigments = Vec::new();
+    for (i, name) in names.iter().enumerate() {
+        if names[..i].contains(name) {
+            return Err(bad(format!("pigment '{name}': named twice")));
+        }
+        gonio_coating::pigment_library::find(name).map_err(|e| bad(e.to_string()))?;
+        let is_it = |p: &&Value| {
+            [p.get("name"), p.get("library")]
+                .iter()
+                .any(|v| v.and_then(Value::as_str) == Some(name.as_str()))
+        };
+        let concentration = own
+            .iter()
+            .find(is_it)
+            .and_then(|p| p.get("concentration"))
+            .and_then(Value::as_f64)
+            .unwrap_or(LIBRARY_START_CONCENTRATION);
+        pigments.push(serde_json::json!({ "library": name, "concentration": concentration }));
+    }
+    let mut f = formulation.clone();
+    f["base"]["pigment"] = Value::Array(pigments);
+    Ok(f)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

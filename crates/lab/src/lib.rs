@@ -14,6 +14,9 @@ pub mod compute;
 pub mod error;
 pub mod examples;
 pub mod formulation;
+pub mod jobs;
+pub mod matching;
+pub mod sensitivity;
 pub mod state;
 
 pub use state::{Lab, Limits};

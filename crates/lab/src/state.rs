@@ -5,6 +5,7 @@
 
 use crate::compute::{self, ReadingOptions};
 use crate::error::ApiError;
+use crate::jobs::Job;
 use gonio_coating::system::Coating;
 use gonio_formulation::lab_target::LabTarget;
 use gonio_io::Cancel;
@@ -89,6 +90,8 @@ pub struct Lab {
     tables: Mutex<VecDeque<(String, LiveTable)>>,
     /// The computations that may run at once ([`Lab::slot`]).
     slots: tokio::sync::Semaphore,
+    /// The jobs (matches, sensitivity runs) by id, oldest first ([`Lab::add_job`]).
+    jobs: Mutex<VecDeque<(String, Arc<Job>)>>,
 }
 
 impl Lab {
@@ -103,6 +106,7 @@ impl Lab {
             targets: Mutex::new(HashMap::new()),
             tables: Mutex::new(VecDeque::new()),
             slots: tokio::sync::Semaphore::new(limits.computations),
+            jobs: Mutex::new(VecDeque::new()),
         })
     }
 
@@ -256,6 +260,42 @@ impl Lab {
             }
         }
         cancel
+    }
+}
+
+impl Lab {
+    /// Jobs kept: the oldest that have ended are forgotten beyond this many.
+    pub const JOBS_KEPT: usize = 16;
+
+    /// Keep `job` under a new id (`j3`), which is returned. Beyond [`Lab::JOBS_KEPT`] jobs the
+    /// oldest that have ended are forgotten (running ones are kept: their channels cancel them).
+    pub fn add_job(&self, job: Arc<Job>) -> String {
+        let id = format!("j{}", self.next.fetch_add(1, Ordering::Relaxed));
+        let mut jobs = self.jobs.lock().unwrap_or_else(|p| p.into_inner());
+        jobs.push_back((id.clone(), job));
+        while jobs.len() > Lab::JOBS_KEPT {
+            match jobs.iter().position(|(_, j)| j.ended()) {
+                Some(k) => {
+                    jobs.remove(k);
+                }
+                None => break,
+            }
+        }
+        id
+    }
+
+    /// The job `id`, or a 404.
+    pub fn job(&self, id: &str) -> Result<Arc<Job>, ApiError> {
+        let jobs = self.jobs.lock().unwrap_or_else(|p| p.into_inner());
+        jobs.iter()
+            .find(|(i, _)| i == id)
+            .map(|(_, j)| j.clone())
+            .ok_or_else(|| {
+                ApiError::NotFound(format!(
+                    "no job '{id}' in this lab (the lab keeps the last {} jobs while it runs)",
+                    Lab::JOBS_KEPT
+                ))
+            })
     }
 }
 

@@ -14,3 +14,4 @@ mod search;
 mod selection;
 mod sensitivity;
 mod spectral_matching;
+mod watch;

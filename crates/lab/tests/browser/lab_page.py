@@ -159,10 +159,72 @@ with sync_playwright() as p:
     download.value.save_as(path)
     seen["toml"] = path
 
-    # 7. A narrow window: the same page in one column.
+    # 7. The way back. Match the Cayman start to its target: a run with a large budget shows
+    # its progress and is cancelled; a small one fills the form and shows its ΔE00 table.
+    page.set_viewport_size({"width": 1600, "height": 1000})
+    page.wait_for_function("() => !document.getElementById('match-run').disabled", timeout=TIMEOUT)
+    seen["match_vary"] = page.eval_on_selector_all(
+        "#match-vary input[type=checkbox]:checked", "es => es.map(e => e.dataset.name)")
+    page.fill("#match-walks", "64")
+    page.fill("#match-starts", "4")
+    page.fill("#match-iterations", "500")
+    page.click("#match-run")
+    page.wait_for_function(
+        "() => /best mean ΔE00 so far/.test(document.getElementById('match-line').textContent)", timeout=TIMEOUT)
+    seen["match_progress_line"] = page.inner_text("#match-line")
+    page.locator("#match-card").screenshot(path=f"{out}/7a-match-running.png")
+    page.screenshot(path=f"{out}/7a-match-running-1600.png", full_page=True)
     page.set_viewport_size({"width": 420, "height": 900})
     page.wait_for_timeout(300)
-    page.screenshot(path=f"{out}/6-narrow.png", full_page=True)
+    page.locator("#match-card").screenshot(path=f"{out}/7a-match-running-420.png")
+    seen["narrow_running_overflow_px"] = page.evaluate("() => document.documentElement.scrollWidth - window.innerWidth")
+    page.set_viewport_size({"width": 1600, "height": 1000})
+    page.click("#match-cancel")
+    page.wait_for_function(
+        "() => /cancelled after/.test(document.getElementById('match-line').textContent)", timeout=TIMEOUT)
+    seen["match_cancelled_line"] = page.inner_text("#match-line")
+    coverage_before = page.input_value('input[type=number][data-path="flakes.coverage"]')
+    page.fill("#match-starts", "1")
+    page.fill("#match-iterations", "3")
+    page.click("#match-run")
+    page.wait_for_selector("#match-de00", timeout=TIMEOUT)
+    seen["match_de00_rows"] = page.locator("#match-de00 tr").all_inner_texts()
+    seen["match_values_rows"] = page.locator("#match-values tr").all_inner_texts()
+    seen["match_done_line"] = page.inner_text("#match-line")
+    seen["coverage_before"] = float(coverage_before)
+    seen["coverage_after"] = float(page.input_value('input[type=number][data-path="flakes.coverage"]'))
+    wait_idle(page, "readings-state")
+    seen["form_de00_rows"] = page.locator("#colour-table tr").all_inner_texts()
+    page.screenshot(path=f"{out}/7b-matched-1600.png", full_page=True)
+    page.locator("#match-card").screenshot(path=f"{out}/7b-match-result.png")
+
+    # 8. A small Morris screening of two constituents and two readings: its chart has one bar
+    # per constituent and reading, and the library's summary.
+    page.evaluate("""() => document.querySelectorAll('#sens-vary input[type=checkbox]').forEach(b => {
+        const on = b.dataset.name === 'tilt' || b.dataset.name === 'roughness';
+        if (b.checked !== on) b.click(); })""")
+    page.click("#sens-outputs summary")
+    page.evaluate("""() => document.querySelectorAll('#sens-outputs input[type=checkbox]').forEach(b => {
+        const on = b.value === 'gu60' || b.value === 'L@45as15';
+        if (b.checked !== on) b.click(); })""")
+    page.fill("#sens-samples", "2")
+    page.fill("#sens-walks", "64")
+    page.click("#sens-run")
+    page.wait_for_function("() => /readings \\d+ of \\d+/.test(document.getElementById('sens-line').textContent)",
+                           timeout=TIMEOUT)
+    page.wait_for_selector("#sens-chart rect.bar", timeout=TIMEOUT)
+    seen["sens_bars"] = page.eval_on_selector_all(
+        "#sens-chart rect.bar", "es => es.map(e => e.dataset.output + ' ' + e.dataset.input)")
+    seen["sens_summary"] = page.inner_text("#sens-summary")
+    page.locator("#sensitivity-card").screenshot(path=f"{out}/8-sensitivity.png")
+    page.screenshot(path=f"{out}/8-sensitivity-1600.png", full_page=True)
+
+    # 9. A narrow window: the same page in one column.
+    page.set_viewport_size({"width": 420, "height": 900})
+    page.wait_for_timeout(300)
+    page.screenshot(path=f"{out}/9-narrow.png", full_page=True)
+    page.locator("#match-card").screenshot(path=f"{out}/9-narrow-match.png")
+    page.locator("#sensitivity-card").screenshot(path=f"{out}/9-narrow-sensitivity.png")
     seen["narrow_overflow_px"] = page.evaluate("() => document.documentElement.scrollWidth - window.innerWidth")
     browser.close()
 

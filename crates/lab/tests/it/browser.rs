@@ -93,6 +93,66 @@ mod slow {
             seen["pinned_columns"].as_str().unwrap().contains('A'),
             "{seen}"
         );
+        // The way back: a match's progress, its cancellation, its result in the form and its
+        // ΔE00 table; a Morris screening's chart, one bar per constituent and reading.
+        assert_eq!(
+            seen["match_vary"],
+            serde_json::json!(["tilt", "coverage", "concentration:cyan"]),
+            "{seen}"
+        );
+        for (k, says) in [
+            ("match_progress_line", "best mean ΔE00 so far"),
+            ("match_cancelled_line", "cancelled after"),
+            ("match_done_line", "the form holds the fitted formulation"),
+        ] {
+            assert!(seen[k].as_str().unwrap().contains(says), "{k}: {seen}");
+        }
+        let rows = |k: &str| -> Vec<String> {
+            seen[k]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|r| r.as_str().unwrap().to_string())
+                .collect()
+        };
+        let de = rows("match_de00_rows");
+        assert_eq!(de.len(), 7, "a head, five geometries and the mean: {de:?}");
+        assert!(
+            de[1].starts_with("45as15") && de[6].starts_with("mean"),
+            "{de:?}"
+        );
+        let values = rows("match_values_rows");
+        // A head and the three constituents, with a σ column (a dash where Gauss–Newton cannot
+        // give one: here the coverage ends at its bound after 3 iterations).
+        assert_eq!(values.len(), 4, "{values:?}");
+        assert!(values[0].contains("σ (1 sd)"), "{values:?}");
+        assert_ne!(
+            seen["coverage_before"], seen["coverage_after"],
+            "the form was not filled"
+        );
+        assert!(
+            rows("form_de00_rows")
+                .iter()
+                .any(|r| r.starts_with("mean ΔE00")),
+            "{seen}"
+        );
+        let mut bars: Vec<String> = rows("sens_bars");
+        bars.sort();
+        assert_eq!(
+            bars,
+            [
+                "L@45as15 roughness",
+                "L@45as15 tilt",
+                "gu60 roughness",
+                "gu60 tilt"
+            ],
+            "{seen}"
+        );
+        assert!(
+            seen["sens_summary"].as_str().unwrap().contains("60° gloss"),
+            "{seen}"
+        );
+        assert!(f("narrow_running_overflow_px") <= 0.0, "{seen}");
         assert!(
             f("narrow_overflow_px") <= 0.0,
             "the narrow page scrolls sideways: {seen}"

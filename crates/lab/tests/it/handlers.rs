@@ -103,7 +103,8 @@ proptest! {
     #[test]
     fn any_json_is_answered_without_a_server_error(body in any_json(), field in any_json(), path in 0usize..10) {
         let router = router();
-        for uri in ["/api/formulation/to-toml", "/api/readings", "/api/picture", "/api/export/gbrdf"] {
+        for uri in ["/api/formulation/to-toml", "/api/readings", "/api/picture", "/api/export/gbrdf",
+                    "/api/constituents", "/api/match", "/api/sensitivity"] {
             let (status, text) = status_of(&router, uri, body.to_string().into_bytes());
             prop_assert!((400..500).contains(&status), "{uri} {body}: {status} {text}");
         }
@@ -112,6 +113,17 @@ proptest! {
         prop_assert!(status == 200 || (400..500).contains(&status), "{request}: {status} {text}");
         if status != 200 {
             prop_assert!(text.contains("\"error\""), "{text}");
+        }
+        // What a random formulation offers to vary, and a match or screening of it (refused
+        // before it starts for want of a target, or of a valid constituent).
+        let (status, text) = status_of(&router, "/api/constituents", request.to_string().into_bytes());
+        prop_assert!(status == 200 || (400..500).contains(&status), "{request}: {status} {text}");
+        let vary = json!([{ "name": "tilt" }, { "name": field }]);
+        for uri in ["/api/match", "/api/sensitivity"] {
+            let body = json!({ "formulation": mutated(path, field.clone()), "vary": vary, "target": "u1.csv" });
+            let body = if uri == "/api/sensitivity" { json!({ "formulation": body["formulation"], "vary": vary, "outputs": [] }) } else { body };
+            let (status, text) = status_of(&router, uri, body.to_string().into_bytes());
+            prop_assert!((400..500).contains(&status), "{uri} {body}: {status} {text}");
         }
     }
 

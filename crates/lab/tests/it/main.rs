@@ -5,3 +5,4 @@ mod api;
 mod browser;
 mod handlers;
 mod server;
+mod way_back;
