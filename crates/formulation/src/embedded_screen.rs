@@ -75,7 +75,7 @@ use rayon::prelude::*;
 
 /// The table's grid: `nodes[0]` × `nodes[1]` nodes evenly spaced in `ln(1 + τa/scale[0])` and
 /// `ln(1 + τs/scale[1])` from 0 to the reach, read at `anchors_nm` (the flakes' optics, the
-/// substrate and the clear coat taken there and interpolated linearly between them).
+/// substrate and the clear coat taken there and interpolated linearly between them; increasing).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Grid {
     pub nodes: [usize; 2],
@@ -156,10 +156,11 @@ pub fn reach(
 }
 
 impl EmbeddedResponse {
-    /// Read `start` with its basecoat's pigments replaced by a medium of optical depths on a
-    /// `nodes` × `nodes` grid up to `reach` `(τa, τs)`, at `anchors_nm` and `geometries`, `walks`
-    /// per geometry, seed 0 (the match's common random numbers); a combination is then read at
-    /// `wavelengths_nm`.
+    /// Read `start` with its basecoat's pigments replaced by a medium of optical depths on
+    /// `grid`'s nodes up to `reach` `(τa, τs)`, at its anchors and `geometries`, `walks` per
+    /// geometry, seed 0 (the match's common random numbers); a combination is then read at
+    /// `wavelengths_nm`. An error when the start's flakes are not in a Kubelka-Munk basecoat of
+    /// some thickness, or the grid has fewer than 2 nodes per depth.
     pub fn measure(
         start: &Coating,
         geometries: &[Geometry],
