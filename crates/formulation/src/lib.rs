@@ -11,6 +11,7 @@
 pub mod appearance;
 pub mod bounds;
 pub mod coating_sensitivity;
+pub mod embedded_screen;
 pub mod error;
 pub mod fitted_description;
 pub mod lab_target;

@@ -22,11 +22,17 @@
 //! and a rough top it is exact up to the walks' noise, with the other constituents (coverage,
 //! tilt, thicknesses) at their start values — which the full match then fits.
 //!
+//! When the flakes lie inside the pigmented basecoat (`[flakes] depth`) the pigments surround
+//! them and are no base under the stack: the screen then reads the coating from a table over the
+//! basecoat's optical depths ([`crate::embedded_screen`], chosen by [`Response::measure`]),
+//! within 0.2 ΔE00 of the full model plus the walks' noise.
+//!
 //! Each combination's concentrations are fitted by the match's own search ([`crate::search`],
 //! Nelder–Mead within the bounds) on the screen's model, in log10 of the concentration (tints
 //! span decades), on the match's objective (mean ΔE00 or rms ΔR).
 
 use crate::coating_sensitivity::Varied;
+use crate::embedded_screen::{self, EmbeddedResponse, Grid};
 use crate::error::{FormulationError, Result};
 use crate::match_objective::{Objective, reflectance_differences, rms};
 use crate::search::{Search, best_run, minimise};
@@ -164,6 +170,71 @@ impl StackResponse {
     }
 }
 
+/// The screen's model of the start: [`StackResponse`] when the pigments act through a base under
+/// everything else, [`EmbeddedResponse`] when the flakes lie inside the pigmented basecoat
+/// (`[flakes] depth`), where the light the flakes reflect crosses the pigments.
+#[derive(Clone, Debug)]
+pub enum Response {
+    Stack(StackResponse),
+    Embedded(EmbeddedResponse),
+}
+
+impl Response {
+    /// The model of `start` ([`Response`]) at `geometries` and `wavelengths_nm`, read with
+    /// `walks` per geometry and seed 0; the embedded table reaches the optical depths of up to
+    /// `max_pigments` of `candidates` at concentration 1 ([`embedded_screen::reach`]).
+    pub fn measure(
+        start: &Coating,
+        geometries: &[Geometry],
+        wavelengths_nm: &[f64],
+        walks: usize,
+        candidates: &[&LibraryPigment],
+        max_pigments: usize,
+    ) -> Result<Self> {
+        if start.flakes.as_ref().is_some_and(|f| f.depth.is_some()) {
+            let reach = embedded_screen::reach(start, candidates, max_pigments, wavelengths_nm)?;
+            Ok(Response::Embedded(EmbeddedResponse::measure(
+                start,
+                geometries,
+                wavelengths_nm,
+                walks,
+                reach,
+                &Grid::for_bands(wavelengths_nm),
+            )?))
+        } else {
+            Ok(Response::Stack(StackResponse::measure(
+                start,
+                geometries,
+                wavelengths_nm,
+                walks,
+            )?))
+        }
+    }
+
+    /// The multi-angle reading of `coating` (the start with pigments added) by the model.
+    pub fn reading(&self, coating: &Coating) -> Result<MultiangleReading> {
+        match self {
+            Response::Stack(r) => {
+                let rho = r
+                    .wavelengths_nm
+                    .iter()
+                    .map(|&w| Ok(coating.base.reflectance(w)?))
+                    .collect::<Result<Vec<f64>>>()?;
+                r.reading(&rho)
+            }
+            Response::Embedded(r) => r.reading(coating),
+        }
+    }
+
+    /// Readings of the real coating the model took.
+    pub fn readings(&self) -> usize {
+        match self {
+            Response::Stack(_) => GREYS.len(),
+            Response::Embedded(r) => r.readings(),
+        }
+    }
+}
+
 /// One combination as the screen scored it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Screened {
@@ -201,7 +272,7 @@ pub fn with_pigments(
 
 /// The screen's objective of `start` with `pigments` at `concentrations`, against `target`.
 pub fn score(
-    response: &StackResponse,
+    response: &Response,
     start: &Coating,
     target: &Target,
     objective: Objective,
@@ -209,12 +280,7 @@ pub fn score(
     concentrations: &[f64],
 ) -> Result<f64> {
     let coating = with_pigments(start, pigments, concentrations)?;
-    let rho = response
-        .wavelengths_nm
-        .iter()
-        .map(|&w| Ok(coating.base.reflectance(w)?))
-        .collect::<Result<Vec<f64>>>()?;
-    let reading = response.reading(&rho)?;
+    let reading = response.reading(&coating)?;
     Ok(match objective {
         Objective::De00 => {
             let de = target.de00(&reading)?;
@@ -226,7 +292,7 @@ pub fn score(
 
 /// Fit the concentrations of `pigments` added to `start` on the screen's model (module docs).
 pub fn fit(
-    response: &StackResponse,
+    response: &Response,
     start: &Coating,
     target: &Target,
     objective: Objective,

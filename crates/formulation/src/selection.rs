@@ -16,7 +16,7 @@ use crate::coating_sensitivity::Varied;
 use crate::error::{FormulationError, Result};
 use crate::fitted_description::{with_library_pigments, with_values};
 use crate::matching::{self, Match, Run, Settings};
-use crate::screen::{self, CONCENTRATION_RANGE, Screened, StackResponse};
+use crate::screen::{self, CONCENTRATION_RANGE, Response, Screened};
 use crate::target::GlossTarget;
 use gonio_coating::pigment_library::{self, LibraryPigment};
 use gonio_coating::system::Coating;
@@ -111,7 +111,8 @@ pub struct Screen {
     pub candidates: Vec<String>,
     /// Every combination tried with its fitted concentrations and score, best (lowest) first.
     pub tried: Vec<Screened>,
-    /// Readings of the real coating made (the stack's response: three).
+    /// Readings of the real coating made (the stack's response: three; the embedded table: its
+    /// nodes).
     pub readings: usize,
     /// Wall-clock seconds.
     pub seconds: f64,
@@ -140,11 +141,13 @@ pub fn screen(
         ));
     }
     screen::with_pigments(start, &[], &[])?;
-    let response = StackResponse::measure(
+    let response = Response::measure(
         start,
         &target.geometries(),
         &settings.wavelengths_nm,
         settings.walks,
+        candidates,
+        max_pigments,
     )?;
     let mut tried = combinations(candidates.len(), max_pigments)
         .par_iter()
@@ -161,7 +164,7 @@ pub fn screen(
     Ok(Screen {
         candidates: candidates.iter().map(|p| p.name.clone()).collect(),
         tried,
-        readings: 3,
+        readings: response.readings(),
         seconds: clock.elapsed().as_secs_f64(),
     })
 }

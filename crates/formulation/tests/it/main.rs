@@ -5,6 +5,7 @@
 //! module is one subject.
 
 mod coating_sensitivity;
+mod embedded_screen;
 mod lab_target;
 mod matching;
 mod measured_samples;
