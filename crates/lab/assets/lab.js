@@ -897,7 +897,8 @@ function showMatch(m) {
 function selectionParts(sel) {
   const names = (list) => list.map(pigmentName).join(' + ');
   const rows = sel.finalists.map((f, i) => el('tr', { class: i === sel.chosen ? 'chosen' : '' },
-    el('td', {}, (i === sel.chosen ? '✓ ' : '') + names(f.pigments)),
+    // Each pigment's name whole: a narrow window breaks the line between pigments only.
+    el('td', {}, (i === sel.chosen ? '✓ ' : ''), ...f.pigments.flatMap((p, k) => [...(k ? [' + '] : []), el('span', { class: 'pigment-name' }, pigmentName(p))])),
     el('td', {}, f.concentrations.map((c) => String(round(c))).join(' + ')),
     el('td', {}, fmt(f.screen_score, 2)), el('td', {}, fmt(f.mean_de00, 2))));
   return [
