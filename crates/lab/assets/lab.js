@@ -890,7 +890,7 @@ function showMatch(m) {
   $('match-result').replaceChildren(
     ...(sel ? selectionParts(sel) : []),
     el('div', { class: 'verdict' }, `Mean ΔE00 ${fmt(m.mean_de00_start, 2)} → ${fmt(m.mean_de00_fitted, 2)} at the ${m.standard} geometries the target has (${m.objective} objective; residual sd ${fmt(m.residual_sd, 2)})${sel ? ', from the screen\'s concentrations' : ''}.`),
-    el('div', { class: 'plots' }, de, values));
+    el('div', { class: 'plots' }, el('div', { class: 'scroll' }, de), el('div', { class: 'scroll' }, values)));
 }
 
 // A selection's choice and its finalists (each matched in full; the chosen one ended lowest).
@@ -903,8 +903,8 @@ function selectionParts(sel) {
     el('td', {}, fmt(f.screen_score, 2)), el('td', {}, fmt(f.mean_de00, 2))));
   return [
     el('div', { class: 'verdict', id: 'match-chosen' }, `gonio chose ${names(sel.pigments)}: the lowest of ${sel.finalists.length} finalists, from ${sel.combinations} combinations of ${sel.candidates.length} candidates screened.`),
-    el('table', { class: 'numbers', id: 'match-finalists-table', 'aria-label': 'finalists' },
-      el('tr', {}, el('th', {}, 'finalist'), el('th', {}, 'concentrations'), el('th', {}, 'screen'), el('th', {}, 'mean ΔE00')), ...rows),
+    el('div', { class: 'scroll' }, el('table', { class: 'numbers', id: 'match-finalists-table', 'aria-label': 'finalists' },
+      el('tr', {}, el('th', {}, 'finalist'), el('th', {}, 'fitted concentrations'), el('th', {}, 'screen ΔE00'), el('th', {}, 'mean ΔE00')), ...rows)),
   ];
 }
 
