@@ -350,8 +350,8 @@ pub enum Stage {
 /// with the constituents of `varied`, to `target` (and the `gloss` readings): the screen, then
 /// the full match of the best `finalists` combinations, serially (each match in parallel
 /// inside). `progress` gets the screen's summary and the matches' lines; `cancel` stops the
-/// selection between combinations and between finalists ([`FormulationError::Cancelled`]).
-/// The entry point of every front end's "let gonio select".
+/// selection before its next combination or reading (cancelled). The entry point of every
+/// front end's "let gonio select" ([`run_watched`] for one that follows it).
 #[allow(clippy::too_many_arguments)]
 pub fn run(
     start: &Coating,
