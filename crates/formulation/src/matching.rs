@@ -295,7 +295,7 @@ pub fn search(
 }
 
 /// [`search`] under `watch` (see [`run_watched`]).
-fn search_watched(
+pub fn search_watched(
     start: &Coating,
     target: &Target,
     gloss: &[GlossTarget],

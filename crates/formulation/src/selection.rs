@@ -18,12 +18,14 @@ use crate::fitted_description::{with_library_pigments, with_values};
 use crate::matching::{self, Match, Run, Settings};
 use crate::screen::{self, CONCENTRATION_RANGE, Response, Screened};
 use crate::target::GlossTarget;
+use crate::watch::{Progress, Watch};
 use gonio_coating::pigment_library::{self, LibraryPigment};
 use gonio_coating::system::Coating;
 use gonio_instrument::coating_study::Constituent;
 use gonio_instrument::multiangle_target::Target;
 use gonio_io::Cancel;
 use rayon::prelude::*;
+use std::sync::Mutex;
 use std::time::Instant;
 
 /// Default number of library pigments chosen at most (a formulation program's usual three
@@ -120,7 +122,8 @@ pub struct Screen {
 
 /// Screen every combination of 1 to `max_pigments` of `candidates` added to `start`
 /// ([`crate::screen`]), with `settings`' objective, bands and walks; stops with
-/// [`FormulationError::Cancelled`] once `cancel` is raised.
+/// [`FormulationError::Cancelled`] once `cancel` is raised. Refused: no pigment to select, no
+/// candidate, more pigments than candidates.
 pub fn screen(
     start: &Coating,
     target: &Target,
@@ -129,17 +132,79 @@ pub fn screen(
     settings: &Settings,
     cancel: &Cancel,
 ) -> Result<Screen> {
-    let clock = Instant::now();
+    let watch = Watch {
+        cancel: Some(cancel),
+        progress: None,
+    };
+    screen_watched(start, target, candidates, max_pigments, settings, &watch)
+}
+
+/// Refuse a selection of `max_pigments` of `candidates` in `finalists`: none to select, no
+/// candidate, more pigments than candidates, no finalist.
+pub fn check(candidates: usize, max_pigments: usize, finalists: usize) -> Result<()> {
     if max_pigments == 0 {
         return Err(FormulationError::Invalid(
             "select at least 1 pigment (0 given)".into(),
         ));
     }
-    if candidates.is_empty() {
+    if candidates == 0 {
         return Err(FormulationError::Invalid(
             "no candidate pigment to select from".into(),
         ));
     }
+    if max_pigments > candidates {
+        return Err(FormulationError::Invalid(format!(
+            "select up to {max_pigments} pigments of {candidates} candidates: at most \
+             {candidates}"
+        )));
+    }
+    if finalists == 0 {
+        return Err(FormulationError::Invalid(
+            "a selection needs at least 1 finalist (0 given)".into(),
+        ));
+    }
+    Ok(())
+}
+
+/// Check a selection before it reads anything, so that a front end refuses a bad request at
+/// once: [`check`]'s counts, then the match a finalist runs (`matching::check`: its settings,
+/// objective and target, and `varied`, each valid for the start) on `start` with the first
+/// candidate added at 0.1 (any concentration of the screen's range serves: the checks do not
+/// depend on it).
+#[allow(clippy::too_many_arguments)]
+pub fn check_run(
+    start: &Coating,
+    target: &Target,
+    gloss: &[GlossTarget],
+    varied: &[Varied],
+    candidates: &[&LibraryPigment],
+    max_pigments: usize,
+    finalists: usize,
+    settings: &Settings,
+) -> Result<()> {
+    check(candidates.len(), max_pigments, finalists)?;
+    let first = Screened {
+        pigments: vec![candidates[0].name.clone()],
+        concentrations: vec![0.1],
+        score: 0.0,
+    };
+    let (coating, all) = finalist_start(start, varied, &first)?;
+    matching::check(&coating, target, gloss, &all, settings)
+}
+
+/// [`screen`] under `watch`: told after every combination the combinations screened, of how
+/// many, and the lowest screen score so far (`Progress`' readings, total and best), and stopped
+/// ([`FormulationError::Cancelled`]) before the next combination once its flag is raised.
+pub fn screen_watched(
+    start: &Coating,
+    target: &Target,
+    candidates: &[&LibraryPigment],
+    max_pigments: usize,
+    settings: &Settings,
+    watch: &Watch,
+) -> Result<Screen> {
+    let clock = Instant::now();
+    check(candidates.len(), max_pigments, 1)?;
     screen::with_pigments(start, &[], &[])?;
     let response = Response::measure(
         start,
@@ -149,14 +214,25 @@ pub fn screen(
         candidates,
         max_pigments,
     )?;
-    let mut tried = combinations(candidates.len(), max_pigments)
+    let all = combinations(candidates.len(), max_pigments);
+    // Combinations screened and the lowest score, from every thread.
+    let so_far = Mutex::new((0usize, f64::INFINITY));
+    let mut tried = all
         .par_iter()
         .map(|c| {
-            if cancel.is_cancelled() {
+            if watch.cancel.is_some_and(|c| c.is_cancelled()) {
                 return Err(FormulationError::Cancelled);
             }
             let pigments: Vec<&LibraryPigment> = c.iter().map(|&i| candidates[i]).collect();
-            screen::fit(&response, start, target, settings.objective, &pigments)
+            let s = screen::fit(&response, start, target, settings.objective, &pigments)?;
+            let mut n = so_far.lock().unwrap_or_else(|p| p.into_inner());
+            *n = (n.0 + 1, n.1.min(s.score));
+            watch.report(Progress {
+                readings: n.0,
+                total: Some(all.len()),
+                best: Some(n.1),
+            });
+            Ok(s)
         })
         .collect::<Result<Vec<_>>>()?;
     // A stable sort: ties keep the combinations' order.
@@ -260,12 +336,25 @@ pub fn conclude(screen: Screen, finalists: Vec<Finalist>, seconds: f64) -> Resul
     })
 }
 
+/// Where a selection is, told to [`run_watched`]'s caller as each step begins.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Stage {
+    /// The screen of this many combinations.
+    Screen { combinations: usize },
+    /// The full match of finalist `index` (from 0) of `count`, of these pigments.
+    Finalist {
+        index: usize,
+        count: usize,
+        pigments: Vec<String>,
+    },
+}
+
 /// Select up to `max_pigments` of `candidates` ([`candidates`]) for `start` and fit them,
 /// with the constituents of `varied`, to `target` (and the `gloss` readings): the screen, then
 /// the full match of the best `finalists` combinations, serially (each match in parallel
 /// inside). `progress` gets the screen's summary and the matches' lines; `cancel` stops the
-/// selection between combinations and between finalists ([`FormulationError::Cancelled`]).
-/// The entry point of every front end's "let gonio select".
+/// selection before its next combination or reading (cancelled). The entry point of every
+/// front end's "let gonio select" ([`run_watched`] for one that follows it).
 #[allow(clippy::too_many_arguments)]
 pub fn run(
     start: &Coating,
@@ -279,13 +368,50 @@ pub fn run(
     progress: &mut dyn FnMut(&str),
     cancel: &Cancel,
 ) -> Result<Selection> {
+    let watch = Watch {
+        cancel: Some(cancel),
+        progress: None,
+    };
+    run_watched(
+        start,
+        target,
+        gloss,
+        varied,
+        candidates,
+        max_pigments,
+        finalists,
+        settings,
+        watch,
+        &mut |_| {},
+        progress,
+    )
+}
+
+/// [`run`] under `watch` (the lab's jobs): `stage` is told as the screen and each finalist's
+/// match begin; `watch` is told the screen's progress ([`screen_watched`]), then each
+/// finalist's match's readings and lowest objective (`matching::run_watched`: its readings
+/// counted from 0), and stops the selection before its next combination or reading once its
+/// flag is raised.
+#[allow(clippy::too_many_arguments)]
+pub fn run_watched(
+    start: &Coating,
+    target: &Target,
+    gloss: &[GlossTarget],
+    varied: &[Varied],
+    candidates: &[&LibraryPigment],
+    max_pigments: usize,
+    finalists: usize,
+    settings: &Settings,
+    watch: Watch,
+    stage: &mut dyn FnMut(Stage),
+    progress: &mut dyn FnMut(&str),
+) -> Result<Selection> {
     let clock = Instant::now();
-    if finalists == 0 {
-        return Err(FormulationError::Invalid(
-            "a selection needs at least 1 finalist (0 given)".into(),
-        ));
-    }
-    let s = screen(start, target, candidates, max_pigments, settings, cancel)?;
+    check(candidates.len(), max_pigments, finalists)?;
+    stage(Stage::Screen {
+        combinations: combinations(candidates.len(), max_pigments).len(),
+    });
+    let s = screen_watched(start, target, candidates, max_pigments, settings, &watch)?;
     progress(&format!(
         "screen: {} combinations of up to {max_pigments} of {} candidates in {:.1} s; best {}",
         s.tried.len(),
@@ -296,18 +422,29 @@ pub fn run(
     let count = finalists.min(s.tried.len());
     let mut done = Vec::with_capacity(count);
     for (k, screened) in s.tried[..count].iter().enumerate() {
-        if cancel.is_cancelled() {
+        if watch.cancel.is_some_and(|c| c.is_cancelled()) {
             return Err(FormulationError::Cancelled);
         }
+        stage(Stage::Finalist {
+            index: k,
+            count,
+            pigments: screened.pigments.clone(),
+        });
         progress(&format!(
             "finalist {} of {count}: {}",
             k + 1,
             describe(screened)
         ));
         let (coating, all) = finalist_start(start, varied, screened)?;
-        let runs = matching::search(&coating, target, gloss, &all, settings, &mut |line| {
-            progress(&format!("  {line}"))
-        })?;
+        let runs = matching::search_watched(
+            &coating,
+            target,
+            gloss,
+            &all,
+            settings,
+            &watch,
+            &mut |line| progress(&format!("  {line}")),
+        )?;
         done.push(conclude_finalist(
             start, target, gloss, varied, screened, settings, runs,
         )?);

@@ -710,14 +710,19 @@ let outputsOffered = [];
 const outputsChosen = {};
 const outputDefault = (name) => /^(gu20|gu60|haze|doi|flop|dE00|L@.*)$/.test(name);
 
+// The pigments a match uses (docs/lab.md, POST /api/match): the formulation's own, library
+// pigments ticked, or up to N selected by gonio from those ticked (none ticked: the library).
 function matchPigments() {
   const from = document.querySelector('input[name=match-pigments]:checked').value;
-  if (from === 'library') {
-    const names = [...document.querySelectorAll('#match-library input:checked')].map((i) => i.value);
-    return { from, names };
+  const names = [...document.querySelectorAll('#match-library input:checked')].map((i) => i.value);
+  if (from === 'library') return { from, names };
+  if (from === 'select') {
+    return { from, max: number('match-select-max') ?? 3, candidates: names.length ? names : undefined, finalists: number('match-finalists') };
   }
   return { from };
 }
+
+const pigmentName = (name) => name.replace(/_/g, ' ');
 
 // The constituents of the formulation (the match's with its pigments choice), refreshed a moment
 // after the last change.
@@ -735,12 +740,12 @@ async function refreshConstituents() {
     outputsOffered = own.outputs;
     showOutputs();
     const pigments = matchPigments();
-    const m = pigments.from === 'formulation' ? own : await api('/api/constituents', { formulation: state.f, standard, pigments });
+    const m = pigments.from !== 'library' ? own : await api('/api/constituents', { formulation: state.f, standard, pigments });
     panels.match.offered = m.constituents;
     $('match-state').textContent = '';
   } catch (e) {
     // A formulation the library refuses is marked in the form; a pigment choice here.
-    if (e.status === 400 && matchPigments().from !== 'formulation') setState('match-state', e.message, 'error');
+    if (e.status === 400 && matchPigments().from === 'library') setState('match-state', e.message, 'error');
     panels.match.offered = [];
   }
   showVary(panels.match);
@@ -789,7 +794,8 @@ function countOutputs() {
 }
 
 function showMatchReady() {
-  const ready = state.target && varyOf(panels.match).length > 0 && !jobs.match;
+  // A selection varies its pigments' concentrations besides the constituents ticked.
+  const ready = state.target && (varyOf(panels.match).length > 0 || matchPigments().from === 'select') && !jobs.match;
   $('match-run').disabled = !ready;
   $('match-hint').hidden = !!state.target;
 }
@@ -822,7 +828,7 @@ async function runJob(kind, path, body, { progress, line, run, cancel, show, don
   while (true) {
     await new Promise((r) => setTimeout(r, 400));
     try { job = await api('/api/jobs/' + job.id); } catch (e) { showError(e.message); break; }
-    if (job.total) { $(progress).max = job.total; $(progress).value = job.readings; }
+    if (job.total) { $(progress).max = job.total; $(progress).value = job.readings; } else $(progress).removeAttribute('value');
     show(job);
     if (job.state !== 'running' && job.state !== 'cancelling') break;
   }
@@ -846,7 +852,13 @@ async function startMatch() {
     progress: 'match-progress', line: 'match-line', run: 'match-run', cancel: 'match-cancel',
     show: (j) => {
       const best = j.best === null ? '' : ` · best mean ΔE00 so far ${fmt(j.best, 2)}`;
-      const what = j.state === 'cancelled' ? `cancelled after ${j.readings} readings` : j.state === 'failed' ? 'failed' : `${j.readings} readings${best}`;
+      // A selection's step: the screen (its readings are combinations), then each finalist.
+      const step = j.stage?.step === 'screen' ? `screened ${j.readings} of ${j.stage.combinations} combinations`
+        : j.stage?.step === 'finalist' ? `finalist ${j.stage.number} of ${j.stage.of} (${j.stage.pigments.map(pigmentName).join(' + ')}): ${j.readings} readings`
+          : `${j.readings} readings`;
+      const screenBest = j.best === null ? '' : ` · best screen ΔE00 ${fmt(j.best, 2)}`;
+      const what = j.state === 'cancelled' ? (j.stage ? `cancelled in ${step}` : `cancelled after ${j.readings} readings`) : j.state === 'failed' ? 'failed'
+        : j.stage?.step === 'screen' ? step + screenBest : step + best;
       $('match-line').textContent = `${what} · ${seconds(j.seconds)}` + (j.line && j.state === 'running' ? ` · ${j.line}` : '');
     },
     done: showMatch,
@@ -859,10 +871,12 @@ function showMatch(m) {
   state.pinned = null;
   $('picture-a').hidden = true;
   setFormulation(m.formulation);
-  $('match-line').textContent = `done: ${m.evaluations} readings in ${seconds(m.seconds)}; the form holds the fitted formulation`;
+  const sel = m.selection;
+  $('match-line').textContent = sel ? `done: ${sel.combinations} combinations screened, ${sel.finalists.length} finalists matched in ${seconds(sel.seconds)}; the form holds the chosen one, fitted`
+    : `done: ${m.evaluations} readings in ${seconds(m.seconds)}; the form holds the fitted formulation`;
   const cls = (a, b) => b < a - 0.005 ? 'better' : b > a + 0.005 ? 'worse' : '';
   const de = el('table', { class: 'numbers', id: 'match-de00' },
-    el('tr', {}, el('th', {}, 'geometry'), el('th', {}, 'ΔE00 start'), el('th', {}, 'ΔE00 fitted')),
+    el('tr', {}, el('th', {}, 'geometry'), el('th', {}, sel ? 'ΔE00 screened' : 'ΔE00 start'), el('th', {}, 'ΔE00 fitted')),
     ...m.geometries.map((g) => el('tr', {}, el('td', {}, g.name), el('td', {}, fmt(g.de00_start, 2)),
       el('td', { class: cls(g.de00_start, g.de00_fitted) }, fmt(g.de00_fitted, 2)))),
     el('tr', {}, el('td', {}, 'mean'), el('td', {}, fmt(m.mean_de00_start, 2)),
@@ -874,8 +888,24 @@ function showMatch(m) {
       el('td', {}, ...c.name.split(':').flatMap((part, i) => i ? [':', el('wbr'), part] : [part])), el('td', {}, String(round(c.start))), el('td', {}, String(round(c.fitted)), ...(c.at_bound ? [el('br'), el('span', { class: 'unit' }, 'at a bound')] : [])),
       el('td', {}, sd(c)), el('td', {}, `${round(c.lo)} – ${round(c.hi)}`))));
   $('match-result').replaceChildren(
-    el('div', { class: 'verdict' }, `Mean ΔE00 ${fmt(m.mean_de00_start, 2)} → ${fmt(m.mean_de00_fitted, 2)} at the ${m.standard} geometries the target has (${m.objective} objective; residual sd ${fmt(m.residual_sd, 2)}).`),
-    el('div', { class: 'plots' }, de, values));
+    ...(sel ? selectionParts(sel) : []),
+    el('div', { class: 'verdict' }, `Mean ΔE00 ${fmt(m.mean_de00_start, 2)} → ${fmt(m.mean_de00_fitted, 2)} at the ${m.standard} geometries the target has (${m.objective} objective; residual sd ${fmt(m.residual_sd, 2)})${sel ? ', from the screen\'s concentrations' : ''}.`),
+    el('div', { class: 'plots' }, el('div', { class: 'scroll' }, de), el('div', { class: 'scroll' }, values)));
+}
+
+// A selection's choice and its finalists (each matched in full; the chosen one ended lowest).
+function selectionParts(sel) {
+  const names = (list) => list.map(pigmentName).join(' + ');
+  const rows = sel.finalists.map((f, i) => el('tr', { class: i === sel.chosen ? 'chosen' : '' },
+    // Each pigment's name whole: a narrow window breaks the line between pigments only.
+    el('td', {}, (i === sel.chosen ? '✓ ' : ''), ...f.pigments.flatMap((p, k) => [...(k ? [' + '] : []), el('span', { class: 'pigment-name' }, pigmentName(p))])),
+    el('td', {}, f.concentrations.map((c) => String(round(c))).join(' + ')),
+    el('td', {}, fmt(f.screen_score, 2)), el('td', {}, fmt(f.mean_de00, 2))));
+  return [
+    el('div', { class: 'verdict', id: 'match-chosen' }, `gonio chose ${names(sel.pigments)}: the lowest of ${sel.finalists.length} finalists, from ${sel.combinations} combinations of ${sel.candidates.length} candidates screened.`),
+    el('div', { class: 'scroll' }, el('table', { class: 'numbers', id: 'match-finalists-table', 'aria-label': 'finalists' },
+      el('tr', {}, el('th', {}, 'finalist'), el('th', {}, 'fitted concentrations'), el('th', {}, 'screen ΔE00'), el('th', {}, 'mean ΔE00')), ...rows)),
+  ];
 }
 
 async function startSensitivity() {
@@ -990,7 +1020,9 @@ function startPanels() {
     return el('label', { title: p.colour_index }, box, ` ${p.name.replace(/_/g, ' ')} (${p.colour_index})`);
   }));
   document.querySelectorAll('input[name=match-pigments]').forEach((r) => r.addEventListener('change', () => {
-    $('match-library').hidden = matchPigments().from !== 'library';
+    const from = matchPigments().from;
+    $('match-library').hidden = from === 'formulation';
+    $('match-select').hidden = from !== 'select';
     refreshConstituents();
   }));
   $('standard').addEventListener('change', refreshConstituents);

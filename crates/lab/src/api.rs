@@ -454,7 +454,11 @@ async fn start_match(
         lab,
         "match",
         request.channel.as_deref(),
-        move |job, watch| plan.run(&target, watch, &mut |line| job.line(line)),
+        move |job, watch| {
+            plan.run(&target, watch, &mut |stage| job.stage(stage), &mut |line| {
+                job.line(line)
+            })
+        },
     ))
 }
 

@@ -2,17 +2,21 @@
 //! formulation offers to vary ([`constituents`]), a match's request parsed and checked by the
 //! formulation library's own checks before its job starts ([`MatchRequest::plan`]), and the
 //! match run under the job's watch with its result as JSON ([`MatchPlan::run`]): the library's
-//! `Match::to_json` and the fitted formulation (`fitted_description::with_values`). The physics
-//! and the report are `gonio_formulation`'s; this module only parses and adapts.
+//! `Match::to_json` and the fitted formulation (`fitted_description::with_values`), or, when
+//! gonio selects the pigments, `selection::run_watched` with `Selection::to_json` and
+//! `Selection::fitted_description`. The physics and the report are `gonio_formulation`'s; this
+//! module only parses and adapts.
 
 use crate::compute::ReadingOptions;
 use crate::error::ApiError;
 use crate::formulation;
+use gonio_coating::pigment_library::LibraryPigment;
 use gonio_coating::system::{Coating, default_bands};
 use gonio_formulation::appearance::Output;
 use gonio_formulation::coating_sensitivity::Varied;
 use gonio_formulation::lab_target::LabTarget;
 use gonio_formulation::matching::{self, Objective, Settings};
+use gonio_formulation::selection::{self, Stage};
 use gonio_formulation::watch::Watch;
 use gonio_instrument::coating_study::Constituent;
 use serde::Deserialize;
@@ -70,12 +74,25 @@ pub enum Pigments {
     /// These pigments of gonio's library, in place of the formulation's
     /// ([`formulation::with_library_pigments`]).
     Library { names: Vec<String> },
+    /// Up to `max` pigments of gonio's library selected and added to the formulation's own
+    /// (`selection::run`): from `candidates` (default: the library less the formulation's
+    /// own), the full match on the screen's best `finalists` (default
+    /// `selection::FINALISTS`).
+    Select {
+        max: usize,
+        #[serde(default)]
+        candidates: Option<Vec<String>>,
+        #[serde(default)]
+        finalists: Option<usize>,
+    },
 }
 
 /// `formulation` with the pigments of `pigments` (unchanged for the formulation's own).
 pub fn with_pigments(formulation: &Value, pigments: Option<&Pigments>) -> Result<Value, ApiError> {
     match pigments {
-        None | Some(Pigments::Formulation) => Ok(formulation.clone()),
+        None | Some(Pigments::Formulation) | Some(Pigments::Select { .. }) => {
+            Ok(formulation.clone())
+        }
         Some(Pigments::Library { names }) => formulation::with_library_pigments(formulation, names),
     }
 }
@@ -131,7 +148,8 @@ pub struct MatchRequest {
     pub standard: Option<String>,
     /// The constituents to vary.
     pub vary: Vec<VaryRequest>,
-    /// The pigments: `{"from": "formulation"}` (default) or `{"from": "library", "names": […]}`.
+    /// The pigments: `{"from": "formulation"}` (default), `{"from": "library", "names": […]}`
+    /// or `{"from": "select", "max": N, "candidates": […], "finalists": K}`.
     #[serde(default)]
     pub pigments: Option<Pigments>,
     /// `de00` (default) or `spectral` (a target with reflectance factors).
@@ -158,7 +176,19 @@ pub struct MatchPlan {
     pub varied: Vec<Varied>,
     pub settings: Settings,
     pub options: ReadingOptions,
+    /// When gonio selects the pigments: what from.
+    pub selection: Option<SelectPlan>,
 }
+
+/// A selection's candidates (checked: `selection::candidates`), pigments at most and finalists.
+pub struct SelectPlan {
+    pub candidates: Vec<&'static LibraryPigment>,
+    pub max: usize,
+    pub finalists: usize,
+}
+
+/// How many of the screen's best combinations a selection's JSON lists.
+const SHOWN: usize = 10;
 
 impl MatchRequest {
     /// The start coating (`coating_of` of the formulation with its pigments) and the checked
@@ -182,12 +212,31 @@ impl MatchRequest {
             },
             ..defaults
         };
+        let selection = match &self.pigments {
+            Some(Pigments::Select {
+                max,
+                candidates,
+                finalists,
+            }) => {
+                let candidates =
+                    selection::candidates(&coating, candidates.as_deref()).map_err(bad)?;
+                let finalists = finalists.unwrap_or(selection::FINALISTS);
+                selection::check(candidates.len(), *max, finalists).map_err(bad)?;
+                Some(SelectPlan {
+                    candidates,
+                    max: *max,
+                    finalists,
+                })
+            }
+            _ => None,
+        };
         Ok(MatchPlan {
             coating,
             text,
             varied,
             settings,
             options,
+            selection,
         })
     }
 }
@@ -195,28 +244,70 @@ impl MatchRequest {
 impl MatchPlan {
     /// Check the plan against the read `target` (`matching::check`: e.g. a spectral objective
     /// needs a target with reflectance factors).
+    /// A selection's: `selection::check_run`.
     pub fn check(&self, target: &LabTarget) -> Result<(), ApiError> {
-        matching::check(
-            &self.coating,
-            &target.target,
-            &[],
-            &self.varied,
-            &self.settings,
-        )
+        match &self.selection {
+            None => matching::check(
+                &self.coating,
+                &target.target,
+                &[],
+                &self.varied,
+                &self.settings,
+            ),
+            Some(s) => selection::check_run(
+                &self.coating,
+                &target.target,
+                &[],
+                &self.varied,
+                &s.candidates,
+                s.max,
+                s.finalists,
+                &self.settings,
+            ),
+        }
         .map_err(bad)
     }
 
     /// Run the match against `target` under `watch`, with the library's progress lines to
-    /// `line`: `Match::to_json` (docs/formulation.md: `constituents` with `sigma`,
-    /// `geometries` with `de00_start` and `de00_fitted`, the means …) with `formulation` and
-    /// `toml`, the fitted formulation.
+    /// `line` (and a selection's steps to `stage`): `Match::to_json` (docs/formulation.md:
+    /// `constituents` with `sigma`, `geometries` with `de00_start` and `de00_fitted`, the
+    /// means …), for a selection `Selection::to_json` (the chosen finalist's match and
+    /// `selection`: the pigments chosen, the combinations screened, the best [`SHOWN`] tried,
+    /// the finalists), with `formulation` and `toml`, the fitted formulation.
     pub fn run(
         &self,
         target: &LabTarget,
         watch: Watch,
+        stage: &mut dyn FnMut(Stage),
         line: &mut dyn FnMut(&str),
     ) -> Result<Value, ApiError> {
         let cancelled = || watch.cancel.is_some_and(|c| c.is_cancelled());
+        let failed = |e| {
+            if cancelled() {
+                ApiError::Cancelled
+            } else {
+                bad(e)
+            }
+        };
+        if let Some(s) = &self.selection {
+            let selected = selection::run_watched(
+                &self.coating,
+                &target.target,
+                &[],
+                &self.varied,
+                &s.candidates,
+                s.max,
+                s.finalists,
+                &self.settings,
+                watch,
+                stage,
+                line,
+            )
+            .map_err(failed)?;
+            let toml = selected.fitted_description(&self.text).map_err(bad)?;
+            let value = selected.to_json(&target.target, SHOWN);
+            return self.with_formulation(value, &toml);
+        }
         let m = matching::run_watched(
             &self.coating,
             &target.target,
@@ -226,21 +317,19 @@ impl MatchPlan {
             watch,
             line,
         )
-        .map_err(|e| {
-            if cancelled() {
-                ApiError::Cancelled
-            } else {
-                bad(e)
-            }
-        })?;
+        .map_err(failed)?;
         let toml = gonio_formulation::fitted_description::with_values(
             &self.text,
             &self.varied,
             &m.fitted.values,
         )
         .map_err(bad)?;
-        let mut value = m.to_json(&target.target);
-        value["formulation"] = formulation::from_toml(&toml)?;
+        self.with_formulation(m.to_json(&target.target), &toml)
+    }
+
+    /// A result's JSON with the fitted formulation (`formulation`, `toml`) and `standard`.
+    fn with_formulation(&self, mut value: Value, toml: &str) -> Result<Value, ApiError> {
+        value["formulation"] = formulation::from_toml(toml)?;
         value["toml"] = json!(toml);
         value["standard"] = json!(self.options.standard.name());
         Ok(value)

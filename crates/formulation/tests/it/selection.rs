@@ -222,9 +222,9 @@ fn the_screen_is_the_closed_form_for_a_solid() {
     }
 }
 
-/// Bad selections are refused with what is wrong: no pigment to select, an unknown candidate
-/// (with the closest name), one given twice or already in the base, a diffuse base, a raised
-/// cancel flag.
+/// Bad selections are refused with what is wrong: no pigment to select, more than the
+/// candidates, no finalist, an unknown candidate (with the closest name), one given twice or
+/// already in the base, a diffuse base, a raised cancel flag.
 #[test]
 fn bad_selections_are_refused() {
     let start = solid();
@@ -249,6 +249,8 @@ fn bad_selections_are_refused() {
     };
     assert!(run(0, 3, &Cancel::default()).contains("at least 1 pigment"));
     assert!(run(1, 0, &Cancel::default()).contains("at least 1 finalist"));
+    // 18 candidates (the library less the white).
+    assert!(run(19, 3, &Cancel::default()).contains("at most 18"));
     let cancel = Cancel::new();
     cancel.cancel();
     assert_eq!(run(1, 1, &cancel), "cancelled");

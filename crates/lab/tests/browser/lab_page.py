@@ -2,7 +2,8 @@
 uses it: the page loads with the silver metallic; the roughness slider moved up makes the 60°
 gloss fall and the 45as15 swatch change, and the picture refresh; a topography file uploaded
 shows its statistics; Cornell's Cayman loaded as a target shows the ΔE00 table; the formulation
-downloads as TOML. Screenshots of each step go to OUT.
+downloads as TOML; a match runs, is cancelled and fills the form; gonio selects pigments for
+the Cayman target; a Morris screening draws its chart. Screenshots of each step go to OUT.
 
     python3 lab_page.py URL OUT TOPOGRAPHY TARGET
 
@@ -197,6 +198,36 @@ with sync_playwright() as p:
     seen["form_de00_rows"] = page.locator("#colour-table tr").all_inner_texts()
     page.screenshot(path=f"{out}/7b-matched-1600.png", full_page=True)
     page.locator("#match-card").screenshot(path=f"{out}/7b-match-result.png")
+
+    # 7c. Let gonio select up to 2 of 3 library pigments ticked, with 2 finalists, no other
+    # constituent varied and a small budget: the result names the pigments chosen and lists the finalists.
+    page.check("input[name=match-pigments][value=select]")
+    page.wait_for_selector("#match-select:not([hidden])", timeout=TIMEOUT)
+    page.fill("#match-select-max", "2")
+    page.fill("#match-finalists", "2")
+    for name in ("phthalo_blue_green_shade", "hansa_yellow_opaque", "bone_black"):
+        page.check(f"#match-library input[value={name}]")
+    page.fill("#match-iterations", "3")
+    # Only the pigments' concentrations varied (a selection needs no constituent ticked): a
+    # quicker match of each finalist.
+    page.evaluate("""() => document.querySelectorAll('#match-vary input[type=checkbox]').forEach(b => {
+        if (b.checked) b.click(); })""")
+    page.locator("#match-card").screenshot(path=f"{out}/7c-select-form.png")
+    page.click("#match-run")
+    page.wait_for_selector("#match-chosen", timeout=TIMEOUT)
+    seen["select_chosen"] = page.inner_text("#match-chosen")
+    seen["select_finalists_rows"] = page.locator("#match-finalists-table tr").all_inner_texts()
+    seen["select_done_line"] = page.inner_text("#match-line")
+    seen["select_form_pigments"] = page.evaluate("() => (state.f.base.pigment || []).map(p => p.library || p.name)")
+    page.set_viewport_size({"width": 1400, "height": 1000})
+    page.wait_for_timeout(300)
+    page.locator("#match-card").screenshot(path=f"{out}/7c-selected-1400.png")
+    page.set_viewport_size({"width": 420, "height": 900})
+    page.wait_for_timeout(300)
+    page.locator("#match-card").screenshot(path=f"{out}/7c-selected-420.png")
+    seen["narrow_select_overflow_px"] = page.evaluate("() => document.documentElement.scrollWidth - window.innerWidth")
+    page.set_viewport_size({"width": 1600, "height": 1000})
+    page.check("input[name=match-pigments][value=formulation]")
 
     # 8. A small Morris screening of two constituents and two readings: its chart has one bar
     # per constituent and reading, and the library's summary.

@@ -136,6 +136,46 @@ mod slow {
                 .any(|r| r.starts_with("mean ΔE00")),
             "{seen}"
         );
+        // "Let gonio select" up to 2 of 3: the choice named, a head and 2 finalists (the chosen
+        // one marked), the chosen pigments in the form as library pigments.
+        let chosen = seen["select_chosen"].as_str().unwrap();
+        assert!(chosen.starts_with("gonio chose "), "{seen}");
+        assert!(
+            chosen.contains("of 2 finalists, from 6 combinations of 3 candidates"),
+            "{chosen}"
+        );
+        let finalists = rows("select_finalists_rows");
+        assert_eq!(finalists.len(), 3, "{finalists:?}");
+        assert_eq!(
+            finalists.iter().filter(|r| r.starts_with('✓')).count(),
+            1,
+            "{finalists:?}"
+        );
+        let form: Vec<&str> = seen["select_form_pigments"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter_map(|p| p.as_str())
+            .collect();
+        let named = chosen
+            .trim_start_matches("gonio chose ")
+            .split(':')
+            .next()
+            .unwrap();
+        for p in named.split(" + ") {
+            assert!(
+                form.contains(&p.replace(' ', "_").as_str()),
+                "{p} not in the form's {form:?}"
+            );
+        }
+        assert!(
+            seen["select_done_line"]
+                .as_str()
+                .unwrap()
+                .contains("6 combinations screened, 2 finalists"),
+            "{seen}"
+        );
+        assert!(f("narrow_select_overflow_px") <= 0.0, "{seen}");
         let mut bars: Vec<String> = rows("sens_bars");
         bars.sort();
         assert_eq!(

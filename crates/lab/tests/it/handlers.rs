@@ -125,6 +125,14 @@ proptest! {
             let (status, text) = status_of(&router, uri, body.to_string().into_bytes());
             prop_assert!((400..500).contains(&status), "{uri} {body}: {status} {text}");
         }
+        // A selection of random pigments, counts and candidates.
+        let select = json!({ "from": "select", "max": field, "candidates": [field], "finalists": field });
+        for pigments in [select, json!({ "from": "select", "max": field })] {
+            let body = json!({ "formulation": mutated(path, field.clone()), "vary": [],
+                               "target": "u1.csv", "pigments": pigments });
+            let (status, text) = status_of(&router, "/api/match", body.to_string().into_bytes());
+            prop_assert!((400..500).contains(&status), "{body}: {status} {text}");
+        }
     }
 
     /// Random bytes as a TOML description.

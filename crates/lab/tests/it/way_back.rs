@@ -218,6 +218,64 @@ fn bad_requests_are_refused_with_their_reason() {
             "reflectance",
         ),
         (
+            "match",
+            json!({"formulation": red, "target": target, "vary": [],
+                         "pigments": {"from": "select", "max": 0}}),
+            400,
+            "select at least 1 pigment",
+        ),
+        (
+            "match",
+            json!({"formulation": red, "target": target, "vary": [],
+                         "pigments": {"from": "select", "max": 2,
+                                      "candidates": ["pyrrole_red", "phthalo_bleu"]}}),
+            400,
+            "'phthalo_bleu' is not a pigment of gonio's library",
+        ),
+        (
+            "match",
+            json!({"formulation": red, "target": target, "vary": [],
+                         "pigments": {"from": "select", "max": 3,
+                                      "candidates": ["pyrrole_red", "bone_black"]}}),
+            400,
+            "at most 2",
+        ),
+        (
+            "match",
+            json!({"formulation": red, "target": target, "vary": [],
+                         "pigments": {"from": "select", "max": 20}}),
+            400,
+            "at most 19",
+        ),
+        (
+            "match",
+            json!({"formulation": red, "target": target, "vary": [],
+                         "pigments": {"from": "select", "max": 1, "finalists": 0}}),
+            400,
+            "at least 1 finalist",
+        ),
+        (
+            "match",
+            json!({"formulation": red, "target": target, "vary": [],
+                         "pigments": {"from": "select"}}),
+            400,
+            "missing field `max`",
+        ),
+        (
+            "match",
+            json!({"formulation": f, "target": target, "vary": [],
+                         "pigments": {"from": "select", "max": 1}}),
+            400,
+            "selecting pigments needs a base of kind = \"kubelka-munk\"",
+        ),
+        (
+            "match",
+            json!({"formulation": red, "target": target, "vary": [],
+                         "pigments": {"from": "select", "max": 1}, "objective": "spectral"}),
+            400,
+            "reflectance",
+        ),
+        (
             "sensitivity",
             json!({"formulation": f, "vary": tilt, "samples": 0}),
             400,
@@ -350,6 +408,133 @@ mod slow {
             "{:?}",
             clock.elapsed()
         );
+    }
+
+    /// "Let gonio select": a white basecoat matched to the reading of the same white with two
+    /// library pigments added (a green: phthalo blue green shade 0.04, hansa yellow opaque
+    /// 0.15), selecting up to 2 of 4 candidates. The job says its steps (the screen of the 4 + 6
+    /// combinations, counted as they are screened, then each finalist's match), and its result
+    /// is the best finalist's match as a plain match's (the ΔE00 per geometry, the fitted
+    /// formulation with the chosen pigments as library entries) with the `selection`: the true
+    /// pigments chosen, 10 combinations screened, 2 finalists with their mean ΔE00, the chosen
+    /// one the lowest. A selection that is cancelled ends as cancelled.
+    #[test]
+    fn a_selection_finds_the_true_pigments() {
+        let (base, agent) = (start(), client());
+        let white = "[coat]\nindex = 1.5\nthickness_um = 40\n\n[base]\nkind = \"kubelka-munk\"\nthickness_um = 30\nsubstrate = 0.6\n\n[[base.pigment]]\nlibrary = \"titanium_white\"\nconcentration = 1.0\n";
+        let green = format!(
+            "{white}\n[[base.pigment]]\nlibrary = \"phthalo_blue_green_shade\"\nconcentration = 0.04\n\n[[base.pigment]]\nlibrary = \"hansa_yellow_opaque\"\nconcentration = 0.15\n"
+        );
+        let formulation = |text: &str| {
+            let (status, v) = json(
+                agent
+                    .post(format!("{base}/api/formulation/from-toml"))
+                    .send(text.as_bytes()),
+            );
+            assert_eq!(status, 200, "{v}");
+            v["formulation"].clone()
+        };
+        let (white, green) = (formulation(white), formulation(&green));
+        let target = upload_csv(&agent, &base, &reading_csv(&agent, &base, &green));
+        let candidates = [
+            "pyrrole_red",
+            "hansa_yellow_opaque",
+            "phthalo_blue_green_shade",
+            "bone_black",
+        ];
+        let request = json!({"formulation": white, "target": target, "vary": [],
+            "pigments": {"from": "select", "max": 2, "candidates": candidates, "finalists": 2},
+            "walks": 64, "starts": 1, "iterations": 60});
+        let (status, started) = json(post(&agent, &format!("{base}/api/match"), &request));
+        assert_eq!(status, 202, "{started}");
+        let clock = std::time::Instant::now();
+        let seen = follow(&agent, &base, started["id"].as_str().unwrap(), 300.0);
+        let done = seen.last().unwrap();
+        eprintln!(
+            "selection in {:.1} s: finalists {}, mean ΔE00 {} → {}",
+            clock.elapsed().as_secs_f64(),
+            done["result"]["selection"]["finalists"],
+            done["result"]["mean_de00_start"],
+            done["result"]["mean_de00_fitted"]
+        );
+        assert_eq!(done["state"], "done", "{done}");
+        let steps: Vec<&str> = seen
+            .iter()
+            .filter_map(|v| v["stage"]["step"].as_str())
+            .collect();
+        assert!(steps.contains(&"finalist"), "{steps:?}");
+        for v in &seen {
+            if v["stage"]["step"] == "screen" {
+                assert_eq!(v["stage"]["combinations"], 10, "{v}");
+                assert!(v["readings"].as_u64().unwrap() <= 10, "{v}");
+            }
+        }
+        let r = &done["result"];
+        let sel = &r["selection"];
+        let mut chosen: Vec<&str> = sel["pigments"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| p.as_str().unwrap())
+            .collect();
+        chosen.sort();
+        assert_eq!(
+            chosen,
+            ["hansa_yellow_opaque", "phthalo_blue_green_shade"],
+            "{sel}"
+        );
+        assert_eq!(sel["combinations"], 10, "{sel}");
+        let finalists = sel["finalists"].as_array().unwrap();
+        assert_eq!(finalists.len(), 2, "{sel}");
+        let mean = |k: usize| finalists[k]["mean_de00"].as_f64().unwrap();
+        let best = sel["chosen"].as_u64().unwrap() as usize;
+        assert!(mean(best) <= mean(1 - best), "{sel}");
+        // The plain match's fields, of the chosen finalist.
+        assert_eq!(r["geometries"].as_array().unwrap().len(), 5, "{r}");
+        let fitted = r["mean_de00_fitted"].as_f64().unwrap();
+        assert!((fitted - mean(best)).abs() < 1e-9, "{fitted} against {sel}");
+        // The target is the reading of a solid (a smooth coat over a Kubelka-Munk base: no
+        // walk noise), so the true pigments fit it exactly but for the search's tolerance.
+        assert!(fitted < 0.05, "{r}");
+        let concentrations = &finalists[best]["concentrations"];
+        for (k, want) in sel["finalists"][best]["pigments"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| {
+                if p == "hansa_yellow_opaque" {
+                    0.15
+                } else {
+                    0.04
+                }
+            })
+            .enumerate()
+        {
+            let got = concentrations[k].as_f64().unwrap();
+            assert!((got - want).abs() < 0.002, "{got} against {want}: {sel}");
+        }
+        let library: Vec<&str> = r["formulation"]["base"]["pigment"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter_map(|p| p["library"].as_str())
+            .collect();
+        assert_eq!(library.len(), 3, "{r}");
+        assert!(r["toml"].as_str().unwrap().contains("hansa_yellow_opaque"));
+
+        // The same selection, cancelled in its screen or its first finalist.
+        let (status, started) = json(post(&agent, &format!("{base}/api/match"), &request));
+        assert_eq!(status, 202, "{started}");
+        let id = started["id"].as_str().unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(300));
+        let (status, _) = json(post(
+            &agent,
+            &format!("{base}/api/jobs/{id}/cancel"),
+            &json!({}),
+        ));
+        assert_eq!(status, 200);
+        let end = follow(&agent, &base, id, 60.0);
+        assert_eq!(end.last().unwrap()["state"], "cancelled", "{end:?}");
     }
 
     /// Morris screening of the silver metallic's roughness and flake tilt: 60° gloss is driven
