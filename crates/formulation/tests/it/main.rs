@@ -5,6 +5,7 @@
 //! module is one subject.
 
 mod coating_sensitivity;
+mod cornell_paints;
 mod embedded_screen;
 mod lab_target;
 mod matching;
