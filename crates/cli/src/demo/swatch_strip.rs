@@ -103,7 +103,7 @@ pub(super) fn draw(path: &Path, title: &str, rows: &[Row]) -> Result<()> {
                 ))?;
                 if top > 1.0 {
                     root.draw(&Text::new(
-                        format!("shown ÷{top:.1}"),
+                        format!("shown ÷{top:.2}"),
                         (x + 2, patch_top + PATCH.1 + 24),
                         grey(13),
                     ))?;
