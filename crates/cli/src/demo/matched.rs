@@ -281,3 +281,32 @@ pub(super) fn blocks(dir: &Path, quick: bool) -> Result<Vec<Block>> {
     }
     Ok(blocks)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The full demo alone reads the second and third paints and renders the scene: here each
+    /// paint's files read, and the scene names them all, bare, once copied beside the report.
+    #[test]
+    fn every_paint_and_the_scene_name_files_that_read() {
+        let dir = tempfile::tempdir().unwrap();
+        let copy = copy_scene(
+            &Path::new(EXAMPLES).join("cornell_matched.toml"),
+            dir.path(),
+        )
+        .unwrap();
+        let scene = std::fs::read_to_string(&copy).unwrap();
+        assert!(!scene.contains(".."), "a path still leaves the folder");
+        for paint in &PAINTS {
+            crate::coating::read(&dir.path().join(paint.fitted), &default_bands()).unwrap();
+            gonio_brdf::formats::astm::read(&dir.path().join(paint.measured)).unwrap();
+            for name in [paint.fitted, paint.measured] {
+                assert!(
+                    scene.contains(&format!("\"{name}\"")),
+                    "{name} not in the scene"
+                );
+            }
+        }
+    }
+}
