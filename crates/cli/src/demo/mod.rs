@@ -5,8 +5,10 @@
 
 mod coatings;
 mod formulation;
+mod matched;
 mod pictures;
 mod summary;
+mod swatch_strip;
 mod texture;
 
 use crate::report::{Block, Report, Section};
@@ -78,7 +80,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
         .with_context(|| format!("{}: cannot create directory", dir.display()))?;
     let started = Instant::now();
     let mut sections = Vec::new();
-    let steps = if args.quick { 6 } else { 8 };
+    let steps = if args.quick { 7 } else { 8 };
     let mut step = 0;
     let mut announce = |what: &str| {
         step += 1;
@@ -125,13 +127,13 @@ pub fn run(args: DemoArgs) -> Result<()> {
     section.seconds = seconds;
     sections.push(section);
 
-    if !args.quick {
-        announce("formulation: the Cayman matched, and what drives the silver metallic");
-        let (section, seconds) = timed(|| formulation::formulation_section(dir));
-        let mut section = section?;
-        section.seconds = seconds;
-        sections.push(section);
+    announce("formulation: three Cornell paints against their matches, and the silver metallic");
+    let (section, seconds) = timed(|| formulation::formulation_section(dir, args.quick));
+    let mut section = section?;
+    section.seconds = seconds;
+    sections.push(section);
 
+    if !args.quick {
         announce("pictures: the NIST figure 6 panels and the metallic paints");
         let (section, seconds) = timed(|| pictures::render_section(dir));
         let mut section = section?;

@@ -126,7 +126,7 @@ fn delta_e_map(
 }
 
 /// ", denoised" for a denoised picture, else nothing.
-fn denoised_note(stats: &RenderStats) -> &'static str {
+pub(super) fn denoised_note(stats: &RenderStats) -> &'static str {
     if stats.denoised {
         ", denoised (docs/render.md)"
     } else {
@@ -140,7 +140,7 @@ pub(super) const EXAMPLES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../ex
 /// Copy the scene file `scene` into `dir`, with every file it names (quoted strings that are
 /// paths of existing files, relative to the scene) copied beside it and named there by its bare
 /// file name, so that `gonio render SCENE` runs as written in `dir`. Returns the copy's path.
-fn copy_scene(scene: &Path, dir: &Path) -> Result<PathBuf> {
+pub(super) fn copy_scene(scene: &Path, dir: &Path) -> Result<PathBuf> {
     let text = std::fs::read_to_string(scene)
         .with_context(|| format!("{}: cannot read the scene", scene.display()))?;
     let base = scene.parent().unwrap_or(Path::new("."));

@@ -327,6 +327,7 @@ mod slow {
             "Isotropy of x3p-2.x3p",
             "The roughness study",
             "Coatings and multi-angle colour",
+            "Formulation: a measured paint matched from the pigment library",
             TEXTURE,
         ] {
             assert!(html.contains(title), "section '{title}' missing");
