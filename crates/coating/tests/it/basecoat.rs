@@ -478,9 +478,8 @@ fn each_band_equals_the_band_walked_alone() {
         40_000,
         9,
     );
-    for b in 0..4 {
+    for (b, &(mean, se_t)) in together.iter().enumerate() {
         let (alone, se) = body_albedo(&over(1.5, None, &[0.0], basecoat(&[b])), wi, 40_000, 19)[0];
-        let (mean, se_t) = together[b];
         let joint = (se * se + se_t * se_t).sqrt();
         assert!(
             (mean - alone).abs() <= 4.0 * joint,
