@@ -5,7 +5,7 @@
 use serde_json::{Value, json};
 
 /// Each example's name (its file's stem) and text.
-pub const EXAMPLES: [(&str, &str); 10] = [
+pub const EXAMPLES: [(&str, &str); 16] = [
     (
         "silver_metallic",
         include_str!("../../../examples/coatings/silver_metallic.toml"),
@@ -45,6 +45,30 @@ pub const EXAMPLES: [(&str, &str); 10] = [
     (
         "cayman_tinted_start",
         include_str!("../../../examples/coatings/cayman_tinted_start.toml"),
+    ),
+    (
+        "krylon_blue_start",
+        include_str!("../../../examples/coatings/krylon_blue_start.toml"),
+    ),
+    (
+        "krylon_blue_fitted",
+        include_str!("../../../examples/coatings/krylon_blue_fitted.toml"),
+    ),
+    (
+        "cayman_library_start",
+        include_str!("../../../examples/coatings/cayman_library_start.toml"),
+    ),
+    (
+        "cayman_library_fitted",
+        include_str!("../../../examples/coatings/cayman_library_fitted.toml"),
+    ),
+    (
+        "garnet_red_start",
+        include_str!("../../../examples/coatings/garnet_red_start.toml"),
+    ),
+    (
+        "garnet_red_fitted",
+        include_str!("../../../examples/coatings/garnet_red_fitted.toml"),
     ),
 ];
 

@@ -36,7 +36,7 @@ fn examples_pigments_and_lightings() {
         .map(|e| e["name"].as_str().unwrap())
         .collect();
     assert!(
-        names.contains(&"silver_metallic") && names.len() == 10,
+        names.contains(&"silver_metallic") && names.len() == 16,
         "{names:?}"
     );
     for name in &names {
