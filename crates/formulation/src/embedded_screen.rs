@@ -62,15 +62,14 @@
 //! 2 of 6 candidates) took 19.5–22.3 s in all, nearly all of it the table.
 
 use crate::error::{FormulationError, Result};
+use crate::screen::modelled_reading;
 use gonio_coating::basecoat::{self, transport_coefficients};
 use gonio_coating::clear_coat::{Base, Pigment};
 use gonio_coating::pigment_library::LibraryPigment;
 use gonio_coating::system::Coating;
-use gonio_color::{SpectralToXyz, Spectrum, white};
+use gonio_color::{SpectralToXyz, Spectrum};
 use gonio_instrument::coating_study;
-use gonio_instrument::multiangle::{
-    self, Geometry, GeometryReading, MultiangleReading, Settings as ReadSettings,
-};
+use gonio_instrument::multiangle::{self, Geometry, MultiangleReading, Settings as ReadSettings};
 use rayon::prelude::*;
 
 /// The table's grid: `nodes[0]` × `nodes[1]` nodes evenly spaced in `ln(1 + τa/scale[0])` and
@@ -241,13 +240,13 @@ impl EmbeddedResponse {
                 Ok((ua, us, linear(w, &g.anchors_nm)))
             })
             .collect::<Result<Vec<_>>>()?;
-        let white = white(self.settings.illuminant, self.settings.observer);
-        let geometries = self
-            .geometries
-            .iter()
-            .enumerate()
-            .map(|(g, &geometry)| {
-                let reflectance_factor: Vec<f64> = weights
+        modelled_reading(
+            &self.geometries,
+            &self.wavelengths_nm,
+            self.settings,
+            &self.to_xyz,
+            |g| {
+                weights
                     .iter()
                     .map(|(ua, us, anchors)| {
                         anchors
@@ -266,24 +265,9 @@ impl EmbeddedResponse {
                             })
                             .sum()
                     })
-                    .collect();
-                let xyz = self
-                    .to_xyz
-                    .xyz(&reflectance_factor)
-                    .map_err(|e| FormulationError::Invalid(e.to_string()))?;
-                Ok(GeometryReading {
-                    geometry,
-                    reflectance_factor,
-                    xyz,
-                    lab: xyz.to_lab(white),
-                })
-            })
-            .collect::<Result<Vec<_>>>()?;
-        Ok(MultiangleReading {
-            wavelengths_nm: self.wavelengths_nm.clone(),
-            settings: self.settings,
-            geometries,
-        })
+                    .collect()
+            },
+        )
     }
 
     /// Readings of the coating the table took (its nodes).

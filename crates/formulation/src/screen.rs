@@ -139,35 +139,54 @@ impl StackResponse {
 
     /// The multi-angle reading of the coating whose base reflects `rho` (one value per band).
     pub fn reading(&self, rho: &[f64]) -> Result<MultiangleReading> {
-        let w = white(self.settings.illuminant, self.settings.observer);
-        let geometries = self
-            .geometries
-            .iter()
-            .zip(&self.abc)
-            .map(|(&geometry, abc)| {
-                let reflectance_factor: Vec<f64> = abc
+        modelled_reading(
+            &self.geometries,
+            &self.wavelengths_nm,
+            self.settings,
+            &self.to_xyz,
+            |g| {
+                self.abc[g]
                     .iter()
                     .zip(rho)
                     .map(|([a, b, c], r)| a + b * r / (1.0 - c * r))
-                    .collect();
-                let xyz = self
-                    .to_xyz
-                    .xyz(&reflectance_factor)
-                    .map_err(|e| FormulationError::Invalid(e.to_string()))?;
-                Ok(GeometryReading {
-                    geometry,
-                    reflectance_factor,
-                    xyz,
-                    lab: xyz.to_lab(w),
-                })
-            })
-            .collect::<Result<Vec<_>>>()?;
-        Ok(MultiangleReading {
-            wavelengths_nm: self.wavelengths_nm.clone(),
-            settings: self.settings,
-            geometries,
-        })
+                    .collect()
+            },
+        )
     }
+}
+
+/// The multi-angle reading at `geometries` of a screen's model, whose reflectance factors at the
+/// `g`-th geometry (one per band of `wavelengths_nm`) are `factors(g)`: CIE XYZ and CIELAB under
+/// `settings`' illuminant and observer, as an instrument's reading gives them.
+pub(crate) fn modelled_reading(
+    geometries: &[Geometry],
+    wavelengths_nm: &[f64],
+    settings: ReadSettings,
+    to_xyz: &SpectralToXyz,
+    factors: impl Fn(usize) -> Vec<f64>,
+) -> Result<MultiangleReading> {
+    let w = white(settings.illuminant, settings.observer);
+    let geometries = geometries
+        .iter()
+        .enumerate()
+        .map(|(g, &geometry)| {
+            let reflectance_factor = factors(g);
+            let xyz = to_xyz
+                .xyz(&reflectance_factor)
+                .map_err(|e| FormulationError::Invalid(e.to_string()))?;
+            Ok(GeometryReading {
+                geometry,
+                reflectance_factor,
+                xyz,
+                lab: xyz.to_lab(w),
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(MultiangleReading {
+        wavelengths_nm: wavelengths_nm.to_vec(),
+        settings,
+        geometries,
+    })
 }
 
 /// The screen's model of the start: [`StackResponse`] when the pigments act through a base under
