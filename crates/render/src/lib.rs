@@ -31,6 +31,7 @@ pub mod mesh;
 pub mod mesoscale;
 pub mod panel;
 mod path;
+pub mod picture;
 pub mod scene;
 pub mod settings;
 pub mod spectral;
