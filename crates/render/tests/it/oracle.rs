@@ -6,7 +6,7 @@ use std::io::Write;
 use std::process::{Command, Stdio};
 
 /// The oracle is missing: fail when `GONIO_REQUIRE_ORACLES=1` demands it, else say why.
-fn missing(why: &str) {
+pub fn missing(why: &str) {
     assert!(
         std::env::var("GONIO_REQUIRE_ORACLES").as_deref() != Ok("1"),
         "GONIO_REQUIRE_ORACLES=1 but {why}"
