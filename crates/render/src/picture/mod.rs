@@ -6,6 +6,8 @@
 //! - [`DisplayPicture`]: the picture on an sRGB or Display P3 display through Little CMS, the
 //!   booth's white shown as the display's white, written as PNG with its ICC profile embedded,
 //!   beside a mask of the out-of-gamut and over-range pixels;
+//! - [`write_view`]: the three above for one view (the OpenEXR, and a rendering and a mask per
+//!   display), named after it;
 //! - [`write_manifest`]: the SHA-256 of every input and output file, gonio's version, the seed
 //!   and the settings, so that a picture can be reproduced and checked.
 //!
@@ -17,11 +19,13 @@
 mod display;
 mod manifest;
 mod profile;
+mod view;
 mod xyz_exr;
 
 pub use display::{DisplayPicture, MASK_BOTH, MASK_OUT_OF_GAMUT, MASK_OVER_RANGE};
 pub use manifest::{MANIFEST_FORMAT, sha256_file, write_manifest};
 pub use profile::{DisplaySpace, RENDERING_INTENT};
+pub use view::{DisplayFiles, ViewFiles, write_view};
 pub use xyz_exr::{UNITS_ATTRIBUTE, write_xyz_exr};
 
 use crate::error::{RenderError, Result};

@@ -1,8 +1,12 @@
 //! A picture's manifest: the SHA-256 of its files against coreutils' `sha256sum`, and its
-//! fields.
+//! fields; a view's files and their manifest together.
 
 use crate::oracle;
-use gonio_render::picture::{MANIFEST_FORMAT, sha256_file, write_manifest};
+use gonio_color::Observer;
+use gonio_render::picture::{
+    DisplayPicture, DisplaySpace, MANIFEST_FORMAT, XyzPicture, sha256_file, write_manifest,
+    write_view,
+};
 use std::process::Command;
 
 /// `sha256sum`'s hash of `path` (coreutils, an implementation independent of the `sha2`
@@ -89,4 +93,57 @@ fn a_missing_input_is_named() {
     .unwrap_err();
     assert!(err.to_string().contains("no-such-scene.toml"), "{err}");
     assert!(!dir.path().join("manifest.json").exists());
+}
+
+/// A view's five files, named after it, with the fractions its renderings report, and the
+/// manifest naming them relative to its folder.
+#[test]
+fn a_view_writes_its_files_and_its_manifest_lists_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let white = [95.047f64, 100.0, 108.883];
+    // A grey, a highlight above the white, and a saturated green outside sRGB.
+    let xyz = [
+        [19.0f32, 20.0, 21.8],
+        [190.0, 200.0, 217.8],
+        [17.0, 50.0, 9.0],
+    ];
+    let picture = XyzPicture::new(3, 1, &xyz, Observer::Cie1931TwoDegree).unwrap();
+    let files = write_view(dir.path(), "45deg", &picture, white).unwrap();
+    let names: Vec<String> = files
+        .paths()
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "45deg.exr",
+            "45deg-srgb.png",
+            "45deg-srgb-mask.png",
+            "45deg-p3.png",
+            "45deg-p3-mask.png"
+        ]
+    );
+    for d in &files.displays {
+        let shown = DisplayPicture::new(&picture, white, d.space).unwrap();
+        assert_eq!(
+            (d.out_of_gamut_fraction, d.over_range_fraction),
+            (shown.out_of_gamut_fraction, shown.over_range_fraction)
+        );
+        assert!(!std::fs::read(&d.png).unwrap().is_empty());
+    }
+    assert_eq!(files.displays[0].space, DisplaySpace::Srgb);
+    assert_eq!(files.displays[0].out_of_gamut_fraction, 1.0 / 3.0);
+    assert_eq!(files.displays[0].over_range_fraction, 1.0 / 3.0);
+    let m = write_manifest(
+        &dir.path().join("manifest.json"),
+        &[],
+        3,
+        &serde_json::json!({}),
+        &files.paths(),
+    )
+    .unwrap();
+    for (entry, name) in m["outputs"].as_array().unwrap().iter().zip(&names) {
+        assert_eq!(entry["path"], name.as_str());
+    }
 }
