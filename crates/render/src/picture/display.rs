@@ -60,19 +60,15 @@ const OVER_RANGE: u8 = 2;
 /// and the display's ICC profile.
 #[derive(Clone, Debug)]
 pub struct DisplayPicture {
-    pub space: DisplaySpace,
-    pub width: usize,
-    pub height: usize,
-    /// Encoded display RGB, 0–255, row-major, top row first.
-    pub rgb: Vec<[u8; 3]>,
+    space: DisplaySpace,
+    width: usize,
+    height: usize,
+    rgb: Vec<[u8; 3]>,
     /// Each pixel's flags (bit 0 out of gamut, bit 1 over range), as in [`Self::flagged`].
     flags: Vec<u8>,
-    /// The fraction of the pixels out of the display's gamut (with or without over range).
-    pub out_of_gamut_fraction: f64,
-    /// The fraction of the pixels brighter than the booth's white.
-    pub over_range_fraction: f64,
-    /// The display's ICC profile, as embedded in the PNG.
-    pub icc: Vec<u8>,
+    out_of_gamut_fraction: f64,
+    over_range_fraction: f64,
+    icc: Vec<u8>,
 }
 
 impl DisplayPicture {
@@ -109,7 +105,7 @@ impl DisplayPicture {
             ))
             .transpose();
         let lin: Vec<[f64; 3]> = picture
-            .xyz
+            .xyz()
             .iter()
             .map(|p| (to_linear * DVec3::from_array(p.map(f64::from))).to_array())
             .collect();
@@ -125,7 +121,7 @@ impl DisplayPicture {
         let mut rgb = vec![[0u8; 3]; clipped.len()];
         encode.transform_pixels(&clipped, &mut rgb);
         let flags: Vec<u8> = picture
-            .xyz
+            .xyz()
             .iter()
             .zip(&lin)
             .map(|(p, l)| {
@@ -146,8 +142,8 @@ impl DisplayPicture {
         let count = |bit: u8| flags.iter().filter(|&&f| f & bit != 0).count() as f64 / n;
         Ok(DisplayPicture {
             space,
-            width: picture.width,
-            height: picture.height,
+            width: picture.width(),
+            height: picture.height(),
             rgb,
             out_of_gamut_fraction: count(OUT_OF_GAMUT),
             over_range_fraction: count(OVER_RANGE),
@@ -156,7 +152,38 @@ impl DisplayPicture {
         })
     }
 
-    /// Pixel `i`'s flags: (out of gamut, over range).
+    /// The display.
+    pub fn space(&self) -> DisplaySpace {
+        self.space
+    }
+
+    /// The size in pixels, (width, height).
+    pub fn size(&self) -> (usize, usize) {
+        (self.width, self.height)
+    }
+
+    /// Encoded display RGB, 0–255, row-major, top row first.
+    pub fn rgb(&self) -> &[[u8; 3]] {
+        &self.rgb
+    }
+
+    /// The fraction of the pixels out of the display's gamut (with or without over range).
+    pub fn out_of_gamut_fraction(&self) -> f64 {
+        self.out_of_gamut_fraction
+    }
+
+    /// The fraction of the pixels brighter than the booth's white.
+    pub fn over_range_fraction(&self) -> f64 {
+        self.over_range_fraction
+    }
+
+    /// The display's ICC profile, as embedded in the PNG.
+    pub fn icc(&self) -> &[u8] {
+        &self.icc
+    }
+
+    /// Pixel `i`'s flags: (out of gamut, over range), `i` counted row-major from the top left.
+    /// Panics if `i` is outside the picture.
     pub fn flagged(&self, i: usize) -> (bool, bool) {
         let f = self.flags[i];
         (f & OUT_OF_GAMUT != 0, f & OVER_RANGE != 0)

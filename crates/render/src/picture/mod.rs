@@ -32,13 +32,13 @@ use crate::error::{RenderError, Result};
 use gonio_color::Observer;
 
 /// A picture of absolute CIE XYZ tristimulus values in cd/m² (Y is the luminance), row-major,
-/// top row first, seen by `observer`.
+/// top row first, seen by `observer`; checked when made ([`XyzPicture::new`]).
 #[derive(Clone, Copy, Debug)]
 pub struct XyzPicture<'a> {
-    pub width: usize,
-    pub height: usize,
-    pub xyz: &'a [[f32; 3]],
-    pub observer: Observer,
+    width: usize,
+    height: usize,
+    xyz: &'a [[f32; 3]],
+    observer: Observer,
 }
 
 impl<'a> XyzPicture<'a> {
@@ -75,6 +75,26 @@ impl<'a> XyzPicture<'a> {
             xyz,
             observer,
         })
+    }
+
+    /// The width in pixels.
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// The height in pixels.
+    pub fn height(&self) -> usize {
+        self.height
+    }
+
+    /// The pixels' XYZ in cd/m², row-major, top row first.
+    pub fn xyz(&self) -> &'a [[f32; 3]] {
+        self.xyz
+    }
+
+    /// The observer.
+    pub fn observer(&self) -> Observer {
+        self.observer
     }
 
     /// The observer in words (ASCII), as the files' headers name it.

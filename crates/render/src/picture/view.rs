@@ -61,8 +61,8 @@ pub fn write_view(
                 space,
                 png,
                 mask,
-                out_of_gamut_fraction: shown.out_of_gamut_fraction,
-                over_range_fraction: shown.over_range_fraction,
+                out_of_gamut_fraction: shown.out_of_gamut_fraction(),
+                over_range_fraction: shown.over_range_fraction(),
             })
         })
         .collect::<Result<_>>()?;

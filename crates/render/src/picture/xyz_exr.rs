@@ -24,8 +24,8 @@ pub const UNITS_ATTRIBUTE: &str = "gonioUnits";
 /// Write `picture` to `path` (atomically, through gonio-io) as an OpenEXR file of absolute
 /// CIE XYZ in cd/m².
 pub fn write_xyz_exr(path: &Path, picture: &XyzPicture) -> Result<()> {
-    let width = picture.width;
-    let xyz = picture.xyz;
+    let width = picture.width();
+    let xyz = picture.xyz();
     let channels = SpecificChannels::build()
         .with_channel("X")
         .with_channel("Y")
@@ -46,7 +46,7 @@ pub fn write_xyz_exr(path: &Path, picture: &XyzPicture) -> Result<()> {
         compression: Compression::ZIP16,
         ..Encoding::default()
     };
-    let layer = Layer::new((width, picture.height), attributes, encoding, channels);
+    let layer = Layer::new((width, picture.height()), attributes, encoding, channels);
     let mut image = Image::from_layer(layer);
     image.attributes.chromaticities = Some(Chromaticities {
         red: Vec2(1.0, 0.0),

@@ -82,13 +82,13 @@ print(json.dumps(out))
             let mut checked_flags = 0;
             for i in 0..xyz.len() {
                 for k in 0..3 {
-                    let d = (f64::from(shown.rgb[i][k]) / 255.0 - enc[i][k]).abs();
+                    let d = (f64::from(shown.rgb()[i][k]) / 255.0 - enc[i][k]).abs();
                     worst = worst.max(d);
                     assert!(
                         d <= 1.0 / 255.0,
                         "{name}, white {white:?}, XYZ {:?}: gonio {:?}, colour-science {:?}",
                         xyz[i],
-                        shown.rgb[i],
+                        shown.rgb()[i],
                         enc[i].map(|v| v * 255.0)
                     );
                 }
@@ -182,9 +182,9 @@ fn png_embeds_the_display_profile() {
         }
         let mut pixels = vec![0u8; decoder.total_bytes() as usize];
         decoder.read_image(&mut pixels).unwrap();
-        assert_eq!(pixels, shown.rgb.as_flattened());
+        assert_eq!(pixels, shown.rgb().as_flattened());
         // The booth's white is the display's white, black its black.
-        assert_eq!((shown.rgb[0], shown.rgb[1]), ([255; 3], [0; 3]));
+        assert_eq!((shown.rgb()[0], shown.rgb()[1]), ([255; 3], [0; 3]));
     }
 }
 
@@ -235,8 +235,8 @@ fn mask_flags_spectral_colours_and_highlights() {
         }
         let n = cases.len() as f64;
         let oog = cases.iter().filter(|c| c.1[s].0).count() as f64;
-        assert_eq!(shown.out_of_gamut_fraction, oog / n);
-        assert_eq!(shown.over_range_fraction, 2.0 / n);
+        assert_eq!(shown.out_of_gamut_fraction(), oog / n);
+        assert_eq!(shown.over_range_fraction(), 2.0 / n);
         let path = dir.path().join("mask.png");
         shown.write_mask(&path).unwrap();
         let mask = image::open(&path).unwrap().to_rgb8();

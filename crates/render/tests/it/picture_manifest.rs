@@ -128,7 +128,7 @@ fn a_view_writes_its_files_and_its_manifest_lists_them() {
         let shown = DisplayPicture::new(&picture, white, d.space).unwrap();
         assert_eq!(
             (d.out_of_gamut_fraction, d.over_range_fraction),
-            (shown.out_of_gamut_fraction, shown.over_range_fraction)
+            (shown.out_of_gamut_fraction(), shown.over_range_fraction())
         );
         assert!(!std::fs::read(&d.png).unwrap().is_empty());
     }
