@@ -35,8 +35,8 @@ fn to_f32(v: &[[f64; 3]]) -> Vec<[f32; 3]> {
 /// step), and the rest is the two implementations' arithmetic — the ICC profile's colorants in
 /// s15Fixed16 (2⁻¹⁷ each, up to about 7e-5 in a linear value, which the curve's slope of 12.92
 /// near black makes 0.2 of a step) and Little CMS's rounding through 16 bits on its way to 8.
-/// Measured: at most 0.64 of a step. Where colour-science's linear value is clearly (by 1e-3) inside or outside [0, 1], the
-/// flags must agree with it.
+/// Measured: at most 0.64 of a step. Where colour-science's linear value is clearly (by 1e-3)
+/// inside or outside [0, 1], the flags must agree with it.
 #[test]
 fn display_values_agree_with_colour_science() {
     let mut rng = rand_pcg::Pcg64::seed_from_u64(44);
