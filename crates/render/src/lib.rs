@@ -46,7 +46,7 @@ pub use integrator::{
     Estimate, RenderOptions, RenderStats, render, render_estimate, render_picture,
 };
 pub use scene::Scene;
-pub use settings::{BrdfSampling, ColourMode};
+pub use settings::{BrdfSampling, ColourMode, Film};
 
 use std::path::Path;
 
