@@ -16,6 +16,7 @@
 //! ```
 
 pub mod assets;
+pub mod booth;
 pub mod camera;
 pub mod coating_material;
 pub mod denoise;
