@@ -41,7 +41,7 @@ pub struct XyzImage {
 /// One view of the booth.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BoothView {
-    /// `near-specular`, `45` or `flank`.
+    /// `near-specular`, `45`, `flank` or `asG`.
     pub name: String,
     /// Where its camera is.
     pub camera: ViewGeometry,
@@ -101,11 +101,11 @@ pub fn render(spec: &BoothSpec, material: &Material, run: &Run) -> Result<BoothP
     };
     let (w, h) = (spec.render.width, spec.render.height);
     let mut views = Vec::new();
-    for (k, &view) in checked.views.iter().enumerate() {
+    for (k, view) in checked.views.iter().enumerate() {
         let camera = booth.set_view(&checked, view, w, h);
         let estimate = render_estimate(&booth.scene, &options)?;
         views.push(BoothView {
-            name: view.name().into(),
+            name: view.name.clone(),
             camera,
             image: XyzImage {
                 width: w,

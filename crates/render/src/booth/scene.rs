@@ -36,8 +36,8 @@ use std::f64::consts::PI;
 /// Where a view's camera is and how it projects.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ViewGeometry {
-    /// The view's name (`near-specular`, `45`, `flank`).
-    pub name: &'static str,
+    /// The view's name (`near-specular`, `45`, `flank`, `asG`).
+    pub name: String,
     /// Its aspecular angle γ, degrees.
     pub aspecular_deg: f64,
     /// The camera's polar angle from the specimen's normal, degrees, positive on the light's
@@ -195,11 +195,11 @@ impl BoothScene {
     pub fn set_view(
         &mut self,
         spec: &Checked,
-        view: View,
+        view: &View,
         width: usize,
         height: usize,
     ) -> ViewGeometry {
-        let viewing_deg = view.aspecular_deg() - spec.directional_deg;
+        let viewing_deg = view.aspecular_deg - spec.directional_deg;
         let toward = in_plane(viewing_deg);
         let up = DVec3::Z;
         let right = (-toward).cross(up);
@@ -252,8 +252,8 @@ impl BoothScene {
         };
         self.scene.camera = camera.expect("the view direction lies in x-y, across +z");
         ViewGeometry {
-            name: view.name(),
-            aspecular_deg: view.aspecular_deg(),
+            name: view.name.clone(),
+            aspecular_deg: view.aspecular_deg,
             viewing_deg,
             light_deg: spec.directional_deg,
             position_m: position.to_array(),

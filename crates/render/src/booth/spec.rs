@@ -160,7 +160,7 @@ impl Default for SpecimenSpec {
 impl Default for CameraSpec {
     fn default() -> Self {
         CameraSpec {
-            views: View::ALL.iter().map(|v| v.name().to_string()).collect(),
+            views: View::NAMED.iter().map(|(n, _)| n.to_string()).collect(),
             projection: "perspective".into(),
             distance_mm: 600.0,
         }
@@ -179,48 +179,44 @@ impl Default for RenderSpec {
     }
 }
 
-/// A named view: the camera in the plane of incidence of the directional light, at an
-/// aspecular angle γ from the light's mirror direction, positive toward the light (through the
-/// normal), as the multi-angle instruments name their geometries (ASTM E2194): the camera's
-/// polar angle from the specimen's normal is `γ − θ_light`, positive on the light's side.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum View {
-    /// 15° from the specular direction (E2194's 45as15): the bright, near-specular face of a
-    /// metallic.
-    NearSpecular,
-    /// 45° from the specular direction (45as45: along the normal under the 45° light): the
-    /// face colour.
-    FortyFive,
-    /// 110° from the specular direction (45as110: 65° from the normal on the light's side):
-    /// the flop.
-    Flank,
+/// A view: the camera in the plane of incidence of the directional light, at an aspecular angle
+/// γ from the light's mirror direction, positive toward the light (through the normal), as the
+/// multi-angle instruments name their geometries (ASTM E2194): the camera's polar angle from the
+/// specimen's normal is `γ − θ_light`, positive on the light's side. Three are named:
+///
+/// - `near-specular`: γ = 15° (E2194's 45as15 under the 45° light): a metallic's bright face;
+/// - `45`: γ = 45° (45as45: along the normal under the 45° light): the face colour;
+/// - `flank`: γ = 110° (45as110: 65° from the normal on the light's side): the flop.
+///
+/// Any other is written `asG`, G the aspecular angle in degrees (`as25`, `as-15`): the
+/// geometries of E2194 and E2539.
+#[derive(Debug, Clone, PartialEq)]
+pub struct View {
+    /// Its name in the spec.
+    pub name: String,
+    /// The aspecular angle γ, degrees.
+    pub aspecular_deg: f64,
 }
 
 impl View {
-    /// The three views.
-    pub const ALL: [View; 3] = [View::NearSpecular, View::FortyFive, View::Flank];
+    /// The three named views: name and aspecular angle.
+    pub const NAMED: [(&'static str, f64); 3] =
+        [("near-specular", 15.0), ("45", 45.0), ("flank", 110.0)];
 
-    /// Its name in a spec.
-    pub fn name(self) -> &'static str {
-        match self {
-            View::NearSpecular => "near-specular",
-            View::FortyFive => "45",
-            View::Flank => "flank",
-        }
-    }
-
-    /// The aspecular angle γ, degrees.
-    pub fn aspecular_deg(self) -> f64 {
-        match self {
-            View::NearSpecular => 15.0,
-            View::FortyFive => 45.0,
-            View::Flank => 110.0,
-        }
-    }
-
-    /// The view called `name`.
+    /// The view called `name`: one of [`View::NAMED`] or `asG`.
     pub fn from_name(name: &str) -> Option<View> {
-        View::ALL.into_iter().find(|v| v.name() == name)
+        let aspecular_deg = match View::NAMED.iter().find(|(n, _)| *n == name) {
+            Some(&(_, g)) => g,
+            None => name
+                .strip_prefix("as")?
+                .parse::<f64>()
+                .ok()
+                .filter(|g| g.is_finite())?,
+        };
+        Some(View {
+            name: name.to_string(),
+            aspecular_deg,
+        })
     }
 }
 
@@ -415,23 +411,23 @@ impl BoothSpec {
                     bad(
                         "[camera] views",
                         format!(
-                            "`{name}` is not a view: {}",
-                            View::ALL.map(|v| v.name()).join(", ")
+                            "`{name}` is not a view: {}, or asG for an aspecular angle of G \
+                             degrees (as25, as-15)",
+                            View::NAMED.map(|(n, _)| n).join(", ")
                         ),
                     )
                 })
             })
             .collect::<Result<Vec<View>>>()?;
         for v in &views {
-            let polar = v.aspecular_deg() - l.directional_deg;
+            let polar = v.aspecular_deg - l.directional_deg;
             if polar.abs() >= 89.0 {
                 return Err(bad(
                     "[camera] views",
                     format!(
                         "`{}` under a light at {}° puts the camera {polar}° from the normal, at \
                          or below the specimen's horizon",
-                        v.name(),
-                        l.directional_deg
+                        v.name, l.directional_deg
                     ),
                 ));
             }
