@@ -342,3 +342,11 @@ fn curved_panel_crest_faces_up() {
     );
     assert!(v.specimen[20 * 60 + 30] && !v.specimen[0]);
 }
+
+/// `examples/booth.toml` writes every default out: it is the empty spec's booth.
+#[test]
+fn example_spec_is_the_default_booth() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/booth.toml");
+    let example = BoothSpec::from_file(&path).unwrap();
+    assert_eq!(example.check().unwrap(), spec("").check().unwrap());
+}
