@@ -240,7 +240,8 @@ impl BoothScene {
                 (position, Projection::Perspective, fov, camera)
             }
             Projection::Orthographic => {
-                let position = toward;
+                // The camera's plane clear of the specimen.
+                let position = toward * (1.0 + 2.0 * (hi - lo).length());
                 let half = corners
                     .map(|c| c.dot(up).abs().max(c.dot(right).abs() / aspect))
                     .fold(0.0, f64::max)
