@@ -8,6 +8,7 @@
 //! crate (one link instead of one per file); each module is one subject.
 
 mod booth;
+mod booth_doi;
 mod camera;
 mod common;
 mod denoise;
