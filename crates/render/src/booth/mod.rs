@@ -3,7 +3,8 @@
 //! a grey booth and directional from a collimated source, a flat or curved specimen, three
 //! named views, a CIE observer) rendered as absolute CIE XYZ in cd/m² per pixel, so that a
 //! picture is a measurement: the mean of a flat specimen's pixels under the collimated light is
-//! what a multi-angle instrument reads (the closure tests, `tests/it/booth.rs`).
+//! what a multi-angle instrument reads (the closure tests, `tests/it/booth.rs` and
+//! `tests/it/booth_doi.rs`).
 //!
 //! - [`spec`]: the description (TOML) and its checks.
 //! - [`scene`]: the booth as a scene, its lights scaled to the illuminance, the views' cameras.
