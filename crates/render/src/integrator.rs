@@ -39,10 +39,6 @@ pub struct RenderOptions {
     pub sampling: BrdfSampling,
     /// How colour is carried along a path: linear sRGB (the default) or spectrally.
     pub colour: ColourMode,
-    /// What the spectral mode's film records: linear sRGB relative to D65 (the default) or
-    /// absolute XYZ in cd/m² ([`Film::Absolute`], which the pixels and the variance of
-    /// [`Estimate`] then hold: X, Y, Z and the variance of Y).
-    pub film: Film,
     /// Denoise the picture ([`crate::denoise`]) (`None`: the scene's `[render] denoise`, else
     /// no).
     pub denoise: Option<bool>,
@@ -119,6 +115,13 @@ pub struct Estimate {
 
 /// The Monte Carlo estimate of `scene`'s picture with `options` (which `denoise` is ignored).
 pub fn render_estimate(scene: &Scene, options: &RenderOptions) -> Result<Estimate> {
+    render_estimate_on(scene, options, &Film::Display)
+}
+
+/// [`render_estimate`] on the film `film`: linear sRGB relative to D65 ([`Film::Display`]) or
+/// absolute XYZ in cd/m² ([`Film::Absolute`], spectral mode only), which the estimate's pixels
+/// and variance then hold (X, Y, Z and the variance of Y).
+pub fn render_estimate_on(scene: &Scene, options: &RenderOptions, film: &Film) -> Result<Estimate> {
     let opts = Settings {
         spp: options.samples_per_pixel(scene),
         seed: options.seed.or(scene.render.seed).unwrap_or(0),
@@ -135,14 +138,14 @@ pub fn render_estimate(scene: &Scene, options: &RenderOptions) -> Result<Estimat
             opts.spp
         )));
     }
-    if opts.colour == ColourMode::Tristimulus && options.film != Film::Display {
+    if opts.colour == ColourMode::Tristimulus && *film != Film::Display {
         return Err(RenderError::Invalid(
             "an absolute film (XYZ in cd/m²) needs the spectral colour mode".into(),
         ));
     }
     let opts = &opts;
     let start = Instant::now();
-    let spectral = SpectralFilmSetup::new(&options.film);
+    let spectral = SpectralFilmSetup::new(film);
     let (w, h) = (scene.camera.width, scene.camera.height);
     let tiles: Vec<(usize, usize)> = (0..h.div_ceil(TILE))
         .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))

@@ -44,7 +44,8 @@ pub use assets::Assets;
 pub use error::{RenderError, Result};
 pub use image::{Display, Image, ToneCurve};
 pub use integrator::{
-    Estimate, RenderOptions, RenderStats, render, render_estimate, render_picture,
+    Estimate, RenderOptions, RenderStats, render, render_estimate, render_estimate_on,
+    render_picture,
 };
 pub use scene::Scene;
 pub use settings::{BrdfSampling, ColourMode, Film};

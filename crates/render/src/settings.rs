@@ -29,7 +29,7 @@ pub enum ColourMode {
     Spectral,
 }
 
-/// What the film records of the spectral mode ([`crate::spectral`]).
+/// What the film records of the spectral mode ([`crate::spectral`]; [`crate::render_estimate_on`]).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub enum Film {
     /// Linear sRGB, radiance relative to D65 seen by the CIE 1931 2° observer: a grey light of

@@ -25,7 +25,7 @@ pub use spec::{BoothSpec, Checked, Projection, View};
 use crate::error::Result;
 use crate::material::Material;
 use crate::settings::{ColourMode, Film};
-use crate::{RenderOptions, render_estimate};
+use crate::{RenderOptions, render_estimate_on};
 use gonio_color::{Observer, WeightingFactors};
 use gonio_io::{Cancel, Progress};
 use scene::BoothScene;
@@ -91,20 +91,20 @@ pub fn render(spec: &BoothSpec, material: &Material, run: &Run) -> Result<BoothP
         max_bounces: Some(spec.render.max_bounces),
         threads: run.threads,
         colour: ColourMode::Spectral,
-        film: Film::Absolute {
-            light: checked.light.spectrum.clone(),
-            observer: checked.observer,
-        },
         denoise: Some(false),
         progress: run.progress.clone(),
         cancel: run.cancel.clone(),
         ..RenderOptions::default()
     };
+    let film = Film::Absolute {
+        light: checked.light.spectrum.clone(),
+        observer: checked.observer,
+    };
     let (w, h) = (spec.render.width, spec.render.height);
     let mut views = Vec::new();
     for (k, view) in checked.views.iter().enumerate() {
         let camera = booth.set_view(&checked, view, w, h);
-        let estimate = render_estimate(&booth.scene, &options)?;
+        let estimate = render_estimate_on(&booth.scene, &options, &film)?;
         views.push(BoothView {
             name: view.name.clone(),
             camera,

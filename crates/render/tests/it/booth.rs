@@ -303,13 +303,13 @@ fn absolute_film_needs_the_spectral_mode() {
     let scene = super::common::scene(super::common::FURNACE);
     let options = gonio_render::RenderOptions {
         spp: Some(1),
-        film: gonio_render::Film::Absolute {
-            light: Arc::new(gonio_color::Illuminant::D65.spd().clone()),
-            observer: gonio_color::Observer::Cie1931TwoDegree,
-        },
         ..gonio_render::RenderOptions::default()
     };
-    let e = gonio_render::render(&scene, &options)
+    let film = gonio_render::Film::Absolute {
+        light: Arc::new(gonio_color::Illuminant::D65.spd().clone()),
+        observer: gonio_color::Observer::Cie1931TwoDegree,
+    };
+    let e = gonio_render::render_estimate_on(&scene, &options, &film)
         .unwrap_err()
         .to_string();
     assert!(e.contains("spectral"), "{e}");
