@@ -13,10 +13,10 @@
 
 use crate::cie::{Illuminant, Observer};
 use crate::error::{ColorError, Result};
-use crate::mat3;
+use crate::mat3::{self, Mat3};
 use crate::spectrum::Spectrum;
 use crate::srgb::LinearSrgb;
-use crate::tristimulus::{WeightingFactors, display_matrix};
+use crate::tristimulus::{WeightingFactors, display_matrix, display_matrix_for_white};
 use crate::xyz::Xyz;
 
 /// Number of wavelengths carried per path (C in Wilkie et al. 2014).
@@ -87,12 +87,30 @@ pub struct SpectralFilm {
     xyz: Vec<[f64; 3]>,
     /// The same through the display matrix: linear sRGB weights.
     rgb: Vec<[f64; 3]>,
+    /// The XYZ that v ≡ 1 averages to: the light's white, Y = 100.
+    white: Xyz,
 }
 
 impl SpectralFilm {
     /// The film for wavelengths drawn by `sampler`.
     pub fn new(sampler: HeroSampler, illuminant: Illuminant, observer: Observer) -> Self {
-        let factors = WeightingFactors::of(illuminant, observer);
+        Self::of_factors(
+            sampler,
+            WeightingFactors::of(illuminant, observer),
+            display_matrix(illuminant, observer),
+        )
+    }
+
+    /// The film of a light of relative spectral power `spd` (a CIE illuminant's table or a
+    /// measured source; see [`WeightingFactors::of_spectrum`]), its linear sRGB white-balanced to
+    /// that light's white ([`display_matrix_for_white`]).
+    pub fn of_spectrum(sampler: HeroSampler, spd: &Spectrum, observer: Observer) -> Self {
+        let factors = WeightingFactors::of_spectrum(spd, observer);
+        Self::of_factors(sampler, &factors, display_matrix_for_white(factors.white()))
+    }
+
+    /// The film of the weighting factors `factors`, with `to_rgb` from their XYZ to linear sRGB.
+    fn of_factors(sampler: HeroSampler, factors: &WeightingFactors, to_rgb: Mat3) -> Self {
         let grid = Spectrum::constant(factors.wavelengths_nm().to_vec(), 0.0)
             .expect("the weighting factors share the valid grid of the CIE tables");
         let scale = 1.0 / (HERO_COUNT as f64 * sampler.pdf_per_nm());
@@ -101,9 +119,9 @@ impl SpectralFilm {
             .iter()
             .map(|w| w.map(|v| v * scale))
             .collect();
-        let to_rgb = display_matrix(illuminant, observer);
         let rgb = xyz.iter().map(|&w| mat3::mul_vec(&to_rgb, w)).collect();
         Self {
+            white: factors.white(),
             sampler,
             grid,
             xyz,
@@ -115,6 +133,11 @@ impl SpectralFilm {
     fn lookup(&self, table: &[[f64; 3]], wavelength_nm: f64) -> [f64; 3] {
         let (i, t) = self.grid.segment(wavelength_nm);
         std::array::from_fn(|c| table[i][c] + t * (table[i + 1][c] - table[i][c]))
+    }
+
+    /// The XYZ that v ≡ 1 averages to (0–100 scale): the perfect diffuser under the light.
+    pub fn white(&self) -> Xyz {
+        self.white
     }
 
     /// The sampler this film expects the wavelengths from.

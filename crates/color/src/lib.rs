@@ -36,7 +36,7 @@ pub use reduce::SpectralToXyz;
 pub use spectrum::Spectrum;
 pub use srgb::{LinearSrgb, Srgb};
 pub use tristimulus::{
-    Colorimetry, EmissionScale, WeightingFactors, display_matrix, emission_xyz, reflectance_xyz,
-    white,
+    Colorimetry, EmissionScale, WeightingFactors, display_matrix, display_matrix_for_white,
+    emission_xyz, reflectance_xyz, white,
 };
 pub use xyz::{Lab, XyY, Xyz, lightness_slope};

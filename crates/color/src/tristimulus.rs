@@ -28,8 +28,14 @@ pub struct WeightingFactors {
 
 impl WeightingFactors {
     fn compute(illuminant: Illuminant, observer: Observer) -> Self {
+        Self::of_spectrum(illuminant.spd(), observer)
+    }
+
+    /// The weighting factors of a light of relative spectral power `spd` (a CIE illuminant's
+    /// table or a measured source, interpolated linearly to the 1 nm grid and held at its end
+    /// values beyond its range) seen by `observer`.
+    pub fn of_spectrum(spd: &Spectrum, observer: Observer) -> Self {
         let cmfs = observer.cmfs();
-        let spd = illuminant.spd();
         let wavelengths_nm = cmfs.wavelengths_nm().to_vec();
         let raw: Vec<[f64; 3]> = wavelengths_nm
             .iter()
@@ -73,6 +79,13 @@ impl WeightingFactors {
     pub fn weights(&self) -> &[[f64; 3]] {
         &self.weights
     }
+
+    /// Their sums: the XYZ of the perfect reflecting diffuser, Y = 100.
+    pub fn white(&self) -> Xyz {
+        Xyz::from_array(std::array::from_fn(|c| {
+            self.weights.iter().map(|w| w[c]).sum()
+        }))
+    }
 }
 
 /// XYZ (0–100 scale) of a surface of spectral reflectance (or transmittance, or reflectance
@@ -91,10 +104,7 @@ pub fn reflectance_xyz(reflectance: &Spectrum, illuminant: Illuminant, observer:
 
 /// The reference white: XYZ of the perfect reflecting diffuser under `illuminant`, Y = 100.
 pub fn white(illuminant: Illuminant, observer: Observer) -> Xyz {
-    let table = WeightingFactors::of(illuminant, observer);
-    Xyz::from_array(std::array::from_fn(|c| {
-        table.weights.iter().map(|w| w[c]).sum()
-    }))
+    WeightingFactors::of(illuminant, observer).white()
 }
 
 /// How to scale the XYZ of a light source.
@@ -140,11 +150,14 @@ pub fn emission_xyz(emission: &Spectrum, observer: Observer, scale: EmissionScal
 /// tables with sRGB's rounded x, y = 0.3127, 0.3290 (a correction of 3e-4 for the 2° observer,
 /// 2% in blue for the 10° observer, whose D65 white has another chromaticity).
 pub fn display_matrix(illuminant: Illuminant, observer: Observer) -> Mat3 {
+    display_matrix_for_white(white(illuminant, observer))
+}
+
+/// [`display_matrix`] for a light whose white (the perfect diffuser's XYZ, 0–100 scale) is
+/// `white`: a measured source's.
+pub fn display_matrix_for_white(white: Xyz) -> Mat3 {
     let to_rgb = xyz_to_linear_srgb_matrix().map(|row| row.map(|v| v / 100.0));
-    mat3::mul(
-        &to_rgb,
-        &bradford_matrix(white(illuminant, observer), srgb_white()),
-    )
+    mat3::mul(&to_rgb, &bradford_matrix(white, srgb_white()))
 }
 
 /// Everything `gonio color xyz` reports about one reflectance spectrum.

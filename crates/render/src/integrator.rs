@@ -14,7 +14,7 @@ use crate::error::{RenderError, Result};
 use crate::image::Image;
 use crate::path::{Sampler, Tristimulus, mix, radiance};
 use crate::scene::Scene;
-use crate::settings::{BrdfSampling, ColourMode, Settings};
+use crate::settings::{BrdfSampling, ColourMode, Film, Settings};
 use crate::spectral::{SpectralFilmSetup, SpectralPath};
 use glam::DVec2;
 use gonio_brdf::Rgb;
@@ -115,6 +115,13 @@ pub struct Estimate {
 
 /// The Monte Carlo estimate of `scene`'s picture with `options` (which `denoise` is ignored).
 pub fn render_estimate(scene: &Scene, options: &RenderOptions) -> Result<Estimate> {
+    render_estimate_on(scene, options, &Film::Display)
+}
+
+/// [`render_estimate`] on the film `film`: linear sRGB relative to D65 ([`Film::Display`]) or
+/// absolute XYZ in cd/m² ([`Film::Absolute`], spectral mode only), which the estimate's pixels
+/// and variance then hold (X, Y, Z and the variance of Y).
+pub fn render_estimate_on(scene: &Scene, options: &RenderOptions, film: &Film) -> Result<Estimate> {
     let opts = Settings {
         spp: options.samples_per_pixel(scene),
         seed: options.seed.or(scene.render.seed).unwrap_or(0),
@@ -131,9 +138,14 @@ pub fn render_estimate(scene: &Scene, options: &RenderOptions) -> Result<Estimat
             opts.spp
         )));
     }
+    if opts.colour == ColourMode::Tristimulus && *film != Film::Display {
+        return Err(RenderError::Invalid(
+            "an absolute film (XYZ in cd/m²) needs the spectral colour mode".into(),
+        ));
+    }
     let opts = &opts;
     let start = Instant::now();
-    let spectral = SpectralFilmSetup::new();
+    let spectral = SpectralFilmSetup::new(film);
     let (w, h) = (scene.camera.width, scene.camera.height);
     let tiles: Vec<(usize, usize)> = (0..h.div_ceil(TILE))
         .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
@@ -206,8 +218,9 @@ pub(crate) fn on_threads<T: Send>(
     })
 }
 
-/// The mean radiance of pixel (`x`, `y`), linear sRGB, and the variance of its luminance (the
-/// sample variance over the number of samples; infinite from one sample).
+/// The mean radiance of pixel (`x`, `y`) as the film records it (linear sRGB, or absolute XYZ),
+/// and the variance of its luminance (the sample variance over the number of samples; infinite
+/// from one sample).
 fn pixel(
     scene: &Scene,
     opts: &Settings,
@@ -233,25 +246,20 @@ fn pixel(
             ColourMode::Spectral => {
                 let path = SpectralPath::new(spectral, s, seed);
                 let v = radiance(scene, opts, &path, ray, &mut sampler, rays);
-                path.to_rgb(v)
+                path.to_film(v)
             }
         };
         if l.is_finite() {
             sum += l;
-            sum_sq += luminance(l).powi(2);
+            sum_sq += spectral.luminance(l).powi(2);
         }
     }
     let n = f64::from(opts.spp);
     let mean = sum / n;
     let variance = if opts.spp > 1 {
-        ((sum_sq / n - luminance(mean).powi(2)) / (n - 1.0)).max(0.0)
+        ((sum_sq / n - spectral.luminance(mean).powi(2)) / (n - 1.0)).max(0.0)
     } else {
         f64::INFINITY
     };
     (mean.as_vec3().to_array(), variance as f32)
-}
-
-/// Luminance of a linear sRGB value.
-fn luminance(c: Rgb) -> f64 {
-    crate::light::luminance(c.as_vec3().to_array())
 }

@@ -16,6 +16,7 @@
 //! ```
 
 pub mod assets;
+pub mod booth;
 pub mod camera;
 pub mod coating_material;
 pub mod denoise;
@@ -44,10 +45,11 @@ pub use assets::Assets;
 pub use error::{RenderError, Result};
 pub use image::{Display, Image, ToneCurve};
 pub use integrator::{
-    Estimate, RenderOptions, RenderStats, render, render_estimate, render_picture,
+    Estimate, RenderOptions, RenderStats, render, render_estimate, render_estimate_on,
+    render_picture,
 };
 pub use scene::Scene;
-pub use settings::{BrdfSampling, ColourMode};
+pub use settings::{BrdfSampling, ColourMode, Film};
 
 use std::path::Path;
 

@@ -1,5 +1,5 @@
-//! Light sources and their sampling for next-event estimation: point lights, spherical and
-//! planar (rectangle, disk) area lights, an equirectangular environment map importance-sampled
+//! Light sources and their sampling for next-event estimation: point lights, distant
+//! (collimated) lights, spherical and planar (rectangle, disk) area lights, an equirectangular environment map importance-sampled
 //! by luminance, and a uniform sky. Every sampler returns the direction, the radiance and the
 //! solid-angle pdf together, and [`Light::pdf`] gives the same pdf for any direction, so that
 //! multiple importance sampling can weigh light and BRDF samples (Veach 1997, ch. 9).
@@ -21,7 +21,8 @@ pub struct LightSample {
     pub wi: DVec3,
     /// Distance to the light (infinite for environment lights).
     pub dist: f64,
-    /// Incident radiance (for a point light: intensity / distance²).
+    /// Incident radiance (for a point light: intensity / distance²; for a distant light its
+    /// irradiance).
     pub li: Rgb,
     /// Pdf per steradian; for a point light 1 with `delta` set.
     pub pdf: f64,
@@ -34,6 +35,11 @@ pub struct LightSample {
 pub enum Light {
     /// Isotropic point light of intensity W/sr per channel.
     Point { position: DVec3, intensity: Rgb },
+    /// A distant, collimated light (pbrt-v4 §12.4, `DistantLight`): every point receives the
+    /// irradiance `irradiance` (W/m² per channel, on a plane facing the light) from the one
+    /// unit direction `direction` toward the light; a delta in direction that only light
+    /// samples find.
+    Distant { direction: DVec3, irradiance: Rgb },
     /// An emitting primitive of the scene (sphere or planar), uniform radiance on its front.
     Area { prim: usize, radiance: Rgb },
     /// Equirectangular environment map.
@@ -65,6 +71,16 @@ impl Light {
                     delta: true,
                 })
             }
+            Light::Distant {
+                direction,
+                irradiance,
+            } => Some(LightSample {
+                wi: *direction,
+                dist: f64::INFINITY,
+                li: *irradiance,
+                pdf: 1.0,
+                delta: true,
+            }),
             Light::Area { prim, radiance } => {
                 let (wi, dist, pdf) = sample_shape(&shapes[*prim], p, u)?;
                 Some(LightSample {
@@ -96,7 +112,7 @@ impl Light {
     /// light `hit` is the point of the light the direction reaches.
     pub fn pdf(&self, p: DVec3, wi: DVec3, hit: DVec3, shapes: &[Shape]) -> f64 {
         match self {
-            Light::Point { .. } => 0.0,
+            Light::Point { .. } | Light::Distant { .. } => 0.0,
             Light::Area { prim, .. } => shape_pdf(&shapes[*prim], p, wi, hit),
             Light::Environment(env) => env.pdf(wi),
             Light::Sky { .. } => 1.0 / (4.0 * PI),

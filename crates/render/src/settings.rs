@@ -1,6 +1,9 @@
 //! The choices of a render, in a leaf module that the integrator, the path tracer, the
 //! spectral mode and the denoiser all read: how BRDF samples are drawn, how colour is carried,
-//! and the settings of one render with every choice made.
+//! what the film records, and the settings of one render with every choice made.
+
+use gonio_color::{Observer, Spectrum};
+use std::sync::Arc;
 
 /// How BRDF samples are drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -24,6 +27,26 @@ pub enum ColourMode {
     /// spectral values turned into colour at the film (D65, CIE 1931 2°). See
     /// [`crate::spectral`].
     Spectral,
+}
+
+/// What the film records of the spectral mode ([`crate::spectral`]; [`crate::render_estimate_on`]).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub enum Film {
+    /// Linear sRGB, radiance relative to D65 seen by the CIE 1931 2° observer: a grey light of
+    /// value 1 on a perfect white diffuser displays as (1, 1, 1).
+    #[default]
+    Display,
+    /// Absolute CIE XYZ in cd/m² (Y is the luminance) under a light of relative spectral power
+    /// `light` seen by `observer`: a grey light of value v emits the spectral radiance
+    /// `v S(λ) / (K_m ∫ S ȳ dλ)` (K_m = 683 lm/W), whose luminance is v cd/m², so a sky of value
+    /// v gives an illuminance of π v lx on a plane and a distant light of irradiance value E
+    /// gives E lx on a plane facing it. Needs [`ColourMode::Spectral`].
+    Absolute {
+        /// The light's relative spectral power (a CIE illuminant's table or a measured source).
+        light: Arc<Spectrum>,
+        /// The observer whose colour-matching functions give X, Y, Z.
+        observer: Observer,
+    },
 }
 
 /// The settings of one render, every choice made.

@@ -14,7 +14,13 @@
 //! ([`gonio_color::SpectralFilm`], whose weights for uniform wavelengths over 360–830 nm are
 //! rescaled by `(1/470 nm) / p(λ)`).
 //!
-//! What a path carries at λ is radiance relative to D65: the film weights contain D65's spectral
+//! With the absolute film ([`crate::settings::Film::Absolute`], the viewing booth's) the weights
+//! are instead the XYZ weighting factors of a given light's spectrum S(λ) and observer over 100,
+//! and the film records CIE XYZ in cd/m²: a path's value v at λ then stands for the spectral
+//! radiance `v S(λ) / (K_m ∫ S ȳ dλ)`, K_m = 683 lm/W (CIE 15:2004 eq. 7.7), so that a grey
+//! light of value 1 has a luminance of 1 cd/m².
+//!
+//! What a path carries at λ with the display film is radiance relative to D65: the film weights contain D65's spectral
 //! power, normalised so that the value 1 at every wavelength displays as linear sRGB (1, 1, 1).
 //! This is the illuminant under which the tristimulus shortcut reduces spectral tables
 //! ([`gonio_brdf::table::BrdfTable::to_rgb`]), so for a path that meets one surface under a white
@@ -35,7 +41,7 @@
 use crate::flakes::FlakeField;
 use crate::material::Material;
 use crate::path::{Shading, mix, sample_brdf};
-use crate::settings::BrdfSampling;
+use crate::settings::{BrdfSampling, Film};
 use glam::{DMat3, DVec2, DVec3, DVec4};
 use gonio_brdf::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
 use gonio_brdf::{Rgb, SpectralBrdf};
@@ -127,32 +133,59 @@ pub fn path_wavelengths(u: f64) -> [f64; HERO_COUNT] {
     std::array::from_fn(|j| sample_visible((u + j as f64 / HERO_COUNT as f64).fract()))
 }
 
-/// What every spectral path of a render shares: the film.
+/// What every pixel of a render shares: the film, and what it records.
 pub(crate) struct SpectralFilmSetup {
     /// The film for uniform wavelengths over 360–830 nm, whose weights are rescaled to the
     /// visible pdf.
     film: SpectralFilm,
     /// The uniform density of that film, 1/470 per nm.
     uniform_pdf: f64,
+    /// Whether the film records absolute XYZ ([`Film::Absolute`]) rather than linear sRGB.
+    absolute: bool,
 }
 
 impl SpectralFilmSetup {
-    pub(crate) fn new() -> SpectralFilmSetup {
+    /// The film `film` describes: for [`Film::Display`] D65 and the CIE 1931 2° observer
+    /// through the sRGB display matrix; for [`Film::Absolute`] the XYZ weights of its light
+    /// and observer divided by 100, so that v ≡ 1 records the light's white with Y = 1 cd/m²
+    /// (the weighting factors make the perfect diffuser's Y 100, [`SpectralFilm`]).
+    pub(crate) fn new(film: &Film) -> SpectralFilmSetup {
         let sampler = HeroSampler::new(360.0, 830.0).expect("the CIE range is valid");
+        let (film, absolute) = match film {
+            Film::Display => (SpectralFilm::new(sampler, ILLUMINANT, OBSERVER), false),
+            Film::Absolute { light, observer } => {
+                (SpectralFilm::of_spectrum(sampler, light, *observer), true)
+            }
+        };
         SpectralFilmSetup {
-            film: SpectralFilm::new(sampler, ILLUMINANT, OBSERVER),
+            film,
             uniform_pdf: sampler.pdf_per_nm(),
+            absolute,
         }
     }
 
-    /// Per wavelength, the linear sRGB weights `W(λ_j) / (4 p(λ_j))` of the visible pdf.
-    fn rgb_weights(&self, wavelengths_nm: &[f64; HERO_COUNT]) -> [[f64; 3]; HERO_COUNT] {
-        let mut weights = self.film.rgb_weights(wavelengths_nm);
+    /// Per wavelength, the film's weights `W(λ_j) / (4 p(λ_j))` of the visible pdf: linear
+    /// sRGB, or absolute XYZ.
+    fn weights(&self, wavelengths_nm: &[f64; HERO_COUNT]) -> [[f64; 3]; HERO_COUNT] {
+        let (mut weights, scale) = if self.absolute {
+            (self.film.xyz_weights(wavelengths_nm), 0.01)
+        } else {
+            (self.film.rgb_weights(wavelengths_nm), 1.0)
+        };
         for (w, &l) in weights.iter_mut().zip(wavelengths_nm) {
-            let ratio = self.uniform_pdf / visible_pdf(l);
+            let ratio = scale * self.uniform_pdf / visible_pdf(l);
             w.iter_mut().for_each(|c| *c *= ratio);
         }
         weights
+    }
+
+    /// The luminance of a value the film recorded: Y of XYZ, or of linear sRGB by its Y row.
+    pub(crate) fn luminance(&self, c: Rgb) -> f64 {
+        if self.absolute {
+            c.y
+        } else {
+            crate::light::luminance(c.as_vec3().to_array())
+        }
     }
 }
 
@@ -164,7 +197,7 @@ pub(crate) struct SpectralPath {
     wavelengths_nm: [f64; HERO_COUNT],
     /// Per wavelength, `w(λ)` of [`RgbUpsampling::weights`].
     upsample: [DVec3; HERO_COUNT],
-    /// Per wavelength, the film's linear sRGB weights.
+    /// Per wavelength, the film's weights (linear sRGB, or absolute XYZ).
     film: [[f64; 3]; HERO_COUNT],
 }
 
@@ -183,12 +216,13 @@ impl SpectralPath {
         SpectralPath {
             wavelengths_nm,
             upsample: wavelengths_nm.map(|w| up.weights(w)),
-            film: setup.rgb_weights(&wavelengths_nm),
+            film: setup.weights(&wavelengths_nm),
         }
     }
 
-    /// The path's linear sRGB from its values at the four wavelengths.
-    pub(crate) fn to_rgb(&self, values: DVec4) -> Rgb {
+    /// What the film records of the path (linear sRGB, or absolute XYZ) from its values at the
+    /// four wavelengths.
+    pub(crate) fn to_film(&self, values: DVec4) -> Rgb {
         self.film
             .iter()
             .zip(values.to_array())
@@ -308,11 +342,11 @@ mod tests {
                 .sum();
             assert!((below / lambdas.len() as f64 - cdf).abs() < 1e-3, "{edge}");
         }
-        let setup = SpectralFilmSetup::new();
+        let setup = SpectralFilmSetup::new(&Film::Display);
         let mut rgb = [0.0; 3];
         for i in 0..paths {
             let ws = path_wavelengths((i as f64 + 0.5) / paths as f64);
-            for w in setup.rgb_weights(&ws) {
+            for w in setup.weights(&ws) {
                 (0..3).for_each(|c| rgb[c] += w[c] / paths as f64);
             }
         }

@@ -134,3 +134,37 @@ fn rgb_weights_give_white_for_a_flat_spectrum() {
         assert!((v - 1.0).abs() < 1e-5, "{rgb:?}");
     }
 }
+
+/// A film of a CIE illuminant's own table given as a spectrum is that illuminant's film
+/// (weights and white), and a measured spectrum scaled by any factor gives the same film (the
+/// weights are relative to the light's luminance).
+#[test]
+fn film_of_a_spectrum_is_the_illuminants_film() {
+    let sampler = HeroSampler::new(360.0, 830.0).unwrap();
+    let waves = [402.5, 517.0, 633.3, 780.0];
+    for observer in Observer::ALL {
+        let named = SpectralFilm::new(sampler, Illuminant::A, observer);
+        let spd = Illuminant::A.spd();
+        let scaled = Spectrum::new(
+            spd.wavelengths_nm().to_vec(),
+            spd.values().iter().map(|v| 7.0 * v).collect(),
+        )
+        .unwrap();
+        for film in [
+            SpectralFilm::of_spectrum(sampler, spd, observer),
+            SpectralFilm::of_spectrum(sampler, &scaled, observer),
+        ] {
+            for (a, b) in [
+                (film.xyz_weights(&waves), named.xyz_weights(&waves)),
+                (film.rgb_weights(&waves), named.rgb_weights(&waves)),
+            ] {
+                for (x, y) in a.iter().flatten().zip(b.iter().flatten()) {
+                    assert!((x - y).abs() <= 1e-12 * y.abs().max(1.0), "{x} {y}");
+                }
+            }
+            let (w, n) = (film.white().to_array(), named.white().to_array());
+            assert!((0..3).all(|c| (w[c] - n[c]).abs() < 1e-9), "{w:?} {n:?}");
+            assert!((w[1] - 100.0).abs() < 1e-9);
+        }
+    }
+}

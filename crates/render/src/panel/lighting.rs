@@ -81,7 +81,7 @@ impl Lighting {
     pub fn radiance(self, theta_deg: f64, phi_deg: f64) -> f64 {
         match self {
             Lighting::Studio => studio(theta_deg, phi_deg),
-            Lighting::Booth => booth(theta_deg),
+            Lighting::Booth => booth(theta_deg, Lighting::Booth.floor_albedo()),
         }
     }
 
@@ -97,17 +97,28 @@ impl Lighting {
 
     /// Draw the map, each pixel the radiance at its centre.
     fn draw(self) -> Image {
-        let (w, h) = MAP;
-        let mut image = Image::new(w, h);
-        for j in 0..h {
-            let theta = 180.0 * (j as f64 + 0.5) / h as f64;
-            for i in 0..w {
-                let phi = 360.0 * (i as f64 + 0.5) / w as f64;
-                image.pixels[j * w + i] = [self.radiance(theta, phi) as f32; 3];
-            }
-        }
-        image
+        draw(|theta, phi| self.radiance(theta, phi))
     }
+}
+
+/// The booth's map (as [`Lighting::Booth`]'s) with an interior of luminous reflectance
+/// `interior` (the viewing booth's Munsell grey, [`crate::booth`]).
+pub(crate) fn booth_map(interior: f64) -> Image {
+    draw(|theta, _| booth(theta, interior))
+}
+
+/// Draw a map (256 × 128), each pixel `radiance(θ, φ)` (degrees) at its centre.
+fn draw(radiance: impl Fn(f64, f64) -> f64) -> Image {
+    let (w, h) = MAP;
+    let mut image = Image::new(w, h);
+    for j in 0..h {
+        let theta = 180.0 * (j as f64 + 0.5) / h as f64;
+        for i in 0..w {
+            let phi = 360.0 * (i as f64 + 0.5) / w as f64;
+            image.pixels[j * w + i] = [radiance(theta, phi) as f32; 3];
+        }
+    }
+    image
 }
 
 impl std::fmt::Display for Lighting {
@@ -132,14 +143,13 @@ fn studio(theta_deg: f64, phi_deg: f64) -> f64 {
     }
 }
 
-/// The booth: a ceiling diffuser of radiance 1 within 35° of the zenith; grey walls below it,
-/// lit by the ceiling: a Lambertian wall of albedo ρ facing the horizon under the ceiling's
-/// cap sees about `E = π sin²35° · 0.5` (half the cap above its horizon), so its radiance is
-/// `ρ E / π = 0.5 ρ sin²35°` = 0.05 for N6 (ρ 0.30); the floor below the horizon, under the
-/// whole cap (`E = π sin²35°`), `ρ sin²35°` = 0.10.
-fn booth(theta_deg: f64) -> f64 {
+/// The booth: a ceiling diffuser of radiance 1 within 35° of the zenith; grey walls of
+/// luminous reflectance ρ below it, lit by the ceiling: a Lambertian wall facing the horizon
+/// under the ceiling's cap sees about `E = π sin²35° · 0.5` (half the cap above its horizon), so
+/// its radiance is `ρ E / π = 0.5 ρ sin²35°` = 0.05 for N6 (ρ 0.30); the floor below the
+/// horizon, under the whole cap (`E = π sin²35°`), `ρ sin²35°` = 0.10.
+fn booth(theta_deg: f64, rho: f64) -> f64 {
     let cap = 35f64.to_radians().sin().powi(2);
-    let rho = Lighting::Booth.floor_albedo();
     if theta_deg <= 35.0 {
         1.0
     } else if theta_deg < 90.0 {

@@ -15,6 +15,7 @@ mod lighting;
 pub mod live;
 
 pub use lighting::Lighting;
+pub(crate) use lighting::booth_map;
 
 use crate::error::{RenderError, Result};
 use crate::geometry::Shape;
@@ -104,7 +105,7 @@ pub fn scene(dir: &Path, name: &str, panels: &[Panel]) -> Result<PathBuf> {
 const MESH: &str = "panel.obj";
 
 /// The panel mesh's triangles, parsed once.
-fn mesh() -> Arc<Vec<Shape>> {
+pub(crate) fn mesh() -> Arc<Vec<Shape>> {
     static MESH_TRIANGLES: OnceLock<Arc<Vec<Shape>>> = OnceLock::new();
     MESH_TRIANGLES
         .get_or_init(|| {

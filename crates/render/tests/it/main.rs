@@ -7,6 +7,8 @@
 //! function its tests reach, where these link the library's compiled copy. One test binary per
 //! crate (one link instead of one per file); each module is one subject.
 
+mod booth;
+mod booth_doi;
 mod camera;
 mod common;
 mod denoise;
