@@ -446,7 +446,7 @@ fn export(a: ExportArgs) -> Result<()> {
             pb.finish_and_clear();
             println!(
                 "wrote {} into {}",
-                crate::units::count(files.len(), "file"),
+                gonio_report::units::count(files.len(), "file"),
                 a.output.display()
             );
             return Ok(());

@@ -5,10 +5,10 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use gonio_instrument::compare::{Comparison, compare};
 use gonio_instrument::curves::read_csv;
-use gonio_plot::{self as plot, LinePlot, Series};
+use gonio_report::plots::plot_pairs;
 use gonio_scatter::InplaneCurve;
 use gonio_scatter::geometry::{STARR_APERTURE_DEG, cone_solid_angle};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(Args)]
 pub struct CompareArgs {
@@ -98,39 +98,6 @@ pub fn run(args: CompareArgs) -> Result<()> {
         eprintln!("wrote {}", out.display());
     }
     Ok(())
-}
-
-/// Pairs of curves on a log axis of reflectance, one colour per pair: the first curve of each
-/// pair as dots, the second as a line; `label(curve, first)` names each in the legend.
-pub fn plot_pairs(
-    path: &Path,
-    title: &str,
-    pairs: &[(&InplaneCurve, &InplaneCurve)],
-    label: impl Fn(&InplaneCurve, bool) -> String,
-) -> Result<()> {
-    let mut series = Vec::new();
-    for (i, (a, b)) in pairs.iter().enumerate() {
-        let colour = plot::palette(i);
-        for (curve, first) in [(a, true), (b, false)] {
-            series.push(Series {
-                label: label(curve, first),
-                points: curve
-                    .points
-                    .iter()
-                    .map(|p| (p.scatter_deg, p.reflectance))
-                    .collect(),
-                colour,
-                markers: first,
-            });
-        }
-    }
-    let spec = LinePlot {
-        title,
-        x_label: "scatter angle (deg)",
-        y_label: "reflectance per detector",
-        log_y: true,
-    };
-    Ok(plot::line_plot_png(path, (1000, 650), &spec, &series)?)
 }
 
 /// The comparisons as a table, curve `a` (called `left`) on the left, `b` on the right.

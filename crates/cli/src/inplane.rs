@@ -8,7 +8,7 @@ use anyhow::{Context, Result, bail, ensure};
 use clap::{Args, ValueEnum};
 use gonio_brdf::Ior;
 use gonio_instrument::inplane::{self, InplaneRequest};
-use gonio_plot::{self as plot, LinePlot, Series};
+use gonio_report::plots::plot_curves;
 use gonio_scatter::InplaneCurve;
 use gonio_scatter::analytic::AnalyticModel;
 use gonio_scatter::geometry::{STARR_APERTURE_DEG, STARR_INCIDENCES_DEG};
@@ -164,7 +164,7 @@ pub fn run(args: InplaneArgs) -> Result<()> {
     } else if let Some(path) = &args.output {
         eprintln!(
             "wrote {} to {}",
-            crate::units::count(curves.len(), "curve"),
+            gonio_report::units::count(curves.len(), "curve"),
             path.display()
         );
     }
@@ -304,30 +304,6 @@ fn request(args: &InplaneArgs, scatter_deg: Vec<f64>) -> InplaneRequest {
         sq_nm: args.sq_nm,
         corr_um: args.corr_um,
     }
-}
-
-pub fn plot_curves(path: &Path, curves: &[InplaneCurve]) -> Result<()> {
-    let series: Vec<Series> = curves
-        .iter()
-        .enumerate()
-        .map(|(i, c)| Series {
-            label: format!("{} {}°", c.method, c.incidence_deg),
-            points: c
-                .points
-                .iter()
-                .map(|p| (p.scatter_deg, p.brdf_per_sr))
-                .collect(),
-            colour: plot::palette(i),
-            markers: false,
-        })
-        .collect();
-    let plot = LinePlot {
-        title: "In-plane BRDF",
-        x_label: "scattering angle (deg)",
-        y_label: "BRDF (1/sr)",
-        log_y: true,
-    };
-    Ok(plot::line_plot_png(path, (900, 600), &plot, &series)?)
 }
 
 fn curves_json(

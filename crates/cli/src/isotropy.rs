@@ -7,9 +7,9 @@ use crate::inplane::Method;
 use anyhow::{Result, ensure};
 use clap::Args;
 use gonio_instrument::isotropy::{self, IsotropyConfig, Orientation, RotationCheck};
+use gonio_report::isotropy_files::{plot_check, write_csv};
+use gonio_scatter::Goniometer;
 use gonio_scatter::geometry::{STARR_APERTURE_DEG, STARR_INCIDENCES_DEG};
-use gonio_scatter::{Goniometer, InplaneCurve};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 #[derive(Args)]
@@ -124,59 +124,6 @@ fn plot_path(png: &Path, angle_deg: f64) -> PathBuf {
         .file_stem()
         .map_or("isotropy".into(), |s| s.to_string_lossy());
     png.with_file_name(format!("{stem}_rot{angle_deg}.png"))
-}
-
-/// Both orientations' reflectance curves on a log axis: original as lines, turned as dots, one
-/// colour per incidence.
-pub fn plot_check(path: &Path, c: &RotationCheck) -> Result<()> {
-    let pairs: Vec<(&InplaneCurve, &InplaneCurve)> =
-        c.rotated.curves.iter().zip(&c.original.curves).collect();
-    let title = format!(
-        "In-plane reflectance: original (lines) and turned by {}° (dots)",
-        c.angle_deg
-    );
-    crate::compare::plot_pairs(path, &title, &pairs, |curve, turned| {
-        if turned {
-            format!("turned {}°, {}°", c.angle_deg, curve.incidence_deg)
-        } else {
-            format!("original, {}°", curve.incidence_deg)
-        }
-    })
-}
-
-/// The curves of every check, original and turned, as CSV (the `--csv` output).
-pub fn write_csv(path: &Path, checks: &[RotationCheck]) -> Result<()> {
-    crate::output::write_atomic(path, |w| {
-        writeln!(
-            w,
-            "rotation_deg,orientation,method,wavelength_nm,incidence_deg,scatter_deg,\
-             brdf_per_sr,reflectance,rel_uncertainty"
-        )?;
-        for c in checks {
-            for (name, o) in [("original", &c.original), ("rotated", &c.rotated)] {
-                for curve in &o.curves {
-                    let wl = curve.wavelength_nm.map_or(String::new(), |v| v.to_string());
-                    for p in &curve.points {
-                        let unc = p
-                            .rel_uncertainty
-                            .filter(|u| u.is_finite())
-                            .map_or(String::new(), |u| format!("{u:.6e}"));
-                        writeln!(
-                            w,
-                            "{},{name},{},{wl},{},{},{:.8e},{:.8e},{unc}",
-                            c.angle_deg,
-                            curve.method,
-                            curve.incidence_deg,
-                            p.scatter_deg,
-                            p.brdf_per_sr,
-                            p.reflectance
-                        )?;
-                    }
-                }
-            }
-        }
-        Ok(())
-    })
 }
 
 fn orientation_json(o: &Orientation) -> serde_json::Value {

@@ -13,17 +13,14 @@ mod inplane;
 mod isotropy;
 mod lab;
 mod multiangle;
-mod output;
 mod pigments;
 mod progress;
 mod render;
-mod report;
 mod study;
 mod surface;
 mod surface_gen;
 mod surface_waviness;
 mod texture;
-mod units;
 
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
@@ -177,19 +174,13 @@ fn die_quietly_on_closed_stdout() {
     }
 }
 
-/// `values` as a list flag takes them, comma-separated: "20,45,60,70".
-pub(crate) fn comma_list<T: std::fmt::Display>(values: &[T]) -> String {
-    let text: Vec<String> = values.iter().map(T::to_string).collect();
-    text.join(",")
-}
-
-/// [`comma_list`] as the one default of an argument that takes a list (`value_delimiter =
+/// [`gonio_report::units::comma_list`] as the one default of an argument that takes a list (`value_delimiter =
 /// ','`). clap splits it as it splits what a user types; `default_values_t` would show the list
 /// joined by spaces ("20 45 60 70"), which the argument does not accept from a user who copies
 /// it. Made once per argument as the command is built (clap keeps a default for the life of the
 /// process).
 fn list_default<T: std::fmt::Display>(values: &[T]) -> &'static str {
-    Box::leak(comma_list(values).into_boxed_str())
+    Box::leak(gonio_report::units::comma_list(values).into_boxed_str())
 }
 
 #[cfg(test)]

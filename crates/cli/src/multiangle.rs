@@ -220,7 +220,7 @@ fn json(reading: &MultiangleReading, differences: Option<&[Difference]>) -> serd
 
 /// The reflectance factors as CSV: `geometry,illumination_deg,aspecular_deg,R_400nm,...`.
 fn write_spectra(path: &Path, reading: &MultiangleReading) -> Result<()> {
-    crate::output::write_atomic(path, |w| {
+    Ok(gonio_report::output::write_atomic(path, |w| {
         write!(w, "geometry,illumination_deg,aspecular_deg")?;
         for wl in &reading.wavelengths_nm {
             write!(w, ",R_{wl}nm")?;
@@ -238,5 +238,5 @@ fn write_spectra(path: &Path, reading: &MultiangleReading) -> Result<()> {
             writeln!(w)?;
         }
         Ok(())
-    })
+    })?)
 }

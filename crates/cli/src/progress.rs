@@ -83,6 +83,35 @@ pub fn ticking(bar: &ProgressBar) -> Progress {
     })
 }
 
+/// Reports of computations that run one after another (the demo's study, renders and texture
+/// pictures), each on a bar of its own: a report that counts fewer steps than the one before,
+/// or of another total, begins the next computation (each counts its own steps from the
+/// start), so the last bar is finished and a new one drawn.
+pub fn successive() -> Progress {
+    let current: Mutex<Option<(ProgressBar, Progress, u64, u64)>> = Mutex::new(None);
+    Progress::new(move |r| {
+        let Ok(mut current) = current.lock() else {
+            return;
+        };
+        let next = match current.as_ref() {
+            Some((_, _, done, total)) => r.done < *done || r.total != *total,
+            None => true,
+        };
+        if next {
+            if let Some((bar, ..)) = current.take() {
+                bar.finish_and_clear();
+            }
+            let bar = bar(0);
+            let progress = reporting(&bar);
+            *current = Some((bar, progress, 0, r.total));
+        }
+        if let Some((_, progress, done, _)) = current.as_mut() {
+            *done = (*done).max(r.done);
+            progress.report(r.stage, r.done, r.total);
+        }
+    })
+}
+
 /// The estimate and the plain progress lines of one bar (see the module's documentation).
 #[derive(Clone)]
 struct Log {

@@ -2,10 +2,10 @@
 //! Lengths on the command line are in the unit their flag names (`--sq-nm`, `--dx-um`); files
 //! and JSON hold SI metres.
 
-use crate::units::length;
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
-use gonio_plot::{self as plot, Raster};
+use gonio_report::plots::plot_height_map;
+use gonio_report::units::length;
 use gonio_surface::profile_stats::profile_statistics;
 use gonio_surface::stats::{self, Statistics};
 use gonio_surface::{ChannelSelector, HeightMap, io, ops};
@@ -500,47 +500,5 @@ fn plot_map(a: &PlotArgs) -> Result<()> {
         || a.file.display().to_string(),
         |n| n.to_string_lossy().into(),
     );
-    plot_height_map(&map, &name, &a.output)
-}
-
-/// A false-colour image of the levelled heights of `map` with a scale bar and a colour bar.
-pub fn plot_height_map(map: &HeightMap, name: &str, output: &Path) -> Result<()> {
-    let lev = ops::level(map).with_context(|| format!("{name}: levelling"))?;
-    let heights = lev.heights();
-    let mut valid: Vec<f64> = heights.iter().copied().filter(|z| !z.is_nan()).collect();
-    valid.sort_unstable_by(f64::total_cmp);
-    // Colour range from the 0.1 and 99.9 percentiles, so that a few spikes do not wash it out.
-    let pick = |p: f64| valid[((valid.len() - 1) as f64 * p).round() as usize];
-    let (lo, hi) = (pick(0.001), pick(0.999));
-    let (unit, factor) = if hi - lo >= 1e-5 {
-        ("µm", 1e6)
-    } else {
-        ("nm", 1e9)
-    };
-    // Row 0 of the map is y = 0, drawn at the bottom; heights() is already row-major.
-    let values: Vec<f64> = heights.iter().map(|z| z * factor).collect();
-    let width_um = map.dx() * map.nx() as f64 * 1e6;
-    let bar_um = plot::nice_number(width_um / 5.0);
-    let sq = stats::height_parameters(&lev).0;
-    let title = format!(
-        "{name}: {} × {} points, Sq = {} (levelled)",
-        map.nx(),
-        map.ny(),
-        length(sq)
-    );
-    let raster = Raster {
-        title: &title,
-        values: &values,
-        width: map.nx(),
-        height: map.ny(),
-        cell_aspect: map.dy() / map.dx(),
-        range: (lo * factor, hi * factor),
-        colour_label: &format!("height ({unit})"),
-        scale_bar: Some((bar_um * 1e-6 / map.dx(), format!("{bar_um} µm"))),
-    };
-    // Image box 690 pixels high, as wide as the map's true aspect ratio asks (within limits),
-    // plus room for the colour bar.
-    let aspect = (map.nx() as f64 * map.dx()) / (map.ny() as f64 * map.dy());
-    let width = (690.0 * aspect).clamp(360.0, 1400.0) as u32 + 190;
-    Ok(plot::raster_png(output, (width, 760), &raster)?)
+    Ok(plot_height_map(&map, &name, &a.output)?)
 }

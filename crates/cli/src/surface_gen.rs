@@ -11,12 +11,9 @@ use gonio_surface::synth_psd::{self, PsdSurface, RadialPsd, Spectrum, Target};
 use gonio_surface::{HeightMap, ops, stats};
 use std::path::PathBuf;
 
-/// The default orange peel: `C(q) ∝ q^-4` (equal mean square slope in every octave) between
-/// 0.3 mm and 10 mm, rms slope along x 1 mrad (docs/surface.md gives the sources of the scales).
-pub(crate) const DEFAULT_EXPONENT: f64 = 4.0;
-pub(crate) const DEFAULT_LONG_MM: f64 = 10.0;
-pub(crate) const DEFAULT_SHORT_MM: f64 = 0.3;
-pub(crate) const DEFAULT_SLOPE_MRAD: f64 = 1.0;
+use gonio_report::orange_peel::{
+    DEFAULT_EXPONENT, DEFAULT_LONG_MM, DEFAULT_SHORT_MM, DEFAULT_SLOPE_MRAD,
+};
 
 #[derive(Clone, Copy, ValueEnum)]
 enum AcfArg {

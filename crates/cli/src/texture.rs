@@ -7,8 +7,7 @@ use anyhow::Result;
 use clap::Args;
 use gonio_coating::system::default_bands;
 use gonio_render::texture::{TextureCamera, TextureReading, measure};
-use gonio_render::texture_metrics::luminance;
-use gonio_render::{Display, Image, ToneCurve};
+use gonio_report::texture_pictures::write_pictures;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 
@@ -118,32 +117,4 @@ fn text(r: &TextureReading, camera: &TextureCamera, coating: &Path) -> String {
         r.graininess, r.graininess_uncertainty
     ));
     out
-}
-
-/// The display of a texture picture: exposed so that its median luminance shows as mid-grey
-/// (the surround between the sparkles, which outshine it a thousandfold, or the diffuse
-/// picture's mean tone), filmic.
-pub(crate) fn median_grey(image: &Image) -> Display {
-    let mut y: Vec<f64> = image.pixels.iter().map(|&p| luminance(p)).collect();
-    y.sort_by(f64::total_cmp);
-    let median = y.get(y.len() / 2).copied().unwrap_or(0.0).max(1e-12);
-    Display {
-        exposure: (0.18 / median).log2(),
-        tone: ToneCurve::Filmic,
-    }
-}
-
-/// The pictures as PNG (sparkle_15.png, sparkle_45.png, sparkle_75.png, diffuse.png), each
-/// exposed by [`median_grey`].
-pub(crate) fn write_pictures(r: &TextureReading, dir: &Path) -> Result<()> {
-    std::fs::create_dir_all(dir)
-        .map_err(|e| anyhow::anyhow!("{}: cannot create the folder: {e}", dir.display()))?;
-    let png = |image: &Image, name: &str| -> Result<()> {
-        image.write(&dir.join(name), median_grey(image))?;
-        Ok(())
-    };
-    for s in &r.sparkle {
-        png(&s.image, &format!("sparkle_{}.png", s.angle_deg))?;
-    }
-    png(&r.diffuse, "diffuse.png")
 }

@@ -63,6 +63,8 @@ pub fn router(lab: Arc<Lab>) -> Router {
         .route("/api/constituents", post(constituents))
         .route("/api/match", post(start_match))
         .route("/api/sensitivity", post(start_sensitivity))
+        .route("/api/report/demo", post(start_report))
+        .route("/api/reports/{name}", get(report_page))
         .route("/api/jobs/{id}", get(job))
         .route("/api/jobs/{id}/cancel", post(cancel_job))
         .layer(DefaultBodyLimit::max(lab.limits.json_bytes))
@@ -414,7 +416,7 @@ fn start_job(
     lab: Arc<Lab>,
     kind: &'static str,
     channel: Option<&str>,
-    work: impl FnOnce(&Job, Watch) -> Result<Value, ApiError> + Send + 'static,
+    work: impl FnOnce(&Arc<Job>, Watch) -> Result<Value, ApiError> + Send + 'static,
 ) -> (StatusCode, axum::Json<Value>) {
     let cancel = lab.begin(Some(channel.unwrap_or(kind)));
     let job = Arc::new(Job::new(kind, cancel.clone()));
@@ -477,6 +479,24 @@ async fn start_sensitivity(
         request.channel.as_deref(),
         move |_, watch| plan.run(watch),
     ))
+}
+
+/// Start the demo's report as a job (crate::report).
+async fn start_report(
+    State(lab): Shared,
+    raw: Result<Bytes, BytesRejection>,
+) -> Result<(StatusCode, axum::Json<Value>), ApiError> {
+    let request: crate::report::DemoRequest = parse(raw, &lab)?;
+    let writer = lab.clone();
+    Ok(start_job(lab, "report", None, move |job, _| {
+        crate::report::run(&writer, job, &request)
+    }))
+}
+
+/// The page of a report the lab wrote.
+async fn report_page(State(lab): Shared, Path(name): Path<String>) -> Result<Response, ApiError> {
+    let html = crate::report::page(&lab, &name)?;
+    Ok(([(header::CONTENT_TYPE, "text/html; charset=utf-8")], html).into_response())
 }
 
 /// How far a job is, and its result or error once it has ended.

@@ -16,6 +16,7 @@ pub mod examples;
 pub mod formulation;
 pub mod jobs;
 pub mod matching;
+pub mod report;
 pub mod sensitivity;
 pub mod state;
 

@@ -284,6 +284,21 @@ impl Lab {
         id
     }
 
+    /// A new folder for a report, inside the lab's temporary folder, and its name (`r7`: the
+    /// lab's, never the client's).
+    pub fn report_folder(&self) -> (String, PathBuf) {
+        let name = format!("r{}", self.next.fetch_add(1, Ordering::Relaxed));
+        let folder = self.folder.path().join(&name);
+        (name, folder)
+    }
+
+    /// The folder of the report `name`, if `name` is one the lab gives (`r` and digits).
+    pub fn report(&self, name: &str) -> Option<PathBuf> {
+        let digits = name.strip_prefix('r')?;
+        (!digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()))
+            .then(|| self.folder.path().join(name))
+    }
+
     /// The job `id`, or a 404.
     pub fn job(&self, id: &str) -> Result<Arc<Job>, ApiError> {
         let jobs = self.jobs.lock().unwrap_or_else(|p| p.into_inner());

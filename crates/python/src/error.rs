@@ -100,6 +100,22 @@ impl From<gonio_formulation::FormulationError> for Error {
     }
 }
 
+impl From<gonio_report::ReportError> for Error {
+    fn from(e: gonio_report::ReportError) -> Error {
+        use gonio_report::ReportError as E;
+        match e {
+            E::Io { ref error, .. } => os(error.kind(), e.to_string()),
+            E::Surface(s) => s.into(),
+            E::Scatter(s) => s.into(),
+            E::Brdf(b) => b.into(),
+            E::Instrument(i) => i.into(),
+            E::Formulation(f) => f.into(),
+            E::Render(r) => r.into(),
+            other => invalid(other.to_string()),
+        }
+    }
+}
+
 impl From<gonio_coating::CoatingError> for Error {
     fn from(e: gonio_coating::CoatingError) -> Error {
         invalid(e.to_string())

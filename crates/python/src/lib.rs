@@ -11,6 +11,7 @@ mod error;
 mod instruments;
 mod matching;
 mod render;
+mod report;
 mod surface;
 mod table;
 
@@ -36,6 +37,7 @@ fn _gonio(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(table::tabulate, m)?)?;
     m.add_function(wrap_pyfunction!(table::compute_table, m)?)?;
     m.add_function(wrap_pyfunction!(render::render_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(report::report_demo, m)?)?;
     m.add_function(wrap_pyfunction!(color::xyz, m)?)?;
     m.add_function(wrap_pyfunction!(color::from_lab, m)?)?;
     m.add_class::<coating::Coating>()?;

@@ -1,32 +1,11 @@
-//! The demo end to end: `gonio demo --quick` writes a report with every section filled, and,
-//! where Chromium is installed, the page renders in headless Chromium with every image loaded.
+//! The demo end to end through the `gonio` binary: `gonio demo --quick` writes a report with
+//! every section, and every command the report shows runs as written beside it, printing the
+//! numbers the report quotes. The report's own checks (tables, summary, the page in Chromium)
+//! are gonio-report's (crates/report/tests/it/demo.rs).
 
 use std::path::Path;
-use std::process::Command;
 
 use crate::common::quick_demo;
-
-/// Every table of the page has as many cells in each row as in its header row.
-fn tables_are_rectangular(html: &str) {
-    let tables: Vec<&str> = html
-        .split("<table>")
-        .skip(1)
-        .map(|t| &t[..t.find("</table>").expect("a table is closed")])
-        .collect();
-    assert!(tables.len() >= 6, "only {} tables", tables.len());
-    for table in tables {
-        let rows: Vec<&str> = table.split("<tr>").skip(1).collect();
-        let header = rows[0].matches("<th>").count();
-        assert!(header > 0, "a table without a header row: {table}");
-        for row in &rows[1..] {
-            assert_eq!(
-                row.matches("<td").count(),
-                header,
-                "a row whose cells do not match the {header} headers: {row}\nin {table}"
-            );
-        }
-    }
-}
 
 /// Every command the report shows names only files that exist in the output folder (inputs
 /// and the outputs the demo wrote), so that it runs as written there.
@@ -83,91 +62,6 @@ fn expanded(out: &Path, word: &str) -> bool {
                 && p.file_name()
                     .is_some_and(|n| n.to_string_lossy().starts_with(&prefix))
         })
-}
-
-/// The summary at the top states the study's 60° gloss readings as the study wrote them.
-fn summary_quotes_the_results(html: &str, out: &Path) {
-    let start = html.find("<h2>Summary</h2>").expect("a summary");
-    let summary = &html[start..html.find("<h2>Contents</h2>").unwrap()];
-    let gloss = std::fs::read_to_string(out.join("study/gloss.csv")).unwrap();
-    let mut lines = gloss.lines();
-    let column = lines
-        .next()
-        .and_then(|h| h.split(',').position(|c| c == "gu60"))
-        .expect("gloss.csv has a gu60 column");
-    let mut quoted = 0;
-    for line in lines {
-        let gu60: f64 = line.split(',').nth(column).unwrap().parse().unwrap();
-        if summary.contains(&format!("{gu60:.1} GU")) || summary.contains(&format!("{gu60:.1} and"))
-        {
-            quoted += 1;
-        }
-    }
-    assert!(
-        quoted >= 2,
-        "the summary quotes {quoted} of the 60° readings: {summary}"
-    );
-}
-
-/// The page without its embedded image data.
-fn text_of(html: &str) -> String {
-    let mut text = String::new();
-    let mut rest = html;
-    while let Some(i) = rest.find("base64,") {
-        text.push_str(&rest[..i]);
-        rest = &rest[i..];
-        rest = &rest[rest.find('"').unwrap_or(rest.len())..];
-    }
-    text.push_str(rest);
-    text
-}
-
-fn find_chromium() -> Option<String> {
-    ["chromium", "chromium-browser", "google-chrome"]
-        .into_iter()
-        .find(|c| {
-            Command::new(c)
-                .arg("--version")
-                .output()
-                .is_ok_and(|o| o.status.success())
-        })
-        .map(String::from)
-}
-
-/// Load the page in headless Chromium with a script that counts images that failed to decode,
-/// and read the verdict back from the dumped DOM.
-fn check_in_browser(chromium: &str, report: &Path, expected: usize) {
-    let html = std::fs::read_to_string(report).unwrap();
-    let probe = "<script>window.addEventListener('load',()=>{const imgs=[...document.images];\
-        const bad=imgs.filter(i=>!(i.complete&&i.naturalWidth>0)).length;\
-        document.body.setAttribute('data-probe','images='+imgs.length+';bad='+bad);});</script></body>";
-    let page = report.with_file_name("probe.html");
-    std::fs::write(&page, html.replace("</body>", probe)).unwrap();
-    let profile = tempfile::tempdir().unwrap();
-    let out = Command::new(chromium)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--virtual-time-budget=10000",
-            "--dump-dom",
-        ])
-        .arg(format!("--user-data-dir={}", profile.path().display()))
-        .arg(format!("file://{}", page.display()))
-        .output()
-        .unwrap();
-    let dom = String::from_utf8_lossy(&out.stdout);
-    let verdict = format!("data-probe=\"images={expected};bad=0\"");
-    assert!(
-        dom.contains(&verdict),
-        "Chromium did not load every image: expected {verdict}; stderr: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
 }
 
 /// The title of the demo's texture section.
@@ -318,7 +212,7 @@ mod slow {
     use super::*;
 
     #[test]
-    fn quick_demo_writes_a_complete_report() {
+    fn quick_demo_writes_every_section_with_commands_that_run() {
         let out = quick_demo();
         let html = std::fs::read_to_string(out.join("report.html")).unwrap();
         for title in [
@@ -332,22 +226,7 @@ mod slow {
         ] {
             assert!(html.contains(title), "section '{title}' missing");
         }
-        let images = html.matches("<img src=\"data:image/png;base64,").count();
-        assert!(images >= 8, "only {images} images");
-        assert!(!text_of(&html).contains("NaN"), "a NaN reached the report");
-        tables_are_rectangular(&html);
         commands_name_files_beside_the_report(&html, out);
-        summary_quotes_the_results(&html, out);
-        if let Some(chromium) = find_chromium() {
-            check_in_browser(&chromium, &out.join("report.html"), images);
-        } else {
-            // `.ci/run` installs Chromium and sets GONIO_REQUIRE_ORACLES=1: there the check must run.
-            assert!(
-                std::env::var("GONIO_REQUIRE_ORACLES").as_deref() != Ok("1"),
-                "GONIO_REQUIRE_ORACLES=1 but chromium is not installed: the browser check cannot run"
-            );
-            eprintln!("chromium not installed: browser check skipped");
-        }
     }
 
     #[test]

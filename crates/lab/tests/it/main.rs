@@ -4,5 +4,6 @@
 mod api;
 mod browser;
 mod handlers;
+mod report;
 mod server;
 mod way_back;

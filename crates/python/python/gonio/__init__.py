@@ -4,8 +4,8 @@ Height maps from instrument files or synthesis (:class:`Surface`), in-plane BRDF
 ray method, the scalar Kirchhoff integral and analytic models (:func:`inplane`, a pandas
 DataFrame with the columns of ``gonio inplane``'s CSV), gloss, haze and DOI (:func:`gloss`),
 BRDF tables (:mod:`gonio.brdf`), coatings from their constituents (:mod:`gonio.coating`),
-pictures (:func:`render`), colorimetry (:mod:`gonio.color`) and studies over many surfaces that
-run on Dask when given a client (:func:`study`).
+pictures (:func:`render`), colorimetry (:mod:`gonio.color`), studies over many surfaces that
+run on Dask when given a client (:func:`study`) and the demo's report (:mod:`gonio.report`).
 
 Units: lengths in metres unless a name says otherwise (``sq_nm``, ``corr_um``, ``wavelength_nm``),
 angles in degrees, BRDFs in 1/sr. The numbers are those of the ``gonio`` command line: both call
@@ -23,7 +23,7 @@ import pandas as pd
 
 from . import _gonio
 from ._gonio import Surface, Table, read_surface, synthesize
-from . import brdf, coating, color
+from . import brdf, coating, color, report
 from . import studies
 from .studies import study
 
@@ -42,6 +42,7 @@ __all__ = [
     "brdf",
     "coating",
     "color",
+    "report",
     "studies",
     "STARR_INCIDENCES_DEG",
     "COLUMNS",

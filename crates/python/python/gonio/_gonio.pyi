@@ -2,6 +2,7 @@
 says otherwise, angles in degrees, BRDFs in 1/sr."""
 
 from os import PathLike
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -109,6 +110,7 @@ def render_scene(
     spectral: bool,
     threads: int | None,
 ) -> npt.NDArray[np.float32]: ...
+def report_demo(output_dir: str, quick: bool) -> Path: ...
 def xyz(
     wavelengths_nm: list[float], values: list[float], illuminant: str = "D65", observer: int = 2
 ) -> dict[str, Any]: ...

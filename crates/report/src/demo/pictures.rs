@@ -1,18 +1,21 @@
 //! The demo report's pictures: the example scenes rendered by the path tracer, and the
 //! metallic paint rendered spectrally and compared with the tristimulus shortcut.
 
-use crate::report::{Block, Section};
-use anyhow::{Context, Result};
+use crate::Result;
+use crate::error::Context;
+use crate::html::{Block, Section};
+use crate::output::{self, read_text, write_bytes};
+use gonio_io::Progress;
 use gonio_plot::Raster;
 use gonio_render::difference::{SeededComparison, Spread};
 use gonio_render::{ColourMode, Image, RenderOptions, RenderStats, Scene, render_picture};
 use std::path::{Path, PathBuf};
 
 /// The options of the report's renders: colour mode `colour`, seed `seed` (`None`: the
-/// scene's), a progress bar.
-pub(super) fn options(colour: ColourMode, seed: Option<u32>) -> RenderOptions {
+/// scene's), reporting to `work`.
+pub(super) fn options(colour: ColourMode, seed: Option<u32>, work: &Progress) -> RenderOptions {
     RenderOptions {
-        progress: crate::progress::reporting(&crate::progress::bar(0)),
+        progress: work.clone(),
         colour,
         seed,
         ..Default::default()
@@ -30,11 +33,16 @@ const COMPARISON_BIN: usize = 4;
 /// and no systematic part ([`SeededComparison`]). The comparison is between the raw estimates
 /// binned [`COMPARISON_BIN`]² (linear averages, so the noise reference holds); the spectral
 /// picture shown is denoised like the tristimulus one.
-fn spectral_blocks(dir: &Path, scene: &Scene, tristimulus: &Image) -> Result<Vec<Block>> {
+fn spectral_blocks(
+    dir: &Path,
+    scene: &Scene,
+    tristimulus: &Image,
+    work: &Progress,
+) -> Result<Vec<Block>> {
     const SECOND_SEED: Option<u32> = Some(0x9e37_79b9);
-    let (shown, spectral) = render_picture(scene, &options(ColourMode::Spectral, None))?;
+    let (shown, spectral) = render_picture(scene, &options(ColourMode::Spectral, None, work))?;
     let second = |colour| -> Result<Image> {
-        let e = gonio_render::render_estimate(scene, &options(colour, SECOND_SEED))?;
+        let e = gonio_render::render_estimate(scene, &options(colour, SECOND_SEED, work))?;
         Ok(e.image.binned(COMPARISON_BIN))
     };
     let spectral_b = second(ColourMode::Spectral)?;
@@ -80,7 +88,7 @@ fn spectral_blocks(dir: &Path, scene: &Scene, tristimulus: &Image) -> Result<Vec
                  comparison at 2 × 4096 samples per pixel and where the difference comes from",
                 2 * COMPARISON_BIN
                     * COMPARISON_BIN
-                    * options(ColourMode::Spectral, None).samples_per_pixel(scene) as usize,
+                    * options(ColourMode::Spectral, None, work).samples_per_pixel(scene) as usize,
                 de.median,
                 de.p95,
                 de.max,
@@ -141,8 +149,7 @@ pub(super) const EXAMPLES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../ex
 /// paths of existing files, relative to the scene) copied beside it and named there by its bare
 /// file name, so that `gonio render SCENE` runs as written in `dir`. Returns the copy's path.
 pub(super) fn copy_scene(scene: &Path, dir: &Path) -> Result<PathBuf> {
-    let text = std::fs::read_to_string(scene)
-        .with_context(|| format!("{}: cannot read the scene", scene.display()))?;
+    let text = read_text(scene).context("reading the scene")?;
     let base = scene.parent().unwrap_or(Path::new("."));
     let mut copy = String::with_capacity(text.len());
     // Quoted strings sit between the odd and even quotes of each line.
@@ -154,9 +161,7 @@ pub(super) fn copy_scene(scene: &Path, dir: &Path) -> Result<PathBuf> {
             let named = base.join(part);
             match named.file_name().filter(|_| i % 2 == 1 && named.is_file()) {
                 Some(name) => {
-                    std::fs::copy(&named, dir.join(name)).with_context(|| {
-                        format!("{}: cannot copy beside the report", named.display())
-                    })?;
+                    output::copy(&named, &dir.join(name)).context("copying beside the report")?;
                     copy.push_str(&name.to_string_lossy());
                 }
                 None => copy.push_str(part),
@@ -164,13 +169,11 @@ pub(super) fn copy_scene(scene: &Path, dir: &Path) -> Result<PathBuf> {
         }
     }
     let path = dir.join(scene.file_name().context("a scene file has a name")?);
-    crate::output::write_atomic(&path, |w| {
-        Ok(std::io::Write::write_all(w, copy.as_bytes())?)
-    })?;
+    write_bytes(&path, copy.as_bytes())?;
     Ok(path)
 }
 
-pub(super) fn render_section(dir: &Path) -> Result<Section> {
+pub(super) fn render_section(dir: &Path, work: &Progress) -> Result<Section> {
     let mut blocks = vec![Block::Text(
         "Pictures by gonio's path tracer (next-event estimation with multiple importance \
          sampling; tabulated BRDFs sampled by the alias method), 16 samples per pixel, \
@@ -199,7 +202,8 @@ pub(super) fn render_section(dir: &Path) -> Result<Section> {
     ] {
         let path = copy_scene(&Path::new(EXAMPLES).join(scene), dir)?;
         let loaded = Scene::from_file(&path)?;
-        let (image, estimate) = render_picture(&loaded, &options(ColourMode::Tristimulus, None))?;
+        let (image, estimate) =
+            render_picture(&loaded, &options(ColourMode::Tristimulus, None, work))?;
         let png = dir.join(scene.replace(".toml", ".png"));
         image.write(&png, loaded.display)?;
         let stats = estimate.stats;
@@ -219,7 +223,7 @@ pub(super) fn render_section(dir: &Path) -> Result<Section> {
             scene.replace(".toml", ".png")
         )));
         if scene == "metallic.toml" {
-            blocks.extend(spectral_blocks(dir, &loaded, &estimate.image)?);
+            blocks.extend(spectral_blocks(dir, &loaded, &estimate.image, work)?);
         }
     }
     Ok(Section {

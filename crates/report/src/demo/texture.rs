@@ -6,11 +6,14 @@
 //! mesoscale map ([`gonio_render::mesoscale`]) mirroring a row of tubes.
 
 use super::pictures::{EXAMPLES, options};
-use crate::report::{Block, Section};
-use crate::surface_gen::{DEFAULT_EXPONENT, DEFAULT_LONG_MM, DEFAULT_SHORT_MM};
-use crate::texture::{median_grey, write_pictures};
-use anyhow::{Context, Result};
+use crate::Result;
+use crate::error::Context;
+use crate::html::{Block, Section};
+use crate::orange_peel::{DEFAULT_EXPONENT, DEFAULT_LONG_MM, DEFAULT_SHORT_MM};
+use crate::output::{read_text, write_bytes};
+use crate::texture_pictures::{median_grey, write_pictures};
 use gonio_instrument::meter::{MapMethod, read_height_map};
+use gonio_io::Progress;
 use gonio_plot::render_png;
 use gonio_render::texture::{LAMP_RADIUS_DEG, TextureCamera, TextureReading, measure};
 use gonio_render::{ColourMode, Display, Image, Scene, ToneCurve, render_picture};
@@ -37,6 +40,10 @@ const PEEL_SEED: u64 = 3;
 
 /// The clear coat's refractive index for the DOI meter.
 const COAT_INDEX: f64 = 1.5;
+
+/// The pictures the texture camera takes of a coating: the lamp at three angles, diffuse
+/// light, and diffuse light again with independent samples (`gonio_render::texture::measure`).
+const TEXTURE_PICTURES: u64 = 5;
 
 /// The sizes of the section's computations.
 struct Plan {
@@ -81,10 +88,10 @@ impl Plan {
     }
 }
 
-pub(super) fn texture_section(dir: &Path, quick: bool) -> Result<Section> {
+pub(super) fn texture_section(dir: &Path, quick: bool, work: &Progress) -> Result<Section> {
     let plan = Plan::new(quick);
-    let mut blocks = sparkle_blocks(dir, &plan)?;
-    blocks.extend(orange_peel_blocks(dir, &plan)?);
+    let mut blocks = sparkle_blocks(dir, &plan, work)?;
+    blocks.extend(orange_peel_blocks(dir, &plan, work)?);
     Ok(Section {
         title: "Texture: sparkle, graininess and orange peel".into(),
         blocks,
@@ -96,8 +103,7 @@ pub(super) fn texture_section(dir: &Path, quick: bool) -> Result<Section> {
 /// as `silver_{d}um.toml` (so that `gonio texture` runs on it there), and its name.
 fn silver_with_diameter(dir: &Path, diameter_um: f64) -> Result<String> {
     let source = Path::new(EXAMPLES).join("coatings/silver_metallic.toml");
-    let text = std::fs::read_to_string(&source)
-        .with_context(|| format!("{}: cannot read", source.display()))?;
+    let text = read_text(&source)?;
     let at = text
         .find("[flakes]\n")
         .with_context(|| format!("{}: no [flakes] table", source.display()))?
@@ -108,13 +114,11 @@ fn silver_with_diameter(dir: &Path, diameter_um: f64) -> Result<String> {
         &text[..at],
         &text[at..]
     );
-    crate::output::write_atomic(&dir.join(&name), |w| {
-        Ok(std::io::Write::write_all(w, text.as_bytes())?)
-    })?;
+    write_bytes(&dir.join(&name), text.as_bytes())?;
     Ok(name)
 }
 
-fn sparkle_blocks(dir: &Path, plan: &Plan) -> Result<Vec<Block>> {
+fn sparkle_blocks(dir: &Path, plan: &Plan, work: &Progress) -> Result<Vec<Block>> {
     let camera = &plan.camera;
     let wl = gonio_coating::system::default_bands();
     let mut readings = Vec::new();
@@ -123,7 +127,9 @@ fn sparkle_blocks(dir: &Path, plan: &Plan) -> Result<Vec<Block>> {
     for &d in &DIAMETERS_UM {
         let name = silver_with_diameter(dir, d)?;
         let coating = gonio_coating::description::read(&dir.join(&name), &wl)?;
-        let reading = measure(&coating, &name, camera, &|_, _| {})?;
+        let reading = measure(&coating, &name, camera, &|k, what| {
+            work.report(what, k.saturating_sub(1) as u64, TEXTURE_PICTURES)
+        })?;
         let folder = format!("texture-{d}um");
         write_pictures(&reading, &dir.join(&folder))?;
         commands.push(format!(
@@ -343,7 +349,7 @@ struct PeelLevel {
     stats: gonio_render::RenderStats,
 }
 
-fn orange_peel_blocks(dir: &Path, plan: &Plan) -> Result<Vec<Block>> {
+fn orange_peel_blocks(dir: &Path, plan: &Plan, work: &Progress) -> Result<Vec<Block>> {
     let mut levels = Vec::new();
     let mut commands = Vec::new();
     for &slope in &PEEL_SLOPES_MRAD {
@@ -355,11 +361,10 @@ fn orange_peel_blocks(dir: &Path, plan: &Plan) -> Result<Vec<Block>> {
         let gloss = read_height_map(&map, MapMethod::Ray, COAT_INDEX)?.report;
         let scene_file = format!("orange_peel_{slope}mrad.toml");
         let text = peel_scene(plan, &map_file);
-        crate::output::write_atomic(&dir.join(&scene_file), |w| {
-            Ok(std::io::Write::write_all(w, text.as_bytes())?)
-        })?;
+        write_bytes(&dir.join(&scene_file), text.as_bytes())?;
         let scene = Scene::from_file(&dir.join(&scene_file))?;
-        let (image, estimate) = render_picture(&scene, &options(ColourMode::Tristimulus, None))?;
+        let (image, estimate) =
+            render_picture(&scene, &options(ColourMode::Tristimulus, None, work))?;
         let png = format!("orange_peel_{slope}mrad.png");
         image.write(&dir.join(&png), scene.display)?;
         commands.push(format!(

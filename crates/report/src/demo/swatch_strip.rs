@@ -2,7 +2,7 @@
 //! the formulation on the right, touching so that the eye compares them across one edge, with
 //! the geometry's name above and its ΔE00 below; one row per illumination angle.
 
-use anyhow::Result;
+use crate::Result;
 use gonio_color::{Colorimetry, Illuminant, Lab, LinearSrgb, Observer, white};
 use plotters::prelude::*;
 use std::path::Path;

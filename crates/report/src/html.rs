@@ -1,7 +1,9 @@
-//! The HTML report the demo writes: one self-contained page (images embedded as base64 PNG)
-//! that a person reads top to bottom, with what was computed, figures, tables and timings.
+//! The HTML report: one self-contained page (images embedded as base64 PNG) that a person reads
+//! top to bottom, with what was computed, figures, tables and timings. The demo writes one
+//! ([`crate::demo`]); any front end can compose its own from [`Section`]s of [`Block`]s.
 
-use anyhow::{Context, Result};
+use crate::output::{create_dir, io_error, write_bytes};
+use crate::{ReportError, Result};
 use base64::Engine;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -89,14 +91,14 @@ impl Report {
                             .enumerate()
                             .find(|(_, r)| r.len() != headers.len())
                         {
-                            anyhow::bail!(
+                            return Err(ReportError::Invalid(format!(
                                 "section '{}': a table row {} has {} cells for {} headers ({})",
                                 s.title,
                                 i + 1,
                                 r.len(),
                                 headers.len(),
                                 headers.join(", ")
-                            );
+                            )));
                         }
                         h.push_str("<table><tr>");
                         for c in headers {
@@ -113,9 +115,7 @@ impl Report {
                         h.push_str("</table>\n");
                     }
                     Block::Image { path, caption } => {
-                        let bytes = std::fs::read(path).with_context(|| {
-                            format!("{}: cannot read image for the report", path.display())
-                        })?;
+                        let bytes = std::fs::read(path).map_err(|e| io_error(path, e))?;
                         let data = base64::engine::general_purpose::STANDARD.encode(bytes);
                         writeln!(
                             h,
@@ -142,9 +142,8 @@ impl Report {
             .parent()
             .filter(|p| !p.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
-        std::fs::create_dir_all(dir)
-            .with_context(|| format!("{}: cannot create", dir.display()))?;
-        crate::output::write_atomic(path, |w| Ok(std::io::Write::write_all(w, html.as_bytes())?))
+        create_dir(dir)?;
+        write_bytes(path, html.as_bytes())
     }
 }
 

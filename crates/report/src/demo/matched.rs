@@ -7,12 +7,15 @@
 
 use super::pictures::{EXAMPLES, copy_scene, denoised_note, options};
 use super::swatch_strip::{self, Pair, Row};
-use crate::report::Block;
-use anyhow::{Context, Result};
+use crate::Result;
+use crate::error::Context;
+use crate::html::Block;
+use crate::output::copy;
 use gonio_coating::system::default_bands;
 use gonio_formulation::measured_samples::PEAK_DEG;
 use gonio_formulation::prediction::{self, Prediction};
 use gonio_instrument::multiangle::E2539;
+use gonio_io::Progress;
 use gonio_render::{ColourMode, Scene, render_picture};
 use std::path::Path;
 
@@ -187,11 +190,11 @@ fn samples_table(paints: &[(&Paint, Prediction)]) -> Block {
 
 /// The measured BRDFs beside the fitted formulations in the studio, rendered as the report's
 /// other pictures are.
-fn picture(dir: &Path) -> Result<Vec<Block>> {
+fn picture(dir: &Path, work: &Progress) -> Result<Vec<Block>> {
     const SCENE: &str = "cornell_matched.toml";
     let path = copy_scene(&Path::new(EXAMPLES).join(SCENE), dir)?;
     let scene = Scene::from_file(&path)?;
-    let (image, estimate) = render_picture(&scene, &options(ColourMode::Tristimulus, None))?;
+    let (image, estimate) = render_picture(&scene, &options(ColourMode::Tristimulus, None, work))?;
     let png = dir.join("cornell_matched.png");
     image.write(&png, scene.display)?;
     let stats = estimate.stats;
@@ -217,7 +220,7 @@ fn picture(dir: &Path) -> Result<Vec<Block>> {
 /// swatch strip, the whole-BRDF table, the commands and (unless `quick`) the picture. The
 /// formulations and measurements are copied beside the report so that the commands run as
 /// written there.
-pub(super) fn blocks(dir: &Path, quick: bool) -> Result<Vec<Block>> {
+pub(super) fn blocks(dir: &Path, quick: bool, work: &Progress) -> Result<Vec<Block>> {
     let (walks, paints) = if quick {
         (WALKS_QUICK, &PAINTS[..PAINTS_QUICK])
     } else {
@@ -232,10 +235,9 @@ pub(super) fn blocks(dir: &Path, quick: bool) -> Result<Vec<Block>> {
         let measured = data.join(paint.measured);
         for file in [&fitted, &measured] {
             let name = file.file_name().context("a file has a name")?;
-            std::fs::copy(file, dir.join(name))
-                .with_context(|| format!("{}: cannot copy beside the report", file.display()))?;
+            copy(file, &dir.join(name))?;
         }
-        let coating = crate::coating::read(&fitted, &default_bands())?;
+        let coating = gonio_coating::description::read(&fitted, &default_bands())?;
         let p = prediction::predict(&coating, &measured, &E2539, walks)
             .with_context(|| format!("{} against {}", paint.fitted, paint.measured))?;
         seconds += p.seconds;
@@ -277,7 +279,7 @@ pub(super) fn blocks(dir: &Path, quick: bool) -> Result<Vec<Block>> {
             .join("\n"),
     ));
     if !quick {
-        blocks.extend(picture(dir)?);
+        blocks.extend(picture(dir, work)?);
     }
     Ok(blocks)
 }
@@ -299,7 +301,8 @@ mod tests {
         let scene = std::fs::read_to_string(&copy).unwrap();
         assert!(!scene.contains(".."), "a path still leaves the folder");
         for paint in &PAINTS {
-            crate::coating::read(&dir.path().join(paint.fitted), &default_bands()).unwrap();
+            gonio_coating::description::read(&dir.path().join(paint.fitted), &default_bands())
+                .unwrap();
             gonio_brdf::formats::astm::read(&dir.path().join(paint.measured)).unwrap();
             for name in [paint.fitted, paint.measured] {
                 assert!(

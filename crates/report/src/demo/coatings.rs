@@ -3,8 +3,10 @@
 //! Cornell, with their flop indices.
 
 use super::pictures::EXAMPLES;
-use crate::report::{Block, Section};
-use anyhow::{Context, Result};
+use crate::Result;
+use crate::error::Context;
+use crate::html::{Block, Section};
+use crate::output::copy;
 use gonio_brdf::formats::astm;
 use gonio_coating::system::Coating;
 use gonio_coating::{clear_coat, description};
@@ -23,7 +25,7 @@ pub(super) fn coatings_section(dir: &Path, pictures: bool) -> Result<Section> {
     let stack = description::read(&toml, &wl)?
         .clear_coat()
         .context("red_solid.toml: a smooth coat over a diffuse base")?;
-    std::fs::copy(&toml, dir.join("red_solid.toml"))?;
+    copy(&toml, &dir.join("red_solid.toml"))?;
     let optics = wl
         .iter()
         .map(|&w| stack.at(w))
@@ -179,7 +181,7 @@ const WALKS: usize = 16384;
 /// the report so that the commands shown run there.
 fn example_coating(dir: &Path, name: &str, wl: &[f64]) -> Result<Coating> {
     let path = Path::new(EXAMPLES).join("coatings").join(name);
-    std::fs::copy(&path, dir.join(name))?;
+    copy(&path, &dir.join(name))?;
     Ok(description::read(&path, wl)?)
 }
 

@@ -4,11 +4,12 @@
 //! summary in words, the table of μ* and a bar chart), both computed by the library's calls.
 
 use super::pictures::EXAMPLES;
-use crate::report::{Block, Section};
-use anyhow::Result;
+use crate::html::{Block, Section};
+use crate::{ReportError, Result};
 use gonio_coating::description;
 use gonio_formulation::appearance::Output;
 use gonio_formulation::coating_sensitivity::{self, Indices, Method, Settings, Varied};
+use gonio_io::Progress;
 use std::path::Path;
 
 /// The constituents the demo varies, as `--vary` takes them: the top's roughness (rms slope α),
@@ -21,8 +22,8 @@ const TRAJECTORIES: usize = 20;
 
 /// The section; `quick` (the quick demo) reads the paints with few walks, without their picture
 /// and without the screening.
-pub(super) fn formulation_section(dir: &Path, quick: bool) -> Result<Section> {
-    let mut blocks = super::matched::blocks(dir, quick)?;
+pub(super) fn formulation_section(dir: &Path, quick: bool, work: &Progress) -> Result<Section> {
+    let mut blocks = super::matched::blocks(dir, quick, work)?;
     if !quick {
         blocks.extend(sensitivity_blocks(dir)?);
     }
@@ -52,7 +53,9 @@ fn sensitivity_blocks(dir: &Path) -> Result<Vec<Block>> {
     let sensitivity_dir = dir.join("sensitivity");
     s.write(&sensitivity_dir, 0.1)?;
     let Indices::Morris { effects, .. } = &s.indices else {
-        anyhow::bail!("the demo's sensitivity is a Morris screening");
+        return Err(ReportError::Invalid(
+            "the demo's sensitivity is a Morris screening".into(),
+        ));
     };
     let names = s.input_names();
     let mut headers = vec!["reading".to_string(), "base formulation".into()];

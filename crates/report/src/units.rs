@@ -1,6 +1,7 @@
 //! Quantities for people: one formatter for lengths that picks nm, µm, mm or m so that a value
 //! prints with four significant digits and no long run of digits ("18.16 µm", not
-//! "18155.0 nm"), and counts with the noun in the right number ("1 curve", "4 curves").
+//! "18155.0 nm"), counts with the noun in the right number ("1 curve", "4 curves"), and lists
+//! of values as a list flag takes them ("20,45,60,70").
 
 /// `metres` in the unit that puts it between 1 and 1000 (nm below 1 µm, m from 1 m up), with
 /// four significant digits: "3.500 nm", "201.0 nm", "18.16 µm", "3.766 m". Not finite: "-".
@@ -63,6 +64,12 @@ pub fn count(n: usize, noun: &str) -> String {
     } else {
         format!("{n} {noun}s")
     }
+}
+
+/// `values` as a list flag takes them, comma-separated: "20,45,60,70".
+pub fn comma_list<T: std::fmt::Display>(values: &[T]) -> String {
+    let text: Vec<String> = values.iter().map(T::to_string).collect();
+    text.join(",")
 }
 
 #[cfg(test)]

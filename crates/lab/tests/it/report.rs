@@ -1,0 +1,60 @@
+//! The demo's report in the lab (docs/lab.md, "The demo's report"): a request with a field the
+//! endpoint does not know is refused at once; report names the lab never gave are 404s; and
+//! (slow) the quick demo's job ends with the page, served with every section.
+
+use crate::server::{client, json, post, start, text};
+use serde_json::json;
+
+#[test]
+fn bad_requests_and_unknown_reports_are_refused() {
+    let (base, agent) = (start(), client());
+    let (status, v) = json(post(
+        &agent,
+        &format!("{base}/api/report/demo"),
+        &json!({ "quik": true }),
+    ));
+    assert_eq!(status, 400, "{v}");
+    assert!(v["error"].as_str().unwrap().contains("quik"), "{v}");
+    for name in ["r999", "x1", "r", "..%2Fetc"] {
+        let (status, body) = text(agent.get(format!("{base}/api/reports/{name}")).call());
+        assert_eq!(status, 404, "{name}: {body}");
+    }
+}
+
+/// Tests that take seconds each: `cargo test -- --skip slow::` leaves them out of a quick run.
+mod slow {
+    use super::*;
+
+    #[test]
+    fn the_quick_demo_is_served_as_a_page() {
+        let (base, agent) = (start(), client());
+        let (status, v) = json(post(&agent, &format!("{base}/api/report/demo"), &json!({})));
+        assert_eq!(status, 202, "{v}");
+        let id = v["id"].as_str().unwrap().to_string();
+        let clock = std::time::Instant::now();
+        let done = loop {
+            let (status, v) = json(agent.get(format!("{base}/api/jobs/{id}")).call());
+            assert_eq!(status, 200, "{v}");
+            if v["state"] != "running" {
+                break v;
+            }
+            assert!(clock.elapsed().as_secs() < 600, "{v}");
+            std::thread::sleep(std::time::Duration::from_millis(200));
+        };
+        assert_eq!(done["state"], "done", "{done}");
+        assert_eq!(done["kind"], "report");
+        assert!(
+            done["line"].as_str().unwrap().starts_with("step 7 of 7"),
+            "{done}"
+        );
+        let sections = done["result"]["sections"].as_array().unwrap();
+        assert_eq!(sections.len(), 7, "{done}");
+        let page = done["result"]["report"].as_str().unwrap();
+        let (status, html) = text(agent.get(format!("{base}{page}")).call());
+        assert_eq!(status, 200);
+        for s in sections {
+            let title = s["title"].as_str().unwrap();
+            assert!(html.contains(&format!("<h2>{title}</h2>")), "{title}");
+        }
+    }
+}
