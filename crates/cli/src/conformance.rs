@@ -60,6 +60,7 @@ pub fn run(a: ConformanceArgs) -> Result<()> {
                     Verdict::Fail => "FAIL",
                     Verdict::Unavailable => "unavailable",
                 };
+                // The failing check, or the last (a metameric scene's pair).
                 let worst = r.checks.iter().find(|c| !c.pass).or(r.checks.last());
                 let de = r.regions.iter().map(|g| g.delta_e00).fold(0.0, f64::max);
                 match worst {

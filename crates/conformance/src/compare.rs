@@ -4,10 +4,11 @@
 //!
 //! - Values are the luminance `Y = 0.2126 R + 0.7152 G + 0.0722 B` of linear sRGB (IEC
 //!   61966-2-1).
-//! - The standard error of a region's mean is `sd(Y − Y_ref)/√n` over its n pixels: the pixels'
-//!   Monte Carlo noise is independent from pixel to pixel (each renderer's samples are drawn per
-//!   pixel), and the analytic reference's own variation across the region is taken out by the
-//!   difference.
+//! - The standard error of a region's mean is `σ/√n` over its n pixels, σ² the variance of
+//!   one pixel's `Y − Y_ref` estimated from the differences between horizontal neighbours (see
+//!   [`regions`]): the pixels' Monte Carlo noise is independent from pixel to pixel (each
+//!   renderer's samples are drawn per pixel); the reference's own variation across the region is
+//!   taken out by the difference, and a smooth systematic departure by the neighbours'.
 //! - CIELAB's white (for ΔE00) is the scene's white radiance (`Scene::white`) times the sRGB
 //!   white (D65); in the metameric scenes each picture's own white patch is its white, so that
 //!   the observer is adapted to the scene's illuminant as the reference assumes.
@@ -80,17 +81,25 @@ pub fn regions(scene: &Scene, reference: &Reference, picture: &[[f64; 3]]) -> Ve
         };
         let rgb = mean(&|p| picture[p]);
         let reference_rgb = mean(&|p| reference.rgb[p]);
-        let diff = mean(&|p| [0, 1, 2].map(|c| picture[p][c] - reference.rgb[p][c]));
-        let mut var = [0.0; 3];
-        let mut var_y = 0.0;
-        let dy_mean = luminance(diff);
+        // The noise of each pixel from the differences between horizontal neighbours in the
+        // region (Rice 1944's estimator, var = mean((d_p − d_q)²)/2): the picture's departure
+        // from the reference, d, may vary smoothly across the region (an export's systematic
+        // loss), which a plain variance of d would count as noise; the neighbours' difference
+        // leaves it out to first order.
+        let d = |p: usize| [0, 1, 2].map(|c| picture[p][c] - reference.rgb[p][c]);
+        let (mut var, mut var_y, mut m) = ([0.0; 3], 0.0, 0.0_f64);
         for &p in &idx {
-            let d = [0, 1, 2].map(|c| picture[p][c] - reference.rgb[p][c]);
-            for c in 0..3 {
-                var[c] += (d[c] - diff[c]).powi(2) / (n - 1.0).max(1.0);
+            if p % SIZE + 1 < SIZE && reference.region[p + 1] == Some(k) {
+                let (a, b) = (d(p), d(p + 1));
+                for c in 0..3 {
+                    var[c] += 0.5 * (a[c] - b[c]).powi(2);
+                }
+                var_y += 0.5 * (luminance(a) - luminance(b)).powi(2);
+                m += 1.0;
             }
-            var_y += (luminance(d) - dy_mean).powi(2) / (n - 1.0).max(1.0);
         }
+        let m = m.max(1.0);
+        let (var, var_y) = (var.map(|v| v / m), var_y / m);
         sums.push((rgb, reference_rgb));
         out.push(RegionStats {
             name: scene.regions[k].name.clone(),
@@ -131,20 +140,19 @@ pub fn delta_e(a: [f64; 3], b: [f64; 3]) -> f64 {
     ciede2000(lab(a), lab(b))
 }
 
-/// The ΔE00 that 4 standard errors of a region's mean make: the CIEDE2000 between the mean and
-/// the mean moved by 4 standard errors in each channel, in the direction that changes its
-/// CIELAB most of the eight sign combinations.
+/// The ΔE00 that 4 standard errors of a region's mean make: each channel's standard error
+/// turned into a ΔE00 by moving the mean by it, the three (independent) combined in
+/// quadrature, times 4 (linear propagation of the noise; 4 σ as for the luminances).
 pub fn delta_e_noise(r: &RegionStats, white: [f64; 3]) -> f64 {
     let base = lab(r.rgb, white);
-    let mut worst: f64 = 0.0;
-    for signs in 0..8 {
-        let moved = [0, 1, 2].map(|c| {
-            let s = if signs & (1 << c) == 0 { 1.0 } else { -1.0 };
-            r.rgb[c] + s * 4.0 * r.rgb_standard_error[c]
-        });
-        worst = worst.max(ciede2000(base, lab(moved, white)));
-    }
-    worst
+    let sum: f64 = (0..3)
+        .map(|c| {
+            let mut moved = r.rgb;
+            moved[c] += r.rgb_standard_error[c];
+            ciede2000(base, lab(moved, white)).powi(2)
+        })
+        .sum();
+    4.0 * sum.sqrt()
 }
 
 /// The 8-bit sRGB of `picture` divided by `white`, clamped.

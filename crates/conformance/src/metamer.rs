@@ -61,13 +61,14 @@ pub fn pair() -> Result<Pair> {
     Ok(Pair { first, second })
 }
 
-/// The tristimulus values (Y of the perfect diffuser = 1) of `reflectance` at
+/// The tristimulus values (Y of the perfect diffuser = 100, gonio_color's scale) of `reflectance` at
 /// [`wavelengths_nm`] under `illuminant`, CIE 1931 2°.
 pub fn xyz(reflectance: &[f64], illuminant: Illuminant) -> Result<Xyz> {
     let weights = SpectralToXyz::new(&wavelengths_nm(), illuminant, Observer::Cie1931TwoDegree)?;
     let v = weights.xyz(reflectance)?;
     let white = weights.xyz(&vec![1.0; reflectance.len()])?;
-    Ok(Xyz::from_array([v.x / white.y, v.y / white.y, v.z / white.y]))
+    let k = 100.0 / white.y;
+    Ok(Xyz::from_array([v.x * k, v.y * k, v.z * k]))
 }
 
 /// CIELAB of `reflectance` under `illuminant`, the white the perfect diffuser under the same

@@ -6,8 +6,9 @@
 //! `.bsdf` files for its `measured` plugin (`gonio_brdf::formats::mitsuba`), but none of these
 //! scenes' materials is a table: each is an analytic model with a native Mitsuba plugin that
 //! evaluates the same formula, which is what an export of the model would be: a Lambertian is
-//! `diffuse`; the smooth coat over a diffuse base is `plastic` (`nonlinear = false`: Mitsuba's
-//! plastic is the same model, a Fresnel mirror over a Lambertian base with every internal
+//! `diffuse`; the smooth coat over a diffuse base is `plastic` (`nonlinear = true`, which divides
+//! the base's light by `1 − ρ r_i`, the series of internal reflections; without it Mitsuba
+//! divides by `1 − r_i` whatever the base). Mitsuba's plastic is then the same model, a Fresnel mirror over a Lambertian base with every internal
 //! reflection, but with a fitted internal reflectance, `optics::mitsuba_diffuse_reflectance`),
 //! whose base is the Kubelka-Munk reflectance computed by gonio; the mirror is `plastic` with a
 //! black base. A tensor table could not hold the coat's delta reflection at all. The metameric
@@ -47,11 +48,11 @@ pub fn scene_dict(scene: &Scene, spp: u32) -> Value {
                 json!({"type": "diffuse", "reflectance": spectrum(reflectance)})
             }
             Material::Coat(coat) => json!({
-                "type": "plastic", "int_ior": coat.index, "ext_ior": 1.0, "nonlinear": false,
+                "type": "plastic", "int_ior": coat.index, "ext_ior": 1.0, "nonlinear": true,
                 "diffuse_reflectance": {"type": "rgb", "value": vec![coat.base_reflectance(); 3]},
             }),
             Material::Mirror { index } => json!({
-                "type": "plastic", "int_ior": index, "ext_ior": 1.0, "nonlinear": false,
+                "type": "plastic", "int_ior": index, "ext_ior": 1.0, "nonlinear": true,
                 "diffuse_reflectance": {"type": "rgb", "value": vec![0.0; 3]},
             }),
         };
@@ -118,7 +119,7 @@ pub fn render(scene: &Scene, dir: &Path, spp: u32) -> Result<Option<Vec<[f64; 3]
     let text = serde_json::to_string_pretty(&scene_dict(scene, spp))?;
     std::fs::write(&spec, text)
         .map_err(|e| crate::Error::io(&spec.display().to_string(), e))?;
-    if python::run("mitsuba.py", DRIVER, dir, &[&spec, &out])?.is_none() {
+    if python::run("mitsuba_driver.py", DRIVER, dir, &[&spec, &out])?.is_none() {
         return Ok(None);
     }
     let v = python::read_f32(&out, SIZE * SIZE * 3)?;

@@ -94,15 +94,20 @@ pub fn coat_radiance(cos_v: f64, n: f64, rb: f64, sky: f64) -> f64 {
     sky * (f + (1.0 - f) * rb * (1.0 - ri) / (1.0 - rb * ri))
 }
 
-/// Mitsuba 3's fit of the diffuse Fresnel reflectance (`fresnel_diffuse_reflectance` in
-/// `include/mitsuba/render/fresnel.h`, after d'Eon & Irving 2011), which its `plastic` plugin
-/// uses for the internal reflectance in place of the integral: for `eta < 1`
-/// `−0.4399 + 0.7099/η − 0.3319/η² + 0.0636/η³`, else `−1.4399/η² + 0.7099/η + 0.6681 + 0.0636 η`.
+/// Mitsuba 3's fits of the diffuse Fresnel reflectance (`fresnel_diffuse_reflectance` in
+/// `include/mitsuba/render/fresnel.h`), which its `plastic` plugin uses for the internal
+/// reflectance (`eta` = 1/n) in place of the integral: for `η < 1` Egan & Hilgeman's (1973)
+/// `0.0636/η + η (0.7099 − 1.4399 η) + 0.6681`, else d'Eon & Irving's (2011) polynomial in
+/// `x = 1/η`, `0.919317 − 3.4793 x + 6.75335 x² − 7.80989 x³ + 4.98554 x⁴ − 1.36881 x⁵`.
 pub fn mitsuba_diffuse_reflectance(eta: f64) -> f64 {
     if eta < 1.0 {
-        -0.4399 + 0.7099 / eta - 0.3319 / (eta * eta) + 0.0636 / (eta * eta * eta)
+        0.0636 / eta + eta * (0.7099 - 1.4399 * eta) + 0.6681
     } else {
-        -1.4399 / (eta * eta) + 0.7099 / eta + 0.6681 + 0.0636 * eta
+        let x = 1.0 / eta;
+        [0.919317, -3.4793, 6.75335, -7.80989, 4.98554, -1.36881]
+            .iter()
+            .rev()
+            .fold(0.0, |acc, c| acc * x + c)
     }
 }
 

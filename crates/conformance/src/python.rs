@@ -12,7 +12,8 @@ pub fn oracles_required() -> bool {
     std::env::var("GONIO_REQUIRE_ORACLES").as_deref() == Ok("1")
 }
 
-/// Run `script` (its text, written as `name` into `dir`) with `args`. `Ok(None)` when the
+/// Run `script` (its text, written as `name` into `dir`: not the name of the module it imports,
+/// or Python would import the script itself) with `args`. `Ok(None)` when the
 /// peer is missing and not required; `Ok(Some(()))` when it ran.
 pub fn run(name: &str, script: &str, dir: &Path, args: &[&Path]) -> Result<Option<()>> {
     let path = dir.join(name);

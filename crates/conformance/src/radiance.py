@@ -38,7 +38,7 @@ def main():
     with open(octree, "wb") as f:
         f.write(run([os.path.join(binpath, "oconv"), scene]))
     with open(rays, "rb") as f:
-        out = run([os.path.join(binpath, "rtrace"), "-h", "-ov", "-ff", *opts, octree], stdin=f)
+        out = run([os.path.join(binpath, "rtrace"), "-h", "-ov", "-faf", *opts, octree], stdin=f)
     count = len(out) // 4
     values = struct.unpack(f"<{count}f", out[: 4 * count])
     with open(output, "wb") as f:

@@ -142,8 +142,8 @@ pub fn scene_rad(scene: &Scene, dir: &Path) -> Result<String> {
     Ok(t)
 }
 
-/// The coat's body table (gonio's closed form for a smooth coat over a diffuse base, at 550 nm:
-/// the coat is grey) exported as an XML BSDF to `path`.
+/// The coat's body table (gonio's closed form for a smooth coat over a diffuse base, at 500 and
+/// 600 nm, the first band kept: the coat is grey) exported as an XML BSDF to `path`.
 fn write_coat_xml(description: &str, path: &Path) -> Result<()> {
     let bands = gonio_coating::system::default_bands();
     let coating = gonio_coating::description::parse(description, &bands)
@@ -155,7 +155,7 @@ fn write_coat_xml(description: &str, path: &Path) -> Result<()> {
     let spectral = stack
         .body_table(
             res,
-            &[550.0],
+            &[500.0, 600.0],
             gonio_coating::clear_coat::body_provenance("gonio conformance coat"),
         )
         .map_err(|e| Error::Invalid(format!("coat: {e}")))?;
@@ -163,7 +163,7 @@ fn write_coat_xml(description: &str, path: &Path) -> Result<()> {
         res,
         Channels::Mono,
         spectral.provenance().clone(),
-        spectral.values().to_vec(),
+        spectral.values().iter().step_by(2).copied().collect(),
     )
     .map_err(|e| Error::Invalid(format!("coat table: {e}")))?;
     gonio_brdf::formats::radiance_xml::write(&mono, path, "coat", None)
@@ -196,7 +196,7 @@ pub fn render(scene: &Scene, dir: &Path) -> Result<Option<Vec<[f64; 3]>>> {
     std::fs::write(&rad, scene_rad(scene, dir)?).map_err(|e| io(&rad, e))?;
     std::fs::write(&rays_path, rays(scene)).map_err(|e| io(&rays_path, e))?;
     std::fs::write(&options, serde_json::to_string(&OPTIONS)?).map_err(|e| io(&options, e))?;
-    if python::run("radiance.py", DRIVER, dir, &[&rad, &rays_path, &options, &out])?.is_none() {
+    if python::run("radiance_driver.py", DRIVER, dir, &[&rad, &rays_path, &options, &out])?.is_none() {
         return Ok(None);
     }
     let v = python::read_f32(&out, SIZE * SIZE * 4 * 3)?;
