@@ -40,8 +40,9 @@ pub fn loss(renderer: Renderer, id: SceneId) -> Option<Loss> {
     match (renderer, id) {
         (Renderer::Gonio, SceneId::MetamerA) => approx(
             "gonio's lights are RGB relative to D65, so illuminant A is folded into the \
-             patches' spectra (ρ·A/D65): exact for this one-bounce scene, not a light source of \
-             spectrum A",
+             patches' spectra (ρ·A/D65): exact for the patches of this one-bounce scene, but \
+             the sky seen directly behind them stays D65's white (FLIP counts it; the regions \
+             do not)",
             0.0,
         ),
         (Renderer::Mitsuba, SceneId::Coat) => {

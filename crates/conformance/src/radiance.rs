@@ -1,7 +1,7 @@
 //! The scenes for Radiance: a `.rad` scene and the pixels' rays (2 × 2 per pixel, at the
 //! centres of its quarters), traced by `rtrace` (PyPI pyradiance's binaries) through the
 //! embedded driver `radiance.py`, with one ambient bounce sampled without caching (`-ab 1 -aa 0
-//! -ad 1024`): the uniform sky is a `glow` source of 360° reached only by ambient rays.
+//! -ad 256`): the uniform sky is a `glow` source of 360° reached only by ambient rays.
 //!
 //! Materials, and which export each is. A Lambertian is `plastic` with no specular part (its
 //! diffuse reflectance is the colour, per RGB channel). The coat is gonio's export of the coat's
@@ -28,10 +28,10 @@ use std::path::Path;
 /// The driver.
 const DRIVER: &str = include_str!("radiance.py");
 
-/// The rtrace options: one ambient bounce, 1024 stratified ambient samples per ray without the
+/// The rtrace options: one ambient bounce, 256 stratified ambient samples per ray without the
 /// ambient cache, direct light without jitter or subdivision limits, two processes.
 const OPTIONS: [&str; 14] = [
-    "-ab", "1", "-aa", "0", "-ad", "1024", "-as", "0", "-lw", "1e-6", "-dj", "0", "-n", "2",
+    "-ab", "1", "-aa", "0", "-ad", "256", "-as", "0", "-lw", "1e-6", "-dj", "0", "-n", "2",
 ];
 
 /// The angle at which the mirror's constant reflectance is the Fresnel reflectance, degrees.

@@ -517,6 +517,15 @@ impl Scene {
                 _ => Ok([0.0; 3]),
             })
             .collect::<crate::Result<Vec<_>>>()?;
+        // The colour of the sky seen directly: white, but in the metameric scenes the
+        // illuminant's own colour (D65's is white).
+        let sky_rgb = if self.is_spectral() {
+            let n = metamer::wavelengths_nm().len();
+            let c = LinearSrgb::from_xyz(metamer::xyz(&vec![1.0; n], self.cie_illuminant())?);
+            [c.r, c.g, c.b]
+        } else {
+            [1.0; 3]
+        };
         let mut rgb = vec![[0.0; 3]; SIZE * SIZE];
         let mut region = vec![None; SIZE * SIZE];
         let s = SUPERSAMPLE as f64;
@@ -528,7 +537,7 @@ impl Scene {
                     for i in 0..SUPERSAMPLE {
                         let fx = x as f64 + (i as f64 + 0.5) / s;
                         let fy = y as f64 + (j as f64 + 0.5) / s;
-                        let (value, member) = self.trace(fx, fy, &patch_rgb);
+                        let (value, member) = self.trace(fx, fy, &patch_rgb, sky_rgb);
                         for c in 0..3 {
                             sum[c] += value[c] / (s * s);
                         }
@@ -544,9 +553,15 @@ impl Scene {
         Ok(Reference { rgb, region })
     }
 
-    /// The analytic radiance along the ray through film point (fx, fy), and the region the
-    /// point belongs to.
-    fn trace(&self, fx: f64, fy: f64, patch_rgb: &[[f64; 3]]) -> ([f64; 3], Option<usize>) {
+    /// The analytic radiance along the ray through film point (fx, fy) (`sky_rgb` the colour of
+    /// the sky seen directly), and the region the point belongs to.
+    fn trace(
+        &self,
+        fx: f64,
+        fy: f64,
+        patch_rgb: &[[f64; 3]],
+        sky_rgb: [f64; 3],
+    ) -> ([f64; 3], Option<usize>) {
         let origin = DVec3::from(self.camera.position);
         let dir = self.camera.ray(fx, fy);
         let nearest = self
@@ -564,7 +579,8 @@ impl Scene {
             })
             .sum();
         let Some((t, k, local)) = nearest else {
-            return ([self.emitted(origin, dir, sky); 3], None);
+            let e = self.emitted(origin, dir, sky);
+            return (sky_rgb.map(|c| c * e), None);
         };
         let object = &self.objects[k];
         let (value, facing) = match (&object.material, local) {

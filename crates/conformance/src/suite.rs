@@ -153,9 +153,10 @@ pub fn run(options: &Options) -> Result<Results> {
         let mut runs = vec![];
         for &renderer in &options.renderers {
             let start = std::time::Instant::now();
+            let spp = samples(&scene, options.spp);
             let picture = match renderer {
-                Renderer::Gonio => Some(gonio::render(&scene, &files, options.spp)?),
-                Renderer::Mitsuba => mitsuba::render(&scene, &files, options.spp)?,
+                Renderer::Gonio => Some(gonio::render(&scene, &files, spp)?),
+                Renderer::Mitsuba => mitsuba::render(&scene, &files, spp)?,
                 Renderer::Radiance => radiance::render(&scene, &files)?,
             };
             let seconds = start.elapsed().as_secs_f64();
@@ -224,6 +225,17 @@ pub fn run(options: &Options) -> Result<Results> {
         crate::report::html(&results).as_bytes(),
     )?;
     Ok(results)
+}
+
+/// The samples per pixel of `scene` for the Monte Carlo renderers: `spp`, four times that in
+/// the metameric scenes, where each path carries a few wavelengths and the colour noise per
+/// sample is larger (twice the samples' precision for the colours' tolerance).
+pub fn samples(scene: &Scene, spp: u32) -> u32 {
+    if scene.is_spectral() {
+        spp.saturating_mul(4)
+    } else {
+        spp
+    }
 }
 
 /// Scale a spectral scene's picture so that its white patch has the reference's luminance: the
