@@ -27,8 +27,10 @@ pub fn fresnel(cos_i: f64, n: f64) -> f64 {
 /// `r = ∫₀^{π/2} F(θ) 2 cos θ sin θ dθ = ∫₀¹ F(μ) 2μ dμ` (Judd 1942; Saunderson 1942 uses it
 /// for k1/k2). For the internal reflectance of a coat of index n, pass `1/n`: the light then
 /// meets the interface from inside and is totally reflected beyond the critical angle.
-/// Composite Gauss-Legendre (8 points on each of 64 panels, split at the critical cosine so that
-/// each panel's integrand is smooth): the error is below 1e-12.
+/// Composite Gauss-Legendre (8 points on each of 64 panels) in `s`, with `μ = μc + (1 − μc) s²`
+/// from the critical cosine μc up: inside, F has a square-root edge at μc (the transmitted
+/// cosine `√(μ² − μc²)/n`), which the substitution makes smooth. The balance `n²(1 − r_i) =
+/// 1 − r_e` holds to 1e-12 (tested).
 pub fn diffuse_reflectance(n: f64) -> f64 {
     let critical = if n < 1.0 {
         (1.0 - n * n).sqrt()
@@ -38,12 +40,14 @@ pub fn diffuse_reflectance(n: f64) -> f64 {
     // Below the critical cosine F = 1 exactly: ∫₀^μc 2μ dμ = μc².
     let mut sum = critical * critical;
     let panels = 64;
-    let h = (1.0 - critical) / panels as f64;
+    let h = 1.0 / panels as f64;
+    let span = 1.0 - critical;
     for p in 0..panels {
-        let a = critical + p as f64 * h;
+        let a = p as f64 * h;
         for (x, w) in GAUSS8 {
-            let mu = a + 0.5 * h * (x + 1.0);
-            sum += 0.5 * h * w * fresnel(mu, n) * 2.0 * mu;
+            let t = a + 0.5 * h * (x + 1.0);
+            let mu = critical + span * t * t;
+            sum += 0.5 * h * w * fresnel(mu, n) * 2.0 * mu * 2.0 * span * t;
         }
     }
     sum
