@@ -84,10 +84,7 @@ pub fn run(a: ConformanceArgs) -> Result<()> {
                 }
             }
         }
-        println!(
-            "report: {}",
-            a.output.join("report.html").display()
-        );
+        println!("report: {}", a.output.join("report.html").display());
     }
     if !results.passed() {
         eprintln!("conformance: a renderer failed a scene it can represent");

@@ -117,8 +117,7 @@ pub fn render(scene: &Scene, dir: &Path, spp: u32) -> Result<Option<Vec<[f64; 3]
     let spec = dir.join(format!("{name}.mitsuba.json"));
     let out = dir.join(format!("{name}.mitsuba.f32"));
     let text = serde_json::to_string_pretty(&scene_dict(scene, spp))?;
-    std::fs::write(&spec, text)
-        .map_err(|e| crate::Error::io(&spec.display().to_string(), e))?;
+    std::fs::write(&spec, text).map_err(|e| crate::Error::io(&spec.display().to_string(), e))?;
     if python::run("mitsuba_driver.py", DRIVER, dir, &[&spec, &out])?.is_none() {
         return Ok(None);
     }

@@ -21,9 +21,7 @@ pub fn run(name: &str, script: &str, dir: &Path, args: &[&Path]) -> Result<Optio
     let python = std::env::var("GONIO_PYTHON").unwrap_or_else(|_| "python3".into());
     let missing = |why: String| {
         if oracles_required() {
-            Err(Error::Peer(format!(
-                "GONIO_REQUIRE_ORACLES=1 but {why}"
-            )))
+            Err(Error::Peer(format!("GONIO_REQUIRE_ORACLES=1 but {why}")))
         } else {
             Ok(None)
         }

@@ -115,11 +115,7 @@ pub fn scene_rad(scene: &Scene, dir: &Path) -> Result<String> {
             Material::Coat(coat) => {
                 let xml = dir.join(format!("{name}.xml"));
                 write_coat_xml(&coat.description(), &xml)?;
-                writeln!(
-                    t,
-                    "void BSDF {name}_m 6 0 {} 0 1 0 . 0 0",
-                    xml.display()
-                )
+                writeln!(t, "void BSDF {name}_m 6 0 {} 0 1 0 . 0 0", xml.display())
             }
         };
         let _ = match o.geometry {
@@ -196,15 +192,20 @@ pub fn render(scene: &Scene, dir: &Path) -> Result<Option<Vec<[f64; 3]>>> {
     std::fs::write(&rad, scene_rad(scene, dir)?).map_err(|e| io(&rad, e))?;
     std::fs::write(&rays_path, rays(scene)).map_err(|e| io(&rays_path, e))?;
     std::fs::write(&options, serde_json::to_string(&OPTIONS)?).map_err(|e| io(&options, e))?;
-    if python::run("radiance_driver.py", DRIVER, dir, &[&rad, &rays_path, &options, &out])?.is_none() {
+    if python::run(
+        "radiance_driver.py",
+        DRIVER,
+        dir,
+        &[&rad, &rays_path, &options, &out],
+    )?
+    .is_none()
+    {
         return Ok(None);
     }
     let v = python::read_f32(&out, SIZE * SIZE * 4 * 3)?;
     Ok(Some(
         v.chunks_exact(12)
-            .map(|p| {
-                [0, 1, 2].map(|c| (0..4).map(|r| f64::from(p[3 * r + c])).sum::<f64>() / 4.0)
-            })
+            .map(|p| [0, 1, 2].map(|c| (0..4).map(|r| f64::from(p[3 * r + c])).sum::<f64>() / 4.0))
             .collect(),
     ))
 }

@@ -337,7 +337,11 @@ impl Scene {
         let sky = |radiance| vec![Light::Sky { radiance }];
         let scene = match id {
             SceneId::WhiteFurnace | SceneId::GreyFurnace => {
-                let rho = if id == SceneId::WhiteFurnace { 1.0 } else { 0.5 };
+                let rho = if id == SceneId::WhiteFurnace {
+                    1.0
+                } else {
+                    0.5
+                };
                 Scene {
                     id,
                     title: format!(
@@ -346,10 +350,7 @@ impl Scene {
                         if rho == 1.0 { "White" } else { "Grey" }
                     ),
                     camera: camera([0.0, 0.0, 4.0], 36.0),
-                    objects: vec![sphere(
-                        "sphere",
-                        Material::Lambert { albedo: [rho; 3] },
-                    )],
+                    objects: vec![sphere("sphere", Material::Lambert { albedo: [rho; 3] })],
                     lights: sky(1.0),
                     illuminant: "D65",
                     white: 1.0,
@@ -584,17 +585,10 @@ impl Scene {
         };
         let object = &self.objects[k];
         let (value, facing) = match (&object.material, local) {
-            (Material::Lambert { albedo }, _) => {
-                (albedo.map(|a| lambert_under_sky(a, sky)), true)
-            }
+            (Material::Lambert { albedo }, _) => (albedo.map(|a| lambert_under_sky(a, sky)), true),
             (Material::Spectral { .. }, _) => (patch_rgb[k].map(|c| c * sky), true),
             (Material::Coat(coat), Local::Sphere { normal }) => {
-                let v = coat_radiance(
-                    normal.dot(-dir),
-                    coat.index,
-                    coat.base_reflectance(),
-                    sky,
-                );
+                let v = coat_radiance(normal.dot(-dir), coat.index, coat.base_reflectance(), sky);
                 ([v; 3], true)
             }
             (Material::Coat(_), Local::Rectangle { .. }) => ([0.0; 3], false),
@@ -626,7 +620,11 @@ impl Scene {
                             emitter_fraction,
                         },
                         Local::Rectangle {
-                            u, v, front, normal, ..
+                            u,
+                            v,
+                            front,
+                            normal,
+                            ..
                         },
                     ) => {
                         let cos = normal.dot(-dir);

@@ -130,7 +130,8 @@ fn write(path: &Path, bytes: &[u8]) -> Result<()> {
     gonio_io::write_atomic(
         path,
         |w| {
-            std::io::Write::write_all(w, bytes).map_err(|e| Error::io(&path.display().to_string(), e))
+            std::io::Write::write_all(w, bytes)
+                .map_err(|e| Error::io(&path.display().to_string(), e))
         },
         |e| Error::io(&path.display().to_string(), e),
     )
@@ -184,7 +185,10 @@ pub fn run(options: &Options) -> Result<Results> {
                 &dir.join(format!("{tag}.png")),
                 &compare::png(compare::srgb8(&picture, scene.white))?,
             )?;
-            write(&dir.join(format!("{tag}_flip.png")), &compare::png(flip_map)?)?;
+            write(
+                &dir.join(format!("{tag}_flip.png")),
+                &compare::png(flip_map)?,
+            )?;
             write(
                 &dir.join(format!("{tag}_diff.png")),
                 &compare::png(compare::difference(
@@ -242,15 +246,19 @@ pub fn samples(scene: &Scene, spp: u32) -> u32 {
 /// renderers' films differ in absolute scale (Mitsuba's spectral film normalises by the CIE
 /// Y integral, gonio's by D65), which this scene does not test; colours are relative to the
 /// white patch anyway.
-fn normalise_to_white(scene: &Scene, reference: &crate::scene::Reference, picture: &mut [[f64; 3]]) {
+fn normalise_to_white(
+    scene: &Scene,
+    reference: &crate::scene::Reference,
+    picture: &mut [[f64; 3]],
+) {
     let Some(w) = scene.regions.iter().position(|r| r.name == "white") else {
         return;
     };
     let (mut own, mut refl, mut n) = (0.0, 0.0, 0.0);
-    for p in 0..SIZE * SIZE {
-        if reference.region[p] == Some(w) {
-            own += luminance(picture[p]);
-            refl += luminance(reference.rgb[p]);
+    for ((p, r), g) in picture.iter().zip(&reference.rgb).zip(&reference.region) {
+        if *g == Some(w) {
+            own += luminance(*p);
+            refl += luminance(*r);
             n += 1.0;
         }
     }

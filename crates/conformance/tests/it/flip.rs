@@ -14,13 +14,7 @@ fn nv_flip_agrees_with_flip_evaluator() {
     let test: Vec<[f64; 3]> = reference
         .iter()
         .enumerate()
-        .map(|(k, c)| {
-            if k % 64 < 32 {
-                c.map(|v| v * 1.2)
-            } else {
-                *c
-            }
-        })
+        .map(|(k, c)| if k % 64 < 32 { c.map(|v| v * 1.2) } else { *c })
         .collect();
     let (_, ours) = compare::flip(&reference, &test, scene.white);
     assert!(ours > 0.005, "{ours}");

@@ -10,7 +10,12 @@ use gonio_conformance::suite::SPECTRAL_INTEGRATION_DE;
 #[test]
 fn the_pair_is_metameric() {
     let p = pair().unwrap();
-    assert!(p.first.iter().chain(&p.second).all(|&r| (0.0..=1.0).contains(&r)));
+    assert!(
+        p.first
+            .iter()
+            .chain(&p.second)
+            .all(|&r| (0.0..=1.0).contains(&r))
+    );
     let (a, b) = (
         xyz(&p.first, Illuminant::D65).unwrap(),
         xyz(&p.second, Illuminant::D65).unwrap(),
@@ -74,14 +79,25 @@ print(json.dumps(out))
     for (name, ill) in [("D65", Illuminant::D65), ("A", Illuminant::A)] {
         let ours = pair_delta_e(&p, ill).unwrap();
         let theirs = v[name]["pair"].as_f64().unwrap();
-        assert!((ours - theirs).abs() < 0.02, "{name}: {ours} against {theirs}");
+        assert!(
+            (ours - theirs).abs() < 0.02,
+            "{name}: {ours} against {theirs}"
+        );
         for (k, spectrum) in [("first", &p.first), ("second", &p.second)] {
             let l = lab(spectrum, ill).unwrap();
-            let c: Vec<f64> = v[name][k].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+            let c: Vec<f64> = v[name][k]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect();
             let d = delta_e([l.l, l.a, l.b], [c[0], c[1], c[2]]);
             assert!(d < 0.02, "{name} {k}: ΔE00 {d} from colour-science");
             let astm = v[name][format!("astm_{k}")].as_f64().unwrap();
-            assert!(astm < SPECTRAL_INTEGRATION_DE, "{name} {k}: ASTM E308 {astm}");
+            assert!(
+                astm < SPECTRAL_INTEGRATION_DE,
+                "{name} {k}: ASTM E308 {astm}"
+            );
         }
     }
 }

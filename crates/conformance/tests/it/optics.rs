@@ -34,7 +34,12 @@ fn diffuse_reflectances_of_an_interface() {
 fn kubelka_munk_matches_gonio_coating() {
     let c = gonio_coating::kubelka_munk::Coefficients::new(COAT.k_per_um, COAT.s_per_um).unwrap();
     let theirs = c.reflectance(COAT.thickness_um, COAT.substrate);
-    let ours = kubelka_munk(COAT.k_per_um, COAT.s_per_um, COAT.thickness_um, COAT.substrate);
+    let ours = kubelka_munk(
+        COAT.k_per_um,
+        COAT.s_per_um,
+        COAT.thickness_um,
+        COAT.substrate,
+    );
     assert!((ours - theirs).abs() < 1e-12, "{ours} {theirs}");
     // Thick: R∞ = 1 + K/S − √((K/S)² + 2K/S).
     let q: f64 = 0.1;
@@ -66,7 +71,10 @@ fn coat_closed_form_against_quadrature() {
             .sum();
         let numeric = at.specular(cv) + body;
         let closed = coat_radiance(cv, COAT.index, COAT.base_reflectance(), 1.0);
-        assert!((numeric - closed).abs() < 1e-6, "{deg}°: {numeric} {closed}");
+        assert!(
+            (numeric - closed).abs() < 1e-6,
+            "{deg}°: {numeric} {closed}"
+        );
     }
     // A white base is a white furnace at every angle.
     assert!((coat_radiance(0.3, 1.5, 1.0, 2.0) - 2.0).abs() < 1e-12);
