@@ -1,6 +1,7 @@
 //! The `gonio` command: parses flags, calls into the gonio crates and formats their results.
 //! No physics lives here.
 
+mod booth;
 mod brdf;
 mod brdf_compute;
 mod coating;
@@ -93,6 +94,9 @@ enum Command {
     /// 15°, 45° and 75° and graininess under diffuse light, from pictures of a coating's flakes
     /// drawn one by one: `gonio texture COATING.toml [--json] [-o DIR]`.
     Texture(texture::TextureArgs),
+    /// The virtual viewing booth (docs/standard.md): `gonio booth COATING.toml|T.gbrdf|SPEC.toml
+    /// -o DIR` writes each view's absolute XYZ OpenEXR, sRGB and P3 PNGs, masks and a manifest.
+    Booth(booth::BoothArgs),
 }
 
 fn main() -> ExitCode {
@@ -122,6 +126,7 @@ fn main() -> ExitCode {
         Command::Coating(cmd) => coating::run(cmd),
         Command::Pigments(args) => pigments::run(args),
         Command::Texture(args) => texture::run(args),
+        Command::Booth(args) => booth::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
