@@ -5,8 +5,11 @@
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
+use gonio_io::Progress;
 use gonio_render::booth::{self, BoothInput, BoothJob, BoothSpec, Run};
 use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 #[derive(Args)]
 pub struct BoothArgs {
@@ -45,11 +48,30 @@ pub struct BoothArgs {
     json: bool,
 }
 
+/// One bar for the whole booth: the renderer reports each view's tiles (`rendering`) and then
+/// the views done (`booth`); the bar counts thousandths of a view, so that it runs once from 0
+/// to the last view's end.
+fn whole_booth(bar: Progress, views: usize) -> Progress {
+    const STEPS: u64 = 1000;
+    let done_views = Arc::new(AtomicU64::new(0));
+    let total = STEPS * views as u64;
+    Progress::new(move |r| {
+        let position = if r.stage == "booth" {
+            done_views.store(r.done, Ordering::Relaxed);
+            STEPS * r.done
+        } else {
+            let view = done_views.load(Ordering::Relaxed);
+            STEPS * view + STEPS * r.done / r.total.max(1)
+        };
+        bar.report("booth", position.min(total), total);
+    })
+}
+
 /// `WIDTHxHEIGHT`, each at least 1 pixel.
 fn parse_size(text: &str) -> std::result::Result<(usize, usize), String> {
-    let (w, h) = text
-        .split_once(['x', 'X', '×'])
-        .ok_or_else(|| format!("`{text}`: give the size as WIDTHxHEIGHT in pixels, e.g. 480x320"))?;
+    let (w, h) = text.split_once(['x', 'X', '×']).ok_or_else(|| {
+        format!("`{text}`: give the size as WIDTHxHEIGHT in pixels, e.g. 480x320")
+    })?;
     let px = |s: &str| {
         s.trim()
             .parse::<usize>()
@@ -96,7 +118,8 @@ pub fn run(args: BoothArgs) -> Result<()> {
         spec.render.width = w;
         spec.render.height = h;
     }
-    spec.check().context("the booth's settings (with the flags given)")?;
+    spec.check()
+        .context("the booth's settings (with the flags given)")?;
     let named = spec_file.as_deref().unwrap_or(args.input.as_path());
     if material.is_none() {
         spec.material_path(None)
@@ -105,7 +128,7 @@ pub fn run(args: BoothArgs) -> Result<()> {
     let bar = crate::progress::bar(0);
     let run = Run {
         threads: args.threads,
-        progress: crate::progress::reporting(&bar),
+        progress: whole_booth(crate::progress::reporting(&bar), spec.camera.views.len()),
         ..Run::default()
     };
     let job = BoothJob {
