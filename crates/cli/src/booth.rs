@@ -3,10 +3,10 @@
 //! Display P3 PNGs with their masks, the specimen's mask and the manifest into a folder. It
 //! parses and prints; `gonio_render::booth` computes and writes.
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use clap::Args;
 use gonio_io::Progress;
-use gonio_render::booth::{self, BoothInput, BoothJob, BoothSpec, Run};
+use gonio_render::booth::{self, BoothJob, Resolved, Run};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -85,29 +85,12 @@ fn parse_size(text: &str) -> std::result::Result<(usize, usize), String> {
 }
 
 pub fn run(args: BoothArgs) -> Result<()> {
-    let input = BoothInput::from_file(&args.input)
+    let Resolved {
+        mut spec,
+        spec_file,
+        material,
+    } = Resolved::from_files(&args.input, args.booth.as_deref())
         .with_context(|| format!("reading the booth's input {}", args.input.display()))?;
-    let (mut spec, spec_file, material) = match input {
-        BoothInput::Spec(spec) => {
-            if let Some(b) = &args.booth {
-                bail!(
-                    "{} is a booth spec already; --booth {} is for a coating or table input \
-                     (name the material in the spec's [specimen] material instead)",
-                    args.input.display(),
-                    b.display()
-                );
-            }
-            (spec, Some(args.input.clone()), None)
-        }
-        BoothInput::Material(path) => match &args.booth {
-            Some(b) => (
-                BoothSpec::from_file(b).with_context(|| format!("--booth {}", b.display()))?,
-                Some(b.clone()),
-                Some(path),
-            ),
-            None => (BoothSpec::default(), None, Some(path)),
-        },
-    };
     if let Some(spp) = args.spp {
         spec.render.spp = spp;
     }
@@ -120,11 +103,6 @@ pub fn run(args: BoothArgs) -> Result<()> {
     }
     spec.check()
         .context("the booth's settings (with the flags given)")?;
-    let named = spec_file.as_deref().unwrap_or(args.input.as_path());
-    if material.is_none() {
-        spec.material_path(None)
-            .with_context(|| format!("{}", named.display()))?;
-    }
     let bar = crate::progress::bar(0);
     let run = Run {
         threads: args.threads,

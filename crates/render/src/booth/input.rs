@@ -93,3 +93,63 @@ impl BoothInput {
         }
     }
 }
+
+/// A booth ready to render: the spec, its file (when there is one) and the material given
+/// outside it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Resolved {
+    pub spec: BoothSpec,
+    pub spec_file: Option<PathBuf>,
+    pub material: Option<PathBuf>,
+}
+
+impl Resolved {
+    /// The booth for `input` (a spec, a coating or a table, [`BoothInput::from_file`]) and an
+    /// optional booth spec `booth` for a coating or table (default: the standard booth). A spec
+    /// input with `booth` as well is an error; so is a spec that names no material.
+    pub fn from_files(input: &Path, booth: Option<&Path>) -> Result<Resolved> {
+        let resolved = match (BoothInput::from_file(input)?, booth) {
+            (BoothInput::Spec(_), Some(b)) => {
+                return Err(RenderError::scene(
+                    input,
+                    format!(
+                        "a booth spec already; the booth spec {} is for a coating or table \
+                         input (name the material in the spec's [specimen] material instead)",
+                        b.display()
+                    ),
+                ));
+            }
+            (BoothInput::Spec(spec), None) => Resolved {
+                spec,
+                spec_file: Some(input.to_path_buf()),
+                material: None,
+            },
+            (BoothInput::Material(path), Some(b)) => Resolved {
+                spec: BoothSpec::from_file(b)?,
+                spec_file: Some(b.to_path_buf()),
+                material: Some(path),
+            },
+            (BoothInput::Material(path), None) => Resolved {
+                spec: BoothSpec::default(),
+                spec_file: None,
+                material: Some(path),
+            },
+        };
+        if resolved.material.is_none() {
+            resolved.spec.material_path(None).map_err(|e| match e {
+                RenderError::Invalid(problem) => RenderError::scene(input, problem),
+                other => other,
+            })?;
+        }
+        Ok(resolved)
+    }
+
+    /// The job for [`super::write_booth`].
+    pub fn job(&self) -> super::BoothJob<'_> {
+        super::BoothJob {
+            spec: &self.spec,
+            spec_file: self.spec_file.as_deref(),
+            material: self.material.as_deref(),
+        }
+    }
+}

@@ -24,7 +24,7 @@ pub mod scene;
 pub mod spec;
 
 pub use files::{BoothJob, BoothSummary, ViewSummary, write_booth};
-pub use input::BoothInput;
+pub use input::{BoothInput, Resolved};
 pub use material::material;
 pub use scene::ViewGeometry;
 pub use spec::{BoothSpec, Checked, Projection, View};
