@@ -24,7 +24,7 @@ pub const COATING_KEYS: [&str; 4] = ["top", "coat", "flakes", "base"];
 #[derive(Debug, Clone, PartialEq)]
 pub enum BoothInput {
     /// A booth spec (read and checked); its specimen names the material.
-    Spec(BoothSpec),
+    Spec(Box<BoothSpec>),
     /// A material file (a coating description or a `.gbrdf` table) for a booth given otherwise.
     Material(PathBuf),
 }
@@ -64,7 +64,9 @@ impl BoothInput {
                 if keys.iter().any(|k| COATING_KEYS.contains(k)) {
                     Ok(BoothInput::Material(path.to_path_buf()))
                 } else if keys.iter().all(|k| SPEC_KEYS.contains(k)) {
-                    Ok(BoothInput::Spec(BoothSpec::from_toml(&text, path)?))
+                    Ok(BoothInput::Spec(Box::new(BoothSpec::from_toml(
+                        &text, path,
+                    )?)))
                 } else {
                     Err(RenderError::scene(
                         path,
@@ -120,7 +122,7 @@ impl Resolved {
                 ));
             }
             (BoothInput::Spec(spec), None) => Resolved {
-                spec,
+                spec: *spec,
                 spec_file: Some(input.to_path_buf()),
                 material: None,
             },
