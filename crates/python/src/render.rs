@@ -63,6 +63,7 @@ pub fn render_scene<'py>(
 /// into `output_dir` and returns the summary as JSON text.
 #[pyfunction]
 #[pyo3(signature = (input, output_dir, booth, spp, seed, size, threads))]
+#[allow(clippy::too_many_arguments)]
 pub fn booth_json(
     py: Python<'_>,
     input: PathBuf,
