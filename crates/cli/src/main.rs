@@ -1,6 +1,7 @@
 //! The `gonio` command: parses flags, calls into the gonio crates and formats their results.
 //! No physics lives here.
 
+mod booth;
 mod brdf;
 mod brdf_compute;
 mod coating;
@@ -94,6 +95,9 @@ enum Command {
     /// Appearance conformance (docs/conformance.md): test scenes with analytic references on
     /// gonio, Mitsuba 3 and Radiance: `gonio conformance [-o DIR] [--renderers ...] [--json]`.
     Conformance(conformance::ConformanceArgs),
+    /// The virtual viewing booth (docs/standard.md): `gonio booth COATING.toml|T.gbrdf|SPEC.toml
+    /// -o DIR` writes each view's absolute XYZ OpenEXR, sRGB and P3 PNGs, masks and a manifest.
+    Booth(booth::BoothArgs),
 }
 
 fn main() -> ExitCode {
@@ -124,6 +128,7 @@ fn main() -> ExitCode {
         Command::Pigments(args) => pigments::run(args),
         Command::Texture(args) => texture::run(args),
         Command::Conformance(args) => conformance::run(args),
+        Command::Booth(args) => booth::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

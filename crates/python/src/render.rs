@@ -56,3 +56,42 @@ pub fn render_scene<'py>(
     let flat: Vec<f32> = image.pixels.into_iter().flatten().collect();
     Ok(PyArray1::from_vec(py, flat).reshape([h, w, 3])?)
 }
+
+/// The virtual viewing booth (docs/standard.md): `input` a booth spec, a coating description or
+/// a `.gbrdf` table, `booth` a booth spec for a coating or table; `spp`, `seed` and `size`
+/// (width, height) override the spec's `[render]`. Writes every view's files and the manifest
+/// into `output_dir` and returns the summary as JSON text.
+#[pyfunction]
+#[pyo3(signature = (input, output_dir, booth, spp, seed, size, threads))]
+#[allow(clippy::too_many_arguments)]
+pub fn booth_json(
+    py: Python<'_>,
+    input: PathBuf,
+    output_dir: PathBuf,
+    booth: Option<PathBuf>,
+    spp: Option<u32>,
+    seed: Option<u32>,
+    size: Option<(usize, usize)>,
+    threads: Option<usize>,
+) -> Result<String> {
+    py.detach(move || -> Result<String> {
+        let mut resolved = gonio_render::booth::Resolved::from_files(&input, booth.as_deref())?;
+        let render = &mut resolved.spec.render;
+        if let Some(spp) = spp {
+            render.spp = spp;
+        }
+        if let Some(seed) = seed {
+            render.seed = seed;
+        }
+        if let Some((w, h)) = size {
+            render.width = w;
+            render.height = h;
+        }
+        let run = gonio_render::booth::Run {
+            threads,
+            ..Default::default()
+        };
+        let summary = gonio_render::booth::write_booth(&resolved.job(), &output_dir, &run)?;
+        Ok(summary.to_json().to_string())
+    })
+}

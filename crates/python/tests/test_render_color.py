@@ -70,3 +70,22 @@ def test_from_lab_gives_the_spectrums_colour_back_and_colour_sciences_xyz():
     white = np.array(spectrum["white_xyz"])
     ref = colour.Lab_to_XYZ(np.array(spectrum["cielab"]), colour.XYZ_to_xy(white / 100.0)) * white[1]
     np.testing.assert_allclose(back["xyz"], ref, rtol=1e-9)
+
+
+def test_booth_writes_its_files_and_returns_the_summary(tmp_path):
+    solid = ROOT / "examples" / "coatings" / "red_solid.toml"
+    summary = gonio.booth(solid, tmp_path / "booth", spp=2, seed=5, size=(24, 16))
+    assert summary["seed"] == 5
+    assert [v["name"] for v in summary["views"]] == ["near-specular", "45", "flank"]
+    for view in summary["views"]:
+        # A red under a clear coat at 2000 lx: darker than the white (E/pi = 637 cd/m2).
+        assert 0 < view["specimen_luminance_cd_m2"] < summary["white_xyz_cd_m2"][1]
+        assert (tmp_path / "booth" / f"{view['name']}.exr").is_file()
+        assert [d["display"] for d in view["displays"]] == ["srgb", "p3"]
+    assert (tmp_path / "booth" / "manifest.json").is_file()
+    neither = tmp_path / "neither.toml"
+    neither.write_text("[paint]\ncolour = 1\n")
+    with pytest.raises(ValueError, match="neither a booth spec nor a coating"):
+        gonio.booth(neither, tmp_path / "x")
+    with pytest.raises(FileNotFoundError):
+        gonio.booth(tmp_path / "missing.gbrdf", tmp_path / "x")

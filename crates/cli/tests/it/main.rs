@@ -1,6 +1,7 @@
 //! Integration tests of gonio-cli: the `gonio` binary as a user runs it: every command, its outputs, errors and exit codes. One test binary per crate (one
 //! link instead of one per file); each module is one subject.
 
+mod booth_cli;
 mod brdf_cli;
 mod brdf_colour_cli;
 mod brdf_compute_cli;

@@ -30,6 +30,7 @@ from .studies import study
 __version__ = _gonio.__version__
 
 __all__ = [
+    "booth",
     "Surface",
     "Table",
     "read_surface",
@@ -207,6 +208,37 @@ def multiangle(
             table, [str(g) for g in geometries], float(aperture_deg), illuminant, int(observer_deg)
         )
     )
+
+
+def booth(
+    input: str | os.PathLike,
+    output_dir: str | os.PathLike,
+    booth: str | os.PathLike | None = None,
+    spp: int | None = None,
+    seed: int | None = None,
+    size: tuple[int, int] | None = None,
+    *,
+    threads: int | None = None,
+) -> dict[str, Any]:
+    """The virtual viewing booth (``docs/standard.md``), as ``gonio booth``: render ``input``
+    (a booth spec, a coating description ``.toml`` or a ``.gbrdf`` table; a coating or table in
+    the standard booth or the spec ``booth``) and write into ``output_dir`` every view's absolute
+    CIE XYZ OpenEXR (cd/m²), sRGB and Display P3 PNGs with masks, the specimen's mask and
+    ``manifest.json``. ``spp``, ``seed`` and ``size`` (width, height in pixels) override the
+    spec's ``[render]``. Returns the summary: per view its name, aspecular angle, the specimen's
+    mean luminance ``specimen_luminance_cd_m2``, the files, and per display the fractions of
+    pixels out of gamut and over range.
+    """
+    text = _gonio.booth_json(
+        os.fspath(input),
+        os.fspath(output_dir),
+        os.fspath(booth) if booth is not None else None,
+        spp,
+        seed,
+        tuple(size) if size is not None else None,
+        threads,
+    )
+    return json.loads(text)
 
 
 def render(

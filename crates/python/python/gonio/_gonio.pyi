@@ -99,6 +99,15 @@ def gloss_json(specimen: Surface | Table, method: str, index: float, wavelength_
 def multiangle_columns(
     table: Table, geometries: list[str], aperture_deg: float, illuminant: str, observer_deg: int
 ) -> tuple[dict[str, Any], npt.NDArray[np.float64], npt.NDArray[np.float64], float | None]: ...
+def booth_json(
+    input: str,
+    output_dir: str,
+    booth: str | None,
+    spp: int | None,
+    seed: int | None,
+    size: tuple[int, int] | None,
+    threads: int | None,
+) -> str: ...
 def render_scene(
     path: str | None,
     json: str | None,

@@ -9,15 +9,22 @@
 //! - [`spec`]: the description (TOML) and its checks.
 //! - [`scene`]: the booth as a scene, its lights scaled to the illuminance, the views' cameras.
 //! - [`material`]: the specimen's material from a coating description or a `.gbrdf` table.
+//! - [`input`]: a booth spec, a coating or a table, told apart by its file.
+//! - [`files`]: the whole booth written into a folder (pictures, masks, manifest) with a
+//!   summary.
 //!
 //! Rendering is the path tracer's spectral mode with the absolute film
 //! ([`crate::Film::Absolute`]), so the picture is identical for any number of threads
 //! ([`crate::integrator`]) and reproducible from the spec, the material and the seed.
 
+pub mod files;
+pub mod input;
 pub mod material;
 pub mod scene;
 pub mod spec;
 
+pub use files::{BoothJob, BoothSummary, ViewSummary, write_booth};
+pub use input::{BoothInput, Resolved};
 pub use material::material;
 pub use scene::ViewGeometry;
 pub use spec::{BoothSpec, Checked, Projection, View};

@@ -19,12 +19,12 @@
 
 use crate::error::{RenderError, Result};
 use gonio_color::{Illuminant, Observer, Spectrum};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 /// The whole booth description.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct BoothSpec {
     /// The light.
@@ -46,7 +46,7 @@ pub struct BoothSpec {
 }
 
 /// `[light]`.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct LightSpec {
     /// A CIE illuminant by name (`D65`, the default, or `A`); not with `spectrum`.
@@ -65,7 +65,7 @@ pub struct LightSpec {
 }
 
 /// `[interior]`.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct InteriorSpec {
     /// The walls' and floor's neutral grey: `N5`, `N6` (default) or `N7`.
@@ -73,7 +73,7 @@ pub struct InteriorSpec {
 }
 
 /// `[specimen]`.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SpecimenSpec {
     /// `flat` (default) or `curved` (the bonnet-like panel of the panel pictures).
@@ -82,10 +82,14 @@ pub struct SpecimenSpec {
     pub width_mm: Option<f64>,
     /// Depth (across the plane of incidence), mm (default 100 flat, 200 curved).
     pub height_mm: Option<f64>,
+    /// The specimen's material: a coating description (`.toml`) or a spectral BRDF table
+    /// (`.gbrdf`), relative to the spec's directory. A caller may give one instead
+    /// ([`BoothSpec::material_path`]).
+    pub material: Option<PathBuf>,
 }
 
 /// `[camera]`.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct CameraSpec {
     /// The views, by name: `near-specular`, `45`, `flank` (default all three).
@@ -98,7 +102,7 @@ pub struct CameraSpec {
 }
 
 /// `[render]`.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct RenderSpec {
     /// Width, pixels (default 480).
@@ -153,6 +157,7 @@ impl Default for SpecimenSpec {
             shape: "flat".into(),
             width_mm: None,
             height_mm: None,
+            material: None,
         }
     }
 }
@@ -266,6 +271,22 @@ pub struct Checked {
 }
 
 impl BoothSpec {
+    /// The specimen's material file: `given` when there is one (a coating or table named
+    /// outside the spec), else the spec's `[specimen] material` resolved against its directory.
+    pub fn material_path(&self, given: Option<&Path>) -> Result<PathBuf> {
+        match (given, &self.specimen.material) {
+            (Some(path), _) => Ok(path.to_path_buf()),
+            (None, Some(file)) if file.is_absolute() => Ok(file.clone()),
+            (None, Some(file)) => Ok(self.dir.join(file)),
+            (None, None) => Err(RenderError::Invalid(
+                "[specimen] material: the booth has no specimen material; name one in the spec \
+                 (`[specimen] material = \"coating.toml\"` or a `.gbrdf` table, relative to the \
+                 spec's folder) or give the material as the input"
+                    .into(),
+            )),
+        }
+    }
+
     /// Read the booth spec file `path` (TOML).
     pub fn from_file(path: &Path) -> Result<BoothSpec> {
         let text = std::fs::read_to_string(path).map_err(|error| RenderError::Io {

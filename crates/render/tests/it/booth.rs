@@ -1,7 +1,8 @@
 //! The viewing booth (`gonio_render::booth`): its spec's defaults and errors, pictures identical
 //! for any number of threads, and the closure tests of `docs/standard.md`: a Lambertian panel's
 //! luminance is ρE/π, and (slow) a flat panel under the collimated light seen by a distant camera
-//! reads, averaged over its pixels, what the multi-angle instrument reads of the same table.
+//! reads, averaged over its pixels, what the multi-angle instrument reads of the same table and
+//! of the coating itself by random walks.
 
 use gonio_brdf::models::Lambert;
 use gonio_render::booth::{self, BoothSpec, Run};
@@ -294,6 +295,109 @@ mod slow {
             }
         }
         eprintln!("largest ΔE00 {worst:.3}");
+    }
+
+    /// The multi-angle reading of the coating `path` evaluated by random walks at the
+    /// geometries (no table), as `gonio multiangle COATING.toml` reads it: 16384 walks per
+    /// evaluation at 31 wavelengths 400–700 nm, with the walks' seed `seed`.
+    fn walks_reading(path: &Path, seed: u64) -> multiangle::MultiangleReading {
+        let wavelengths: Vec<f64> = (0..31).map(|i| 400.0 + 10.0 * f64::from(i)).collect();
+        let coating = gonio_coating::description::read(path, &wavelengths).unwrap();
+        let evaluator = coating.evaluator(&wavelengths).unwrap();
+        let brdf = |wo, wi, out: &mut [f64]| {
+            let mut scratch = gonio_coating::layered::Scratch::default();
+            evaluator.eval(wo, wi, 16384, seed, &mut scratch, out);
+        };
+        multiangle::read(&brdf, &wavelengths, &E2539, &Settings::default()).unwrap()
+    }
+
+    /// Closure by walks: the coating itself in the booth (its material as `gonio booth` makes
+    /// it, [`booth::material`]: the coating's table at the panel pictures' resolution, its
+    /// smooth top's mirror kept apart) under the collimated light, seen by the distant camera
+    /// at each E2539 geometry, averaged over its pixels, against the multi-angle reading of the
+    /// coating's BRDF evaluated by random walks at the geometries (`gonio multiangle
+    /// COATING.toml`, no table): within 0.5 ΔE00 plus the two noise bounds.
+    ///
+    /// - The picture's: three standard errors of the pixels' mean (as in the test above).
+    /// - The walks': the reading is the mean of two with independent seeds, whose difference
+    ///   has the standard deviation √2 σ for one reading's σ, so the mean's σ/√2 is half the
+    ///   difference's; three of them are 1.5 times the ΔE00 between the two readings (its
+    ///   largest over the geometries, as one difference is a single draw of that spread).
+    ///
+    /// Measured (2026-12-06, 24 × 24 pixels, 64 samples per pixel; docs/standard.md): the solid
+    /// within 0.01 ΔE00 (its smooth coat evaluates exactly, without walks); the metallic and the
+    /// pearlescent up to 0.45 next to the mirror direction (45as±15) and the pearlescent 0.51 at
+    /// 15as80, the largest, under its bound of 0.54. Where the excess comes from (the table's
+    /// angular resolution, `panel::resolution`, is the suspect near the mirror) is not yet
+    /// traced.
+    #[test]
+    fn coating_pictures_read_what_the_walks_read() {
+        let mut worst: f64 = 0.0;
+        for name in ["red_solid", "silver_metallic", "pearl_interference"] {
+            let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("../../examples/coatings")
+                .join(format!("{name}.toml"));
+            let material = booth::material(&path).unwrap();
+            let (a, b) = (walks_reading(&path, 1), walks_reading(&path, 2));
+            let walk_lab = |g: Geometry| {
+                let (la, lb) = (a.at(g).unwrap().lab, b.at(g).unwrap().lab);
+                let mean = Lab {
+                    l: (la.l + lb.l) / 2.0,
+                    a: (la.a + lb.a) / 2.0,
+                    b: (la.b + lb.b) / 2.0,
+                };
+                (mean, ciede2000(la, lb))
+            };
+            let walks_noise = 1.5 * E2539.iter().map(|g| walk_lab(*g).1).fold(0.0, f64::max);
+            for illumination_deg in [45.0, 15.0] {
+                let geometries: Vec<Geometry> = E2539
+                    .iter()
+                    .copied()
+                    .filter(|g| g.illumination_deg == illumination_deg)
+                    .collect();
+                let views: Vec<String> = geometries
+                    .iter()
+                    .map(|g| format!("\"as{}\"", g.aspecular_deg))
+                    .collect();
+                let s = spec(&format!(
+                    "[light]\nilluminance_lux = 2000\ndirectional_fraction = 1\n\
+                     directional_deg = {illumination_deg}\n\
+                     [camera]\nprojection = \"orthographic\"\nviews = [{}]\n\
+                     [render]\nwidth = 24\nheight = 24\nspp = 64\n",
+                    views.join(", ")
+                ));
+                let pictures = booth::render(&s, &material, &Run::default()).unwrap();
+                let white = Xyz::from_array(pictures.white);
+                let lab = |xyz: [f64; 3]| -> Lab { Xyz::from_array(xyz).to_lab(white) };
+                for (g, view) in geometries.iter().zip(&pictures.views) {
+                    let (mean, se, n) = specimen_mean(view);
+                    let picture = lab(mean);
+                    let (walks, _) = walk_lab(*g);
+                    let de = ciede2000(picture, walks);
+                    let noise = (0..3)
+                        .flat_map(|c| [-3.0, 3.0].map(move |k| (c, k)))
+                        .map(|(c, k)| {
+                            let mut moved = mean;
+                            moved[c] += k * se[c];
+                            ciede2000(lab(moved), picture)
+                        })
+                        .fold(0.0, f64::max);
+                    eprintln!(
+                        "{name} {g}: picture L* {:.2} a* {:.2} b* {:.2}, walks L* {:.2} a* \
+                         {:.2} b* {:.2}: ΔE00 {de:.3} (noise: pixels {noise:.3}, walks \
+                         {walks_noise:.3}; {n} pixels)",
+                        picture.l, picture.a, picture.b, walks.l, walks.a, walks.b
+                    );
+                    assert!(n > 150, "{n} pixels");
+                    assert!(
+                        de < 0.5 + noise + walks_noise,
+                        "{name} {g}: ΔE00 {de} (noise: pixels {noise}, walks {walks_noise})"
+                    );
+                    worst = worst.max(de);
+                }
+            }
+        }
+        eprintln!("largest ΔE00 by walks {worst:.3}");
     }
 }
 
