@@ -9,10 +9,12 @@
 //! `PiecewiseConstant2D`), uniformly in solid angle within a cell. Inversion rather than Walker's
 //! alias method, which the sampler used before: the alias method sends neighbouring uniforms to
 //! unrelated cells, so it throws away the stratification of the renderer's Owen-scrambled Sobol
-//! points, while inversion is monotone in each coordinate and keeps it (the samples of a pixel
-//! spread over the lobe as the points spread over the square; Keller, "Quasi-Monte Carlo image
-//! synthesis in a nutshell", 2013, §3.3, and pbrt-v4 §A.1 on preferring inversion for
-//! low-discrepancy samples). The density is the same; `docs/performance.md` has the gain. The cells follow the table's grid: rows of equal steps in
+//! points, while inversion is monotone in each coordinate and keeps part of it (pbrt-v4 §A.1
+//! notes that the alias method does not preserve the distribution of low-discrepancy samples).
+//! The density is the same; the gain is modest, since `f cos / pdf` jumps at every cell edge
+//! (`docs/performance.md`, "Toward 3× Mitsuba's efficiency").
+//!
+//! The cells follow the table's grid: rows of equal steps in
 //! `u = sqrt(theta_h / (π/2))`, columns of equal steps in the azimuth of `h` relative to `wo`.
 //! A cell's weight is `(f - c) cos(theta_i) dwi` at its centre, with `dwi = 4 (wo·h) dwh`
 //! (Walter et al. 2007, eq. 14). The two parts are chosen in proportion to their energies, `c π`
