@@ -1,6 +1,6 @@
 //! Sampling building blocks shared by the analytic models, the tabulated BRDFs and the
 //! renderer: cosine and power-cosine hemispheres, mirror reflection, an orthonormal frame about
-//! any axis; in [`discrete`] the alias table and the piecewise-constant distributions (the
+//! any axis; in [`discrete`] the piecewise-constant distributions (the
 //! table sampler, the environment light), in [`bilinear`] the piecewise-bilinear 2D warp of
 //! Mitsuba's measured-BRDF files (the Mitsuba tensor export and reader).
 //!
@@ -11,7 +11,7 @@ pub mod bilinear;
 pub mod discrete;
 
 pub use bilinear::Marginal2D;
-pub use discrete::{AliasTable, PiecewiseConstant1D, PiecewiseConstant2D};
+pub use discrete::{PiecewiseConstant1D, PiecewiseConstant2D};
 
 use glam::{DVec2, DVec3};
 use std::f64::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4, PI};

@@ -1,63 +1,14 @@
-//! Sampling from tabulated weights: Walker's alias table over discrete outcomes, and
-//! piecewise-constant densities on [0, 1) and [0, 1)² (pbrt-v4 §A.1 "The alias method" and
-//! §A.4.2 "Piecewise-constant 1D and 2D distributions"). The table sampler draws its half-vector
-//! cells from an [`AliasTable`], the renderer's environment light its pixels from a
-//! [`PiecewiseConstant2D`].
+//! Sampling from tabulated weights: piecewise-constant densities on [0, 1) and [0, 1)², sampled
+//! by inverting their cumulative distributions (pbrt-v4 §A.4.2 "Piecewise-constant 1D and 2D
+//! distributions"). The table sampler draws its half-vector cells, the renderer's environment
+//! light its pixels from a [`PiecewiseConstant2D`]. (Inversion, not Walker's alias method:
+//! inversion is monotone, so it keeps the stratification of low-discrepancy samples.)
 //!
 //! The Mitsuba tensor export uses the piecewise-*bilinear* warp beside these
 //! ([`super::bilinear::Marginal2D`]): it must reproduce Mitsuba's `Marginal2D` exactly, which
 //! interpolates its density between nodes rather than holding it constant in cells.
 
 use glam::DVec2;
-
-/// Walker's alias table over `n` outcomes (A. J. Walker, "An efficient method for generating
-/// discrete random variables with general distributions", ACM TOMS 3(3), 1977; built by Vose's
-/// method, IEEE TSE 17(9), 1991): one uniform number picks an outcome in constant time.
-#[derive(Debug, Clone)]
-pub struct AliasTable {
-    prob: Vec<f32>,
-    alias: Vec<u32>,
-}
-
-impl AliasTable {
-    /// The table of non-negative `weights` with a positive sum.
-    pub fn new(weights: &[f64]) -> AliasTable {
-        let n = weights.len();
-        let total: f64 = weights.iter().sum();
-        let mut scaled: Vec<f64> = weights.iter().map(|w| w * n as f64 / total).collect();
-        let mut prob = vec![1.0f32; n];
-        let mut alias: Vec<u32> = (0..n as u32).collect();
-        let (mut small, mut large): (Vec<usize>, Vec<usize>) =
-            (0..n).partition(|&i| scaled[i] < 1.0);
-        while let (Some(s), Some(&l)) = (small.pop(), large.last()) {
-            prob[s] = scaled[s] as f32;
-            alias[s] = l as u32;
-            scaled[l] -= 1.0 - scaled[s];
-            if scaled[l] < 1.0 {
-                large.pop();
-                small.push(l);
-            }
-        }
-        AliasTable { prob, alias }
-    }
-
-    /// An outcome from a uniform `u` in [0, 1), and `u` rescaled to a fresh uniform number.
-    pub fn sample(&self, u: f64) -> (usize, f64) {
-        let n = self.prob.len();
-        let x = u * n as f64;
-        let i = (x as usize).min(n - 1);
-        let frac = (x - i as f64).clamp(0.0, 1.0);
-        let p = f64::from(self.prob[i]);
-        if frac < p {
-            (i, frac / p)
-        } else {
-            (
-                self.alias[i] as usize,
-                ((frac - p) / (1.0 - p)).clamp(0.0, 1.0),
-            )
-        }
-    }
-}
 
 /// A piecewise-constant density on [0, 1) over `n` equal bins, in proportion to non-negative
 /// weights, sampled by inverting its cumulative distribution.

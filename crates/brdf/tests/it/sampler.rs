@@ -1,5 +1,6 @@
-//! Importance sampling of tables: the alias sampler passes the sampler checks and its estimator
-//! integrates to the albedo with less variance than cosine sampling.
+//! Importance sampling of tables: the sampler passes the sampler checks, its estimator
+//! integrates to the albedo with less variance than cosine sampling, and it keeps the
+//! stratification of low-discrepancy points.
 
 use glam::{DVec2, DVec3};
 use gonio_brdf::bxdf::Brdf;
@@ -25,7 +26,7 @@ fn lobe_table(n: f64, k: f64) -> BrdfTable {
 /// half-vector cells, so the expected counts need a finer quadrature than the default 4 × 4
 /// points per bin.
 #[test]
-fn alias_sampler_passes_the_sampler_checks() {
+fn table_sampler_passes_the_sampler_checks() {
     let t = SampledTable::new(lobe_table(40.0, 0.6));
     for theta in [0.0f64, 30.0, 60.0, 80.0] {
         let wo = dir(theta.to_radians(), 0.7);
@@ -70,7 +71,70 @@ fn estimator_integrates_to_albedo_and_pays() {
         );
         assert!(
             err_cos > 5.0 * err,
-            "theta_o {theta}: alias {err} vs cosine {err_cos}"
+            "theta_o {theta}: table sampler {err} vs cosine {err_cos}"
+        );
+    }
+}
+
+/// The sampler keeps some of the stratification of low-discrepancy points: the albedo estimate
+/// from 256 points of a randomly shifted Hammersley set (Cranley–Patterson rotation; each shift
+/// an unbiased estimate) varies less between shifts than the estimate from 256 independent
+/// points. The cell choice inverts cumulative distributions, monotone in each coordinate; the
+/// alias method it replaced sends neighbouring points to unrelated cells, a ratio of 1. The gain
+/// is modest (measured 2.1 at 10°, 1.3 at 50°): `f cos / pdf` jumps at the edges of 11 520
+/// cells, far more than 256 strata. Tolerance: the ratio's estimate from 256 shifts has a
+/// relative standard deviation of about sqrt(2/255) = 9%, so 1.2 lies 2 of them above an alias
+/// sampler's 1 and below both measured ratios.
+#[test]
+fn sampler_keeps_the_stratification_of_low_discrepancy_points() {
+    let t = SampledTable::new(lobe_table(40.0, 0.6));
+    let n = 256usize;
+    let shifts = 256;
+    // Van der Corput's radical inverse in base 2.
+    let radical_inverse = |i: u32| f64::from(i.reverse_bits()) / 4_294_967_296.0;
+    let estimate = |points: &mut dyn FnMut(usize) -> DVec2, wo: DVec3| {
+        let (mut s, mut s2) = (0.0, 0.0);
+        for k in 0..n {
+            let v = t
+                .sample(wo, points(k))
+                .map_or(0.0, |x| x.f.x * x.wi.z / x.pdf);
+            s += v;
+            s2 += v * v;
+        }
+        (s / n as f64, s2 / n as f64)
+    };
+    for theta in [10.0f64, 50.0] {
+        let wo = dir(theta.to_radians(), 0.4);
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(11);
+        // Variance of one independent sample, from many.
+        let (mut m, mut m2) = (0.0, 0.0);
+        for _ in 0..shifts {
+            let (a, b) = estimate(&mut |_| DVec2::new(rng.random(), rng.random()), wo);
+            m += a;
+            m2 += b;
+        }
+        let (m, m2) = (m / shifts as f64, m2 / shifts as f64);
+        let var_independent = (m2 - m * m) / n as f64;
+        // Variance between shifted Hammersley estimates.
+        let (mut h, mut h2) = (0.0, 0.0);
+        for _ in 0..shifts {
+            let shift = DVec2::new(rng.random(), rng.random());
+            let (a, _) = estimate(
+                &mut |k| {
+                    let p = DVec2::new((k as f64 + 0.5) / n as f64, radical_inverse(k as u32));
+                    DVec2::new((p.x + shift.x).fract(), (p.y + shift.y).fract())
+                },
+                wo,
+            );
+            h += a;
+            h2 += a * a;
+        }
+        let h = h / shifts as f64;
+        let var_hammersley = (h2 / shifts as f64 - h * h) * shifts as f64 / (shifts - 1) as f64;
+        assert!(
+            var_independent > 1.2 * var_hammersley,
+            "theta_o {theta}: variance {var_independent:.3e} independent, \
+             {var_hammersley:.3e} stratified"
         );
     }
 }

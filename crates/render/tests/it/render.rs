@@ -325,14 +325,17 @@ mod slow {
             let (img, _) = render(&s, &o).unwrap();
             rel_rmse(&img, &reference, &pixels)
         };
-        let (alias, cosine) = (rmse(BrdfSampling::Importance), rmse(BrdfSampling::Cosine));
+        let (table, cosine) = (rmse(BrdfSampling::Importance), rmse(BrdfSampling::Cosine));
         eprintln!(
-            "16 spp relative RMSE: alias {:.2}%, cosine {:.2}%, ratio {:.1}",
-            100.0 * alias,
+            "16 spp relative RMSE: table sampler {:.2}%, cosine {:.2}%, ratio {:.1}",
+            100.0 * table,
             100.0 * cosine,
-            cosine / alias
+            cosine / table
         );
-        assert!(cosine > 5.0 * alias, "alias {alias}, cosine {cosine}");
+        assert!(
+            cosine > 5.0 * table,
+            "table sampler {table}, cosine {cosine}"
+        );
     }
 
     /// The denoiser on a picture with glossy and diffuse surfaces, shadows and a light's edge
