@@ -81,7 +81,6 @@ pub fn run(args: RenderArgs) -> Result<()> {
             _ => None,
         },
         progress: crate::progress::reporting(&crate::progress::bar(0)),
-        film: Default::default(),
         cancel: Default::default(),
     };
     let (image, stats) = gonio_render::render(&scene, &opts)
