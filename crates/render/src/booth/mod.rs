@@ -9,11 +9,14 @@
 //! - [`spec`]: the description (TOML) and its checks.
 //! - [`scene`]: the booth as a scene, its lights scaled to the illuminance, the views' cameras.
 //! - [`material`]: the specimen's material from a coating description or a `.gbrdf` table.
+//! - [`closure`]: the picture's side of the closure against the multi-angle instrument (a flat
+//!   panel's mean CIELAB at a geometry, with its noise bound).
 //!
 //! Rendering is the path tracer's spectral mode with the absolute film
 //! ([`crate::Film::Absolute`]), so the picture is identical for any number of threads
 //! ([`crate::integrator`]) and reproducible from the spec, the material and the seed.
 
+pub mod closure;
 pub mod material;
 pub mod scene;
 pub mod spec;
