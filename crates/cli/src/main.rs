@@ -7,6 +7,7 @@ mod coating;
 mod coating_predict;
 mod color;
 mod compare;
+mod conformance;
 mod demo;
 mod gloss;
 mod inplane;
@@ -90,6 +91,9 @@ enum Command {
     /// 15°, 45° and 75° and graininess under diffuse light, from pictures of a coating's flakes
     /// drawn one by one: `gonio texture COATING.toml [--json] [-o DIR]`.
     Texture(texture::TextureArgs),
+    /// Appearance conformance (docs/conformance.md): test scenes with analytic references on
+    /// gonio, Mitsuba 3 and Radiance: `gonio conformance [-o DIR] [--renderers ...] [--json]`.
+    Conformance(conformance::ConformanceArgs),
 }
 
 fn main() -> ExitCode {
@@ -119,6 +123,7 @@ fn main() -> ExitCode {
         Command::Coating(cmd) => coating::run(cmd),
         Command::Pigments(args) => pigments::run(args),
         Command::Texture(args) => texture::run(args),
+        Command::Conformance(args) => conformance::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

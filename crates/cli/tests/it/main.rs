@@ -9,6 +9,7 @@ mod coating_cli;
 mod color_cli;
 mod common;
 mod compare_cli;
+mod conformance_cli;
 mod demo;
 mod first_hour;
 mod gloss_cli;
