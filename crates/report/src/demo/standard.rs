@@ -3,7 +3,8 @@
 //! views as pictures of absolute CIE XYZ written with their display renderings, masks and
 //! manifest (`gonio_render::picture`), and the closure table: at each ASTM E2194 geometry, what
 //! a picture of a flat panel reads against what the multi-angle instrument reads of the same
-//! table ([`crate::closure`]).
+//! table ([`crate::closure`]); and the summary of the appearance conformance suite on gonio's
+//! renderer (`gonio_conformance`, `docs/conformance.md`).
 
 use super::pictures::EXAMPLES;
 use crate::Result;
@@ -14,6 +15,7 @@ use crate::output::{copy, create_dir};
 use gonio_brdf::table::Resolution;
 use gonio_coating::description;
 use gonio_coating::system::default_bands;
+use gonio_conformance::{Options, Renderer, Verdict};
 use gonio_instrument::multiangle::E2194;
 use gonio_io::Progress;
 use gonio_render::booth::closure::ClosurePicture;
@@ -42,6 +44,8 @@ struct Plan {
     walks: usize,
     /// The closure's pictures.
     closure: ClosurePicture,
+    /// The conformance suite's samples per pixel.
+    conformance_spp: u32,
 }
 
 impl Plan {
@@ -62,6 +66,7 @@ impl Plan {
                     spp: 8,
                     ..ClosurePicture::default()
                 },
+                conformance_spp: 8,
             }
         } else {
             Plan {
@@ -71,6 +76,7 @@ impl Plan {
                 resolution: None,
                 walks: panel::WALKS,
                 closure: ClosurePicture::default(),
+                conformance_spp: 64,
             }
         }
     }
@@ -97,8 +103,9 @@ pub(super) fn standard_section(dir: &Path, quick: bool, work: &Progress) -> Resu
          the display's white; beside each are the absolute XYZ (OpenEXR), the Display P3 \
          rendering, the masks of what each display cannot show, and a manifest of every file's \
          SHA-256 with the settings. The pictures are {} × {} pixels at {} samples per pixel, \
-         rendered spectrally and not denoised; the coatings' flakes are in their tables (no \
-         discrete sparkle).",
+         rendered spectrally and not denoised: their grain is the Monte Carlo noise of the \
+         samples' wavelengths, not the coating's texture; the coatings' flakes are in their \
+         tables (no discrete sparkle).",
         BoothSpec::default().light.illuminance_lux / std::f64::consts::PI,
         plan.width,
         plan.height,
@@ -229,12 +236,100 @@ pub(super) fn standard_section(dir: &Path, quick: bool, work: &Progress) -> Resu
         .with_context(|| format!("{file}: the closure"))?;
         closure_rows.push((label, rows));
     }
+    if let Some((label, row)) = closure_rows
+        .iter()
+        .flat_map(|(label, rows)| rows.iter().map(move |r| (label, r)))
+        .filter(|(_, r)| r.instrument.l > 100.0)
+        .max_by(|a, b| a.1.instrument.l.total_cmp(&b.1.instrument.l))
+    {
+        blocks.push(Block::Text(format!(
+            "The {label} is brighter than the white where it is seen near the specular (L* {:.1} \
+             at {}, in the table below): its renderings clip there, as the over-range masks \
+             show, and the OpenEXR keeps its luminance.",
+            row.instrument.l, row.geometry
+        )));
+    }
     blocks.extend(closure_blocks(&closure_rows, &plan.closure));
+    blocks.extend(conformance_blocks(dir, plan.conformance_spp)?);
     Ok(Section {
         title: "Standard of appearance: the viewing booth".into(),
         blocks,
         seconds: 0.0,
     })
+}
+
+/// The conformance suite on gonio's renderer at `spp` samples per pixel, its report in
+/// `dir/conformance`: a paragraph, the summary table (each scene's verdict and its checks) and
+/// the link to the suite's own report.
+fn conformance_blocks(dir: &Path, spp: u32) -> Result<Vec<Block>> {
+    let out = dir.join("conformance");
+    let results = gonio_conformance::run(&Options {
+        renderers: vec![Renderer::Gonio],
+        spp,
+        dir: out,
+    })?;
+    let rows: Vec<Vec<String>> = results
+        .scenes
+        .iter()
+        .flat_map(|s| {
+            s.runs.iter().map(move |r| {
+                let worst = r
+                    .checks
+                    .iter()
+                    .filter(|c| c.tolerance > 0.0)
+                    .map(|c| (c.value - c.reference).abs() / c.tolerance)
+                    .fold(0.0, f64::max);
+                vec![
+                    s.scene.id.name().to_string(),
+                    s.scene.title.clone(),
+                    match r.verdict {
+                        Verdict::Pass => "pass",
+                        Verdict::KnownLoss => "fails: known loss",
+                        Verdict::Fail => "FAIL",
+                        Verdict::Unavailable => "unavailable",
+                    }
+                    .to_string(),
+                    format!(
+                        "{} of {}",
+                        r.checks.iter().filter(|c| c.pass).count(),
+                        r.checks.len()
+                    ),
+                    format!("{worst:.2}"),
+                ]
+            })
+        })
+        .collect();
+    let passed = results.passed();
+    Ok(vec![
+        Block::Text(format!(
+            "Conformance: the renderer that draws the booth's pictures, on appearance test \
+             scenes with analytic references (in the spirit of CIE 171:2006; docs/conformance.md), \
+             {0} × {0} pixels at {1} samples per pixel. Each check is a region's value against its \
+             closed form within its tolerance (four standard errors of the Monte Carlo mean; for \
+             a colour, the ΔE00 that noise allows); the last column is \
+             the largest |value − reference| / tolerance of the scene's checks (under 1 passes). \
+             {2} The command gonio conformance runs the same suite on Mitsuba 3 and Radiance too, through \
+             gonio's exports.",
+            results.size,
+            results.spp,
+            if passed {
+                "gonio passes every scene."
+            } else {
+                "gonio FAILS a scene."
+            }
+        )),
+        Block::Table {
+            headers: ["scene", "what", "verdict", "checks holding", "worst / tolerance"]
+                .map(String::from)
+                .to_vec(),
+            rows,
+        },
+        Block::Links {
+            lead: "The suite's own report, with each scene's pictures, difference images and FLIP maps:"
+                .into(),
+            links: vec![("report.html".into(), "conformance/report.html".into())],
+        },
+    ])
 }
 
 /// The mean luminance of the pixels the specimen covers whole, cd/m².
@@ -266,7 +361,7 @@ fn closure_blocks(rows: &[(&str, Vec<ClosureRow>)], picture: &ClosurePicture) ->
              table, lit by the booth's collimated light alone at the geometry's illumination and \
              seen by a distant camera at its aspecular angle ({0} × {0} pixels, {1} samples \
              each), has its specimen pixels averaged and turned into CIELAB against the perfect \
-             diffuser under the same light (D65, 10°); beside it, `gonio multiangle`'s reading \
+             diffuser under the same light (D65, 10°); beside it, gonio multiangle's reading \
              of the same table (point apertures). The noise bound is the largest ΔE00 from \
              moving the picture's mean by three standard errors (from the pixels' spread) in X, \
              Y or Z. Largest difference here {worst:.3} ΔE00; {2}. The test suite holds every \
