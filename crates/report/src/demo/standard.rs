@@ -52,7 +52,11 @@ impl Plan {
     /// The full demo: the standard's own picture (480 × 320 pixels, 64 samples per pixel,
     /// `docs/standard.md`) from the panel pictures' tables, and the closure tests' pictures
     /// (24 × 24 pixels, 32 samples: noise bound about 0.1 ΔE00 on a solid, 0.3 on a metallic
-    /// near the specular). The quick run: small pictures of coarse tables, the same steps.
+    /// near the specular). Cost, measured 2026-12-06 with the machine shared (load 7–8): the
+    /// whole section 79 s of CPU (158 s wall), about 40 s on the quiet 2-core machine at the
+    /// demo's 1.9 cores, which keeps the demo (223 s before it) within its five minutes; half
+    /// the samples would save about 15 s and show more grain, so the standard's own picture is
+    /// kept. The quick run: small pictures of coarse tables, the same steps (4.7 s wall, loaded).
     fn new(quick: bool) -> Plan {
         if quick {
             Plan {

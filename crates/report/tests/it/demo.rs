@@ -58,7 +58,8 @@ fn summary_quotes_the_results(html: &str, out: &Path) {
 /// The standard of appearance: six booth pictures (two coatings, three views), each view's
 /// files linked and written, a manifest per coating, and the closure table with a row per
 /// coating and E2194 geometry whose ΔE00 is within 0.5 plus its noise bound (the quick run's
-/// coarse tables do not matter to the closure: both sides read the same table).
+/// coarse tables do not matter to the closure: both sides read the same table), and the
+/// conformance suite's summary with its own report linked.
 fn standard_section_is_complete(html: &str, out: &Path) {
     let start = html
         .find("<h2>Standard of appearance")
@@ -115,6 +116,14 @@ fn standard_section_is_complete(html: &str, out: &Path) {
         let noise: f64 = row[9].parse().unwrap();
         assert!(de < 0.5 + noise, "{row:?}");
     }
+    for scene in ["white_furnace", "coat", "mirror", "metamer_a"] {
+        assert!(
+            section.contains(&format!("<tr><td>{scene}</td>")),
+            "conformance scene {scene} missing"
+        );
+    }
+    assert!(section.contains("href=\"conformance/report.html\""));
+    assert!(out.join("conformance/report.html").is_file());
 }
 
 /// The page without its embedded image data.
