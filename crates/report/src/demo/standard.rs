@@ -56,7 +56,7 @@ impl Plan {
     /// whole section 79 s of CPU (158 s wall), about 40 s on the quiet 2-core machine at the
     /// demo's 1.9 cores, which keeps the demo (223 s before it) within its five minutes; half
     /// the samples would save about 15 s and show more grain, so the standard's own picture is
-    /// kept. The quick run: small pictures of coarse tables, the same steps (4.7 s wall, loaded).
+    /// kept. The quick run: small pictures of coarse tables, the same steps (6.6 s wall, loaded).
     fn new(quick: bool) -> Plan {
         if quick {
             Plan {
