@@ -24,6 +24,7 @@ def test_quick_demo_writes_a_report_with_every_section(tmp_path: Path) -> None:
         "Coatings and multi-angle colour",
         "Formulation: a measured paint matched from the pigment library",
         "Texture: sparkle, graininess and orange peel",
+        "Standard of appearance: the viewing booth",
     ):
         assert f"<h2>{title}</h2>" in html, title
     assert (out / "study" / "gloss.csv").is_file()

@@ -21,6 +21,12 @@ pub enum Block {
     Image { path: PathBuf, caption: String },
     /// Preformatted text (command lines, small listings).
     Code(String),
+    /// Links to files beside the report: a lead-in, then each link's text and its path relative
+    /// to the report's folder (`"near-specular.exr"`, `"standard/silver/manifest.json"`).
+    Links {
+        lead: String,
+        links: Vec<(String, String)>,
+    },
 }
 
 /// A section of the report with the time its computation took.
@@ -113,6 +119,14 @@ impl Report {
                             h.push_str("</tr>\n");
                         }
                         h.push_str("</table>\n");
+                    }
+                    Block::Links { lead, links } => {
+                        write!(h, "<p>{}", esc(lead))?;
+                        for (i, (text, href)) in links.iter().enumerate() {
+                            let sep = if i == 0 { " " } else { ", " };
+                            write!(h, "{sep}<a href=\"{}\">{}</a>", esc(href), esc(text))?;
+                        }
+                        h.push_str("</p>\n");
                     }
                     Block::Image { path, caption } => {
                         let bytes = std::fs::read(path).map_err(|e| io_error(path, e))?;

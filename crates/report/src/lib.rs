@@ -1,6 +1,7 @@
 //! gonio-report: the reports gonio composes, in one library that every front end calls (the
 //! `gonio` command, the Python package, the lab): the HTML page of sections, text, tables and
-//! figures ([`html`]), the demo that runs the whole pipeline on embedded data and writes it up
+//! figures ([`html`]), the booth's closure against the multi-angle instrument ([`closure`]),
+//! the demo that runs the whole pipeline on embedded data and writes it up
 //! ([`demo`]: `gonio demo`, `gonio.report.demo`), and the files and plots the demo shares with
 //! the commands that write the same ones ([`study`], [`plots`], [`isotropy_files`],
 //! [`texture_pictures`], [`orange_peel`], [`units`], [`output`]). Above `formulation` and
@@ -8,6 +9,7 @@
 //! libraries' below; it reports progress through [`gonio_io::Progress`] and never writes to the
 //! terminal.
 
+pub mod closure;
 pub mod demo;
 pub mod error;
 pub mod html;

@@ -44,11 +44,11 @@ mod slow {
         assert_eq!(done["state"], "done", "{done}");
         assert_eq!(done["kind"], "report");
         assert!(
-            done["line"].as_str().unwrap().starts_with("step 7 of 7"),
+            done["line"].as_str().unwrap().starts_with("step 8 of 8"),
             "{done}"
         );
         let sections = done["result"]["sections"].as_array().unwrap();
-        assert_eq!(sections.len(), 7, "{done}");
+        assert_eq!(sections.len(), 8, "{done}");
         let page = done["result"]["report"].as_str().unwrap();
         let (status, html) = text(agent.get(format!("{base}{page}")).call());
         assert_eq!(status, 200);

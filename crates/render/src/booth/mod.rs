@@ -9,6 +9,8 @@
 //! - [`spec`]: the description (TOML) and its checks.
 //! - [`scene`]: the booth as a scene, its lights scaled to the illuminance, the views' cameras.
 //! - [`material`]: the specimen's material from a coating description or a `.gbrdf` table.
+//! - [`closure`]: the picture's side of the closure against the multi-angle instrument (a flat
+//!   panel's mean CIELAB at a geometry, with its noise bound).
 //! - [`input`]: a booth spec, a coating or a table, told apart by its file.
 //! - [`files`]: the whole booth written into a folder (pictures, masks, manifest) with a
 //!   summary.
@@ -17,6 +19,7 @@
 //! ([`crate::Film::Absolute`]), so the picture is identical for any number of threads
 //! ([`crate::integrator`]) and reproducible from the spec, the material and the seed.
 
+pub mod closure;
 pub mod files;
 pub mod input;
 pub mod material;

@@ -212,8 +212,9 @@ mod slow {
     use super::*;
     use gonio_brdf::table::{BrdfTable, Provenance, Resolution};
     use gonio_coating::system::default_bands;
-    use gonio_color::{Lab, Xyz, ciede2000};
+    use gonio_color::ciede2000;
     use gonio_instrument::multiangle::{self, E2539, Geometry, Settings};
+    use gonio_render::booth::closure;
 
     /// The table of `examples/coatings/NAME.toml` at a test's resolution and walks, and the
     /// index of its smooth top.
@@ -263,27 +264,17 @@ mod slow {
                     illumination_deg,
                     aspecular_deg,
                 } = *g;
-                let s = spec(&format!(
-                    "[light]\nilluminance_lux = 2000\ndirectional_fraction = 1\n\
-                     directional_deg = {illumination_deg}\n\
-                     [camera]\nprojection = \"orthographic\"\nviews = [\"as{aspecular_deg}\"]\n\
-                     [render]\nwidth = 24\nheight = 24\nspp = 32\n"
-                ));
-                let pictures = booth::render(&s, &material, &Run::default()).unwrap();
-                let white = Xyz::from_array(pictures.white);
-                let (mean, se, n) = specimen_mean(&pictures.views[0]);
-                let lab = |xyz: [f64; 3]| -> Lab { Xyz::from_array(xyz).to_lab(white) };
-                let picture = lab(mean);
+                let read = closure::read_flat_panel(
+                    &material,
+                    illumination_deg,
+                    aspecular_deg,
+                    &closure::ClosurePicture::default(),
+                    &Run::default(),
+                )
+                .unwrap();
+                let (picture, noise, n) = (read.lab, read.noise_bound, read.mean.pixels);
                 let instrument = reading.at(*g).unwrap().lab;
                 let de = ciede2000(picture, instrument);
-                let noise = (0..3)
-                    .flat_map(|c| [-3.0, 3.0].map(move |k| (c, k)))
-                    .map(|(c, k)| {
-                        let mut moved = mean;
-                        moved[c] += k * se[c];
-                        ciede2000(lab(moved), picture)
-                    })
-                    .fold(0.0, f64::max);
                 eprintln!(
                     "{name} {g}: picture L* {:.2} a* {:.2} b* {:.2}, instrument L* {:.2} a* \
                      {:.2} b* {:.2}: ΔE00 {de:.3} (noise bound {noise:.3}, {n} pixels)",

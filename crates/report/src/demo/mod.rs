@@ -1,7 +1,9 @@
 //! The demo: the whole pipeline on embedded default data, written up as one HTML report
 //! (`report.html`): the synthetic epoxy roughness series, a real instrument file and its
 //! isotropy, the roughness study by both scattering methods, the gloss readings, coatings and
-//! their colour, formulation, pictures, and texture (sparkle, graininess, orange peel). `gonio
+//! their colour, formulation, pictures, texture (sparkle, graininess, orange peel), and the
+//! standard of appearance (the viewing booth's pictures and their closure against the
+//! instrument). `gonio
 //! demo`, `gonio.report.demo` in Python and the lab's report job call [`run`].
 
 mod coatings;
@@ -9,6 +11,7 @@ mod formulation;
 mod isotropy;
 mod matched;
 mod pictures;
+mod standard;
 mod study;
 mod summary;
 mod surfaces;
@@ -101,7 +104,7 @@ pub fn run(plan: &DemoPlan, progress: &DemoProgress) -> Result<DemoOutcome> {
     let work = &progress.work;
     let started = Instant::now();
     let mut sections = Vec::new();
-    let steps: u64 = if plan.quick { 7 } else { 8 };
+    let steps: u64 = if plan.quick { 8 } else { 9 };
     let mut step = 0;
     let mut announce = |what: &str| {
         progress.steps.report(what, step, steps);
@@ -156,6 +159,12 @@ pub fn run(plan: &DemoPlan, progress: &DemoProgress) -> Result<DemoOutcome> {
 
     announce("texture: the sparkle of a silver metallic and the orange peel of a clear coat");
     let (section, seconds) = timed(|| texture::texture_section(dir, plan.quick, work));
+    sections.push(with_time(section?, seconds));
+
+    announce(
+        "standard of appearance: a metallic and a solid in the viewing booth, and its closure",
+    );
+    let (section, seconds) = timed(|| standard::standard_section(dir, plan.quick, work));
     sections.push(with_time(section?, seconds));
 
     let report = Report {

@@ -55,6 +55,77 @@ fn summary_quotes_the_results(html: &str, out: &Path) {
     );
 }
 
+/// The standard of appearance: six booth pictures (two coatings, three views), each view's
+/// files linked and written, a manifest per coating, and the closure table with a row per
+/// coating and E2194 geometry whose ΔE00 is within 0.5 plus its noise bound (the quick run's
+/// coarse tables do not matter to the closure: both sides read the same table), and the
+/// conformance suite's summary with its own report linked.
+fn standard_section_is_complete(html: &str, out: &Path) {
+    let start = html
+        .find("<h2>Standard of appearance")
+        .expect("the standard section");
+    let section = &html[start..start + html[start..].find("</section>").unwrap()];
+    let pictures = section.matches("<img src=\"data:image/png;base64,").count();
+    assert_eq!(pictures, 6, "{pictures} booth pictures");
+    for coating in ["silver_metallic", "red_solid"] {
+        for view in ["near-specular", "45", "flank"] {
+            for file in [
+                format!("{view}.exr"),
+                format!("{view}-p3.png"),
+                format!("{view}-srgb-mask.png"),
+                format!("{view}-p3-mask.png"),
+            ] {
+                let rel = format!("standard/{coating}/{file}");
+                assert!(
+                    section.contains(&format!("href=\"{rel}\"")),
+                    "{rel} not linked"
+                );
+                assert!(out.join(&rel).is_file(), "{rel} not written");
+            }
+        }
+        let manifest = format!("standard/{coating}/manifest.json");
+        assert!(section.contains(&format!("href=\"{manifest}\"")));
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join(&manifest)).unwrap()).unwrap();
+        assert_eq!(json["outputs"].as_array().unwrap().len(), 15, "{manifest}");
+    }
+    let table = &section[section.find("<table>").expect("the closure table")..];
+    let table = &table[..table.find("</table>").unwrap()];
+    assert!(
+        table.contains("<th>ΔE00</th><th>noise bound</th>"),
+        "{table}"
+    );
+    let rows: Vec<Vec<&str>> = table
+        .split("<tr>")
+        .skip(2)
+        .map(|r| {
+            r.split("<td>")
+                .skip(1)
+                .map(|c| &c[..c.find("</td>").unwrap()])
+                .collect()
+        })
+        .collect();
+    assert_eq!(rows.len(), 10, "{table}");
+    for row in &rows {
+        assert!(
+            ["silver metallic", "red solid"].contains(&row[0]),
+            "{row:?}"
+        );
+        assert!(row[1].starts_with("45as"), "{row:?}");
+        let de: f64 = row[8].parse().unwrap();
+        let noise: f64 = row[9].parse().unwrap();
+        assert!(de < 0.5 + noise, "{row:?}");
+    }
+    for scene in ["white_furnace", "coat", "mirror", "metamer_a"] {
+        assert!(
+            section.contains(&format!("<tr><td>{scene}</td>")),
+            "conformance scene {scene} missing"
+        );
+    }
+    assert!(section.contains("href=\"conformance/report.html\""));
+    assert!(out.join("conformance/report.html").is_file());
+}
+
 /// The page without its embedded image data.
 fn text_of(html: &str) -> String {
     let mut text = String::new();
@@ -170,15 +241,16 @@ mod slow {
             "Coatings and multi-angle colour",
             "Formulation: a measured paint matched from the pigment library",
             "Texture: sparkle, graininess and orange peel",
+            "Standard of appearance: the viewing booth",
         ];
         let names: Vec<&str> = sections.iter().map(|(t, _)| t.as_str()).collect();
         assert_eq!(names, titles);
         let spent: f64 = sections.iter().map(|(_, s)| s).sum();
         assert!(spent > 0.0 && spent <= seconds, "{spent} s of {seconds} s");
         let steps = steps.lock().unwrap();
-        assert_eq!(steps.len(), 7, "{steps:?}");
+        assert_eq!(steps.len(), 8, "{steps:?}");
         for (k, (stage, done, total)) in steps.iter().enumerate() {
-            assert_eq!((*done, *total), (k as u64, 7), "{stage}");
+            assert_eq!((*done, *total), (k as u64, 8), "{stage}");
         }
         let html = std::fs::read_to_string(&report).unwrap();
         for title in titles {
@@ -189,6 +261,7 @@ mod slow {
         assert!(!text_of(&html).contains("NaN"), "a NaN reached the report");
         tables_are_rectangular(&html);
         summary_quotes_the_results(&html, &out);
+        standard_section_is_complete(&html, &out);
         if let Some(chromium) = find_chromium() {
             check_in_browser(&chromium, &report, images);
         } else {
