@@ -5,8 +5,7 @@
 //!
 //! Samples come from Owen-scrambled Sobol sequences (Burley, "Practical hash-based Owen
 //! scrambling", JCGT 9(4), 2020, the `sobol_burley` crate): sample `s` of pixel `p` uses the
-//! scramble seed `hash(seed, p)`, and each random decision along the path (one number or a pair)
-//! its own padded sequence ([`crate::path::Sampler`]). Tiles of
+//! scramble seed `hash(seed, p)` and one dimension per random decision along the path. Tiles of
 //! 16 × 16 pixels are spread over the threads by rayon, and every pixel depends only on the seed
 //! and its index, so the image is identical for any number of threads.
 

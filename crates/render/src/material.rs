@@ -1,6 +1,6 @@
 //! Materials: what a surface's BRDF is made of. Three kinds: an analytic model of the `brdf`
 //! crate (its [`ModelSpec`]), a tabulated BRDF read from a file (`.gbrdf`, Cornell `.astm`, MERL
-//! `.binary`), importance-sampled with the table sampler of
+//! `.binary`), importance-sampled with the alias-method sampler of
 //! [`gonio_brdf::table::SampledTable`], or a height map turned into a table by a scattering
 //! method (see [`crate::scene`]). A spectral table is seen at the path's wavelengths in the
 //! spectral colour mode through its [`gonio_brdf::SpectralBrdf`] view. Any of them may lie under
@@ -77,7 +77,7 @@ impl Material {
             .map_or(0.0, |n| gonio_brdf::fresnel::dielectric(cos_o, n))
     }
 
-    /// A material of a tabulated BRDF, importance-sampled by its table sampler.
+    /// A material of a tabulated BRDF, importance-sampled by the alias method.
     pub fn from_table(name: impl Into<String>, table: BrdfTable) -> Material {
         Material::new(name, Arc::new(SampledTable::new(table)))
     }

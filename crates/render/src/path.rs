@@ -7,7 +7,7 @@
 //! The path is written once for both colour modes: a [`Shading`] says what a path carries (linear
 //! sRGB, or the values at the path's wavelengths, [`crate::spectral`]), how a material is
 //! evaluated and sampled, and how a light's RGB radiance becomes what the path carries. Every
-//! random decision takes the next draw of the path's [`Sampler`], in the same order in both
+//! random decision takes the next dimension of the path's [`Sampler`], in the same order in both
 //! modes, so that the two modes trace the same directions from the same seed.
 
 use crate::flakes::{FlakeField, MAX_BANDS};
@@ -123,42 +123,35 @@ pub(crate) fn mix(mut x: u32) -> u32 {
     x ^ (x >> 16)
 }
 
-/// The sample stream of one path, padded (Burley, "Practical hash-based Owen scrambling", JCGT
-/// 9(4), 2020, §4; pbrt-v4's `PaddedSobolSampler`): each draw, one number or a pair, takes the
-/// first one or two dimensions of its own Owen-scrambled Sobol sequence, seeded by the pixel's
-/// seed and the draw's number. The first two dimensions of Sobol's sequence are a (0, 2)-sequence,
-/// so the 64 samples of a pixel are stratified in every elementary interval of each pair (the
-/// film position, a light sample, a BRDF sample), which the higher dimensions of one sequence
-/// (the sampler's earlier design, dimension `k` for the `k`-th number) are not; different draws
-/// are only randomly associated, which loses little since they are mostly separate integrals.
+/// The sample stream of one path: successive dimensions of one Owen-scrambled Sobol sample.
 pub(crate) struct Sampler {
     /// The sample's index within its pixel.
     pub index: u32,
     /// The pixel's scramble seed.
     pub seed: u32,
-    /// The number of the next draw.
+    /// The next dimension.
     pub dim: u32,
 }
 
 impl Sampler {
-    /// The seed of the current draw's sequence; advances to the next draw.
-    fn draw_seed(&mut self) -> u32 {
+    pub(crate) fn next(&mut self) -> f64 {
         let d = self.dim;
         self.dim += 1;
-        mix(self.seed ^ mix(d.wrapping_add(0x9e37_79b9)))
-    }
-
-    pub(crate) fn next(&mut self) -> f64 {
-        let seed = self.draw_seed();
-        f64::from(sobol_burley::sample(self.index, 0, seed))
+        // Past the 256 dimensions of the tables, continue with freshly seeded sequences.
+        let seed = if d < sobol_burley::NUM_DIMENSIONS {
+            self.seed
+        } else {
+            mix(self.seed ^ mix(d / sobol_burley::NUM_DIMENSIONS))
+        };
+        f64::from(sobol_burley::sample(
+            self.index,
+            d % sobol_burley::NUM_DIMENSIONS,
+            seed,
+        ))
     }
 
     pub(crate) fn next2(&mut self) -> DVec2 {
-        let seed = self.draw_seed();
-        DVec2::new(
-            f64::from(sobol_burley::sample(self.index, 0, seed)),
-            f64::from(sobol_burley::sample(self.index, 1, seed)),
-        )
+        DVec2::new(self.next(), self.next())
     }
 }
 
@@ -274,7 +267,7 @@ fn emission_weight(brdf_pdf: Option<f64>, light_pdf: impl FnOnce() -> f64) -> f6
 /// Next-event estimation (pbrt-v4's `SampleLd`): one light chosen uniformly, sampled toward the
 /// interaction, its reflected radiance when unoccluded (before the path's throughput), weighted
 /// against the BRDF sample that could have found it. `last`: no BRDF sample follows (the
-/// longest path), so the light sample takes the full weight. Draws a number and a pair of the
+/// longest path), so the light sample takes the full weight. Draws three dimensions of the
 /// sampler whether or not the scene has lights, so that paths stay in step.
 fn sample_ld<S: Shading>(
     scene: &Scene,

@@ -8,7 +8,7 @@ use std::sync::Arc;
 /// How BRDF samples are drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum BrdfSampling {
-    /// Each material's own importance sampler (analytic lobes, the table sampler for tables).
+    /// Each material's own importance sampler (analytic lobes, alias method for tables).
     #[default]
     Importance,
     /// Cosine-weighted directions for every material (for comparison with importance sampling).
