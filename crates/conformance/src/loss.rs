@@ -59,11 +59,14 @@ fn coat_mirror_share() -> [f64; 2] {
     })
 }
 
+/// The file of an object's export: `(dir, scene, object)` to its path.
+type FileOf = fn(&Path, &str, &str) -> std::path::PathBuf;
+
 /// What gonio's export of `scene` to `renderer` loses: the tables' error under the sky
 /// ([`export::table_error`], the largest of the scene's objects'), added to the tolerance; and
 /// the delta reflections no table holds, as known losses.
 fn export_loss(renderer: Renderer, scene: &Scene, dir: &Path) -> Result<Option<Loss>> {
-    let (format, file): (Format, fn(&Path, &str, &str) -> std::path::PathBuf) = match renderer {
+    let (format, file): (Format, FileOf) = match renderer {
         Renderer::Mitsuba => (Format::Mitsuba, export::mitsuba_file),
         Renderer::Radiance => (Format::Radiance, export::radiance_file),
         Renderer::Gonio => return Ok(None),
