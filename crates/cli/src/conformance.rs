@@ -1,11 +1,12 @@
 //! `gonio conformance`: the appearance conformance suite (`gonio_conformance`,
 //! docs/conformance.md) on gonio's renderer and, through gonio's exports, on Mitsuba 3 and
-//! Radiance; a summary table, the report in `-o DIR`, exit status 1 when a renderer fails a
-//! scene it can represent.
+//! Radiance; a summary table, the report in `-o DIR` (composed by `gonio_report::conformance`),
+//! exit status 1 when a renderer fails a scene it can represent.
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use gonio_conformance::{Options, Renderer, Verdict, run as run_suite};
+use gonio_conformance::{Options, Renderer};
+use gonio_report::conformance::verdict_name;
 use std::path::PathBuf;
 
 #[derive(Args)]
@@ -40,7 +41,7 @@ pub fn run(a: ConformanceArgs) -> Result<()> {
             })
         })
         .collect::<Result<Vec<_>>>()?;
-    let results = run_suite(&Options {
+    let (results, report) = gonio_report::conformance::run(&Options {
         renderers,
         spp: a.spp,
         dir: a.output.clone(),
@@ -49,25 +50,20 @@ pub fn run(a: ConformanceArgs) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&results)?);
     } else {
         println!(
-            "{:<14} {:<9} {:<12} {:>10} {:>10} {:>9} {:>7} {:>6}",
+            "{:<14} {:<16} {:<12} {:>10} {:>10} {:>9} {:>7} {:>6}",
             "scene", "renderer", "verdict", "value", "reference", "tolerance", "ΔE00", "FLIP"
         );
         for s in &results.scenes {
             for r in &s.runs {
-                let verdict = match r.verdict {
-                    Verdict::Pass => "pass",
-                    Verdict::KnownLoss => "known loss",
-                    Verdict::Fail => "FAIL",
-                    Verdict::Unavailable => "unavailable",
-                };
+                let verdict = verdict_name(r.verdict);
                 // The failing check, or the last (a metameric scene's pair).
                 let worst = r.checks.iter().find(|c| !c.pass).or(r.checks.last());
                 let de = r.regions.iter().map(|g| g.delta_e00).fold(0.0, f64::max);
                 match worst {
                     Some(c) => println!(
-                        "{:<14} {:<9} {:<12} {:>10.5} {:>10.5} {:>9.5} {:>7.3} {:>6.3}",
+                        "{:<14} {:<16} {:<12} {:>10.5} {:>10.5} {:>9.5} {:>7.3} {:>6.3}",
                         s.scene.id.name(),
-                        r.renderer.name(),
+                        r.label(),
                         verdict,
                         c.value,
                         c.reference,
@@ -76,15 +72,15 @@ pub fn run(a: ConformanceArgs) -> Result<()> {
                         r.flip_mean
                     ),
                     None => println!(
-                        "{:<14} {:<9} {:<12}",
+                        "{:<14} {:<16} {:<12}",
                         s.scene.id.name(),
-                        r.renderer.name(),
+                        r.label(),
                         verdict
                     ),
                 }
             }
         }
-        println!("report: {}", a.output.join("report.html").display());
+        println!("report: {}", report.display());
     }
     if !results.passed() {
         eprintln!("conformance: a renderer failed a scene it can represent");

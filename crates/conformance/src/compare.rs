@@ -163,6 +163,30 @@ pub fn srgb8(picture: &[[f64; 3]], white: f64) -> Vec<u8> {
         .collect()
 }
 
+/// Pixels of a strip's gap between two pictures.
+const STRIP_GAP: usize = 4;
+
+/// Several pictures ([`SIZE`]² 8-bit RGB each) side by side, each enlarged `scale` times with
+/// square pixels and separated by white gaps, as one 8-bit RGB image of `(width, height)`: a
+/// run's reference, picture, difference and FLIP map seen together in the report.
+pub fn strip(pictures: &[&[u8]], scale: usize) -> (Vec<u8>, usize, usize) {
+    let side = SIZE * scale;
+    let n = pictures.len();
+    let width = n * side + n.saturating_sub(1) * STRIP_GAP;
+    let mut out = vec![255u8; width * side * 3];
+    for (k, p) in pictures.iter().enumerate() {
+        let x0 = k * (side + STRIP_GAP);
+        for y in 0..side {
+            for x in 0..side {
+                let s = ((y / scale) * SIZE + x / scale) * 3;
+                let d = (y * width + x0 + x) * 3;
+                out[d..d + 3].copy_from_slice(&p[s..s + 3]);
+            }
+        }
+    }
+    (out, width, side)
+}
+
 /// FLIP's error map of `picture` against `reference` (both linear, divided by `white`) and its
 /// mean.
 pub fn flip(reference: &[[f64; 3]], picture: &[[f64; 3]], white: f64) -> (Vec<u8>, f64) {
@@ -191,8 +215,12 @@ pub fn difference(reference: &[[f64; 3]], picture: &[[f64; 3]], full: f64) -> Ve
 
 /// Encode an 8-bit RGB picture of [`SIZE`]² pixels as PNG.
 pub fn png(rgb: Vec<u8>) -> crate::Result<Vec<u8>> {
-    let n = SIZE as u32;
-    let image = image::RgbImage::from_raw(n, n, rgb)
+    png_sized(rgb, SIZE, SIZE)
+}
+
+/// The PNG of an 8-bit RGB image of `width` × `height` pixels.
+pub fn png_sized(rgb: Vec<u8>, width: usize, height: usize) -> crate::Result<Vec<u8>> {
+    let image = image::RgbImage::from_raw(width as u32, height as u32, rgb)
         .ok_or_else(|| crate::Error::Invalid("picture of the wrong size".into()))?;
     let mut bytes = std::io::Cursor::new(Vec::new());
     image

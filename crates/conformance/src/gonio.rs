@@ -6,18 +6,18 @@
 //! description (a smooth clear coat over a Kubelka-Munk layer: its body table computed on
 //! loading, its Fresnel mirror added as a delta by its index); the mirror is a black `lambert`
 //! under `coat_index`; a metameric patch is a spectral table of `ρ(λ)/π` rendered spectrally
-//! (`--spectral`). gonio's lights are linear sRGB, a white light standing for D65 (the film's
-//! white), so illuminant A is applied by multiplying the patches' spectra by `A(λ)/D65(λ)`:
-//! for a plate under a uniform sky, whose light is reflected once, the radiance `ρ A` is then
-//! exact.
+//! on the absolute film (`gonio_render::Film::Absolute`) whose light is the scene's illuminant
+//! (D65 or A): the sky's grey value then emits that illuminant's spectrum, seen directly and on
+//! the patches alike, and the film records CIE XYZ, turned into linear sRGB here like the
+//! reference's.
 
 use crate::error::{Error, Result};
 use crate::scene::{Geometry, Light, Material, SIZE, Scene};
-use gonio_brdf::table::{Channels, Provenance, Resolution, TableBuilder};
-use gonio_color::Illuminant;
-use gonio_render::{ColourMode, RenderOptions};
+use gonio_color::{LinearSrgb, Observer, Xyz};
+use gonio_render::{ColourMode, Film, RenderOptions};
 use std::fmt::Write as _;
 use std::path::Path;
+use std::sync::Arc;
 
 /// The scene's TOML for `gonio render`, writing the files it names into `dir`.
 pub fn scene_toml(scene: &Scene, dir: &Path) -> Result<String> {
@@ -26,11 +26,6 @@ pub fn scene_toml(scene: &Scene, dir: &Path) -> Result<String> {
         "# {}\n[camera]\nposition = {:?}\nlook_at = {:?}\nup = {:?}\nfov_deg = {}\nwidth = {SIZE}\nheight = {SIZE}\n\n",
         scene.title, c.position, c.look_at, c.up, c.fov_deg
     );
-    let fold = if scene.cie_illuminant() == Illuminant::A {
-        Some(Illuminant::A)
-    } else {
-        None
-    };
     for o in &scene.objects {
         let name = &o.name;
         let _ = writeln!(t, "[materials.{name}]");
@@ -50,9 +45,12 @@ pub fn scene_toml(scene: &Scene, dir: &Path) -> Result<String> {
                 std::fs::write(dir.join(&file), text).map_err(|e| Error::io(&file, e))?;
                 let _ = writeln!(t, "coating = \"{file}\"");
             }
-            Material::Spectral { reflectance } => {
+            Material::Spectral { .. } => {
                 let file = format!("{name}.gbrdf");
-                write_lambert_table(reflectance, fold, &dir.join(&file))?;
+                let table = crate::export::table(&o.material)?;
+                let path = dir.join(&file);
+                gonio_brdf::gbrdf::write(&table, &path)
+                    .map_err(|e| Error::Invalid(format!("{}: {e}", path.display())))?;
                 let _ = writeln!(t, "table = \"{file}\"");
             }
         }
@@ -106,58 +104,49 @@ pub fn scene_toml(scene: &Scene, dir: &Path) -> Result<String> {
     Ok(t)
 }
 
-/// A Lambertian's spectral table, `ρ(λ)/π` at every pair of directions, times `A(λ)/D65(λ)`
-/// when `fold` is illuminant A, written as `.gbrdf` to `path`.
-fn write_lambert_table(reflectance: &[f64], fold: Option<Illuminant>, path: &Path) -> Result<()> {
-    let wl = crate::metamer::wavelengths_nm();
-    let values: Vec<f64> = wl
-        .iter()
-        .zip(reflectance)
-        .map(|(&w, &r)| {
-            let ratio = fold.map_or(1.0, |i| {
-                i.spd().value_at(w) / Illuminant::D65.spd().value_at(w)
-            });
-            r * ratio / std::f64::consts::PI
-        })
-        .collect();
-    let bad = |e: gonio_brdf::BrdfError| Error::Invalid(format!("spectral table: {e}"));
-    let mut builder = TableBuilder::new(
-        Resolution::isotropic(4, 4, 4),
-        Channels::Spectral {
-            wavelengths_nm: wl.clone(),
-        },
-    )
-    .map_err(bad)?
-    .with_provenance(Provenance::new("gonio conformance", "lambert"));
-    builder.fill(|_, out| {
-        for (o, &v) in out.iter_mut().zip(&values) {
-            *o = v;
-        }
-    });
-    let table = builder.build().map_err(bad)?;
-    gonio_brdf::gbrdf::write(&table, path).map_err(bad)
-}
-
 /// gonio's picture of `scene` at `spp` samples per pixel (its files in `dir`): linear sRGB per
-/// pixel, rows from the top.
+/// pixel, rows from the top. A spectral scene is rendered on the absolute film under its
+/// illuminant and its XYZ turned into linear sRGB (`LinearSrgb::from_xyz`, as the reference's;
+/// the film's absolute scale is left to the suite, which scales to the white patch).
 pub fn render(scene: &Scene, dir: &Path, spp: u32) -> Result<Vec<[f64; 3]>> {
     let text = scene_toml(scene, dir)?;
     let path = dir.join(format!("{}.toml", scene.id.name()));
     std::fs::write(&path, &text).map_err(|e| Error::io(&path.display().to_string(), e))?;
     let built = gonio_render::Scene::from_toml(&text, &path)?;
+    let spectral = scene.is_spectral();
     let options = RenderOptions {
         spp: Some(spp),
         seed: Some(1),
-        colour: if scene.is_spectral() {
+        colour: if spectral {
             ColourMode::Spectral
         } else {
             ColourMode::Tristimulus
         },
         ..RenderOptions::default()
     };
-    let estimate = gonio_render::render_estimate(&built, &options)?;
+    let film = if spectral {
+        Film::Absolute {
+            light: Arc::new(scene.cie_illuminant().spd().clone()),
+            observer: Observer::Cie1931TwoDegree,
+        }
+    } else {
+        Film::Display
+    };
+    let estimate = gonio_render::render_estimate_on(&built, &options, &film)?;
     let image = &estimate.image;
     Ok((0..SIZE * SIZE)
-        .map(|k| image.get(k % SIZE, k / SIZE).map(f64::from))
+        .map(|k| {
+            let c = image.get(k % SIZE, k / SIZE).map(f64::from);
+            if spectral {
+                let rgb = LinearSrgb::from_xyz(Xyz {
+                    x: c[0],
+                    y: c[1],
+                    z: c[2],
+                });
+                [rgb.r, rgb.g, rgb.b]
+            } else {
+                c
+            }
+        })
         .collect())
 }

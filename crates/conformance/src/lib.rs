@@ -6,9 +6,10 @@
 //! smooth coat over a Kubelka-Munk base, a mirror reflecting a known emitter, and a metameric
 //! pair under D65 and under illuminant A. Their closed forms are in [`optics`] and
 //! [`metamer`]; each renderer's version of a scene is written by [`gonio`], [`mitsuba`] and
-//! [`radiance`]; [`compare`] measures a picture against the reference, [`loss`] says what each
-//! export loses, [`suite`] runs everything and gives the verdicts, and [`report`] writes the
-//! HTML.
+//! [`radiance`], the materials' tables that the peers render through gonio's exports by
+//! [`export`]; [`compare`] measures a picture against the reference, [`loss`] says what each
+//! export loses, and [`suite`] runs everything, gives the verdicts and writes the pictures and
+//! `results.json`. The HTML report is composed above, by `gonio_report::conformance`.
 //!
 //! ```no_run
 //! use gonio_conformance::{Options, Renderer, run};
@@ -19,6 +20,8 @@
 
 pub mod compare;
 pub mod error;
+pub mod export;
+pub mod geometry;
 pub mod gonio;
 pub mod loss;
 pub mod metamer;
@@ -26,10 +29,10 @@ pub mod mitsuba;
 pub mod optics;
 mod python;
 pub mod radiance;
-pub mod report;
+pub mod reference;
 pub mod scene;
 pub mod suite;
 
 pub use error::{Error, Result};
 pub use python::oracles_required;
-pub use suite::{Options, Renderer, Results, Verdict, run};
+pub use suite::{Options, Renderer, Results, Route, Verdict, run};

@@ -2,24 +2,26 @@
 //! driver `mitsuba.py`), rendered by its `path` integrator with an `independent` sampler and a
 //! box filter.
 //!
-//! Materials, and which export each stands for. gonio exports BRDF tables to Mitsuba as tensor
-//! `.bsdf` files for its `measured` plugin (`gonio_brdf::formats::mitsuba`), but none of these
-//! scenes' materials is a table: each is an analytic model with a native Mitsuba plugin that
-//! evaluates the same formula, which is what an export of the model would be: a Lambertian is
-//! `diffuse`; the smooth coat over a diffuse base is `plastic` (`nonlinear = true`, which divides
-//! the base's light by `1 − ρ r_i`, the series of internal reflections; without it Mitsuba
-//! divides by `1 − r_i` whatever the base). Mitsuba's plastic is then the same model, a Fresnel mirror over a Lambertian base with every internal
-//! reflection, but with a fitted internal reflectance, `optics::mitsuba_diffuse_reflectance`),
-//! whose base is the Kubelka-Munk reflectance computed by gonio; the mirror is `plastic` with a
-//! black base. A tensor table could not hold the coat's delta reflection at all. The metameric
-//! patches are `diffuse` with spectra (the `scalar_spectral` variant), and the sky a `constant`
-//! emitter whose radiance is the illuminant's spectrum (D65 or A): Mitsuba renders metamerism
-//! natively.
+//! Materials, two ways ([`crate::suite::Route`]). Through gonio's exports: every material is
+//! gonio's table of it ([`crate::export::table`]) written as a tensor `.bsdf`
+//! (`gonio_brdf::formats::mitsuba`) for Mitsuba's `measured` plugin; a table holds no delta,
+//! so the coat's mirror reflection and the whole mirror are lost (the mirror's table is black,
+//! which the exporter refuses: a black `diffuse` stands for it). Natively, for comparison:
+//! a Lambertian is `diffuse`; the smooth coat over a diffuse base is `plastic` (`nonlinear =
+//! true`, which divides the base's light by `1 − ρ r_i`, the series of internal reflections;
+//! without it Mitsuba divides by `1 − r_i` whatever the base) with a fitted internal
+//! reflectance (`optics::mitsuba_diffuse_reflectance`) and the Kubelka-Munk base reflectance
+//! computed by gonio; the mirror is `plastic` with a black base. Either way the metameric
+//! patches are spectral (the `scalar_spectral` variant: a spectral tensor file, or `diffuse`
+//! with spectra), and the sky a `constant` emitter whose radiance is the illuminant's spectrum
+//! (D65 or A): Mitsuba renders metamerism natively.
 
 use crate::error::Result;
+use crate::export;
 use crate::metamer;
 use crate::python;
 use crate::scene::{Geometry, Light, Material, SIZE, Scene};
+use crate::suite::Route;
 use serde_json::{Value, json};
 use std::path::Path;
 
@@ -35,26 +37,22 @@ fn spectrum(values: &[f64]) -> Value {
     json!({"type": "spectrum", "value": pairs})
 }
 
-/// The scene dict of `scene` at `spp` samples per pixel.
-pub fn scene_dict(scene: &Scene, spp: u32) -> Value {
+/// The scene dict of `scene` at `spp` samples per pixel by `route`, writing the exported
+/// tables it names into `dir`.
+pub fn scene_dict(scene: &Scene, spp: u32, route: Route, dir: &Path) -> Result<Value> {
     let spectral = scene.is_spectral();
     let mut objects = serde_json::Map::new();
     for o in &scene.objects {
-        let bsdf = match &o.material {
-            Material::Lambert { albedo } => {
-                json!({"type": "diffuse", "reflectance": {"type": "rgb", "value": albedo}})
-            }
-            Material::Spectral { reflectance } => {
-                json!({"type": "diffuse", "reflectance": spectrum(reflectance)})
-            }
-            Material::Coat(coat) => json!({
-                "type": "plastic", "int_ior": coat.index, "ext_ior": 1.0, "nonlinear": true,
-                "diffuse_reflectance": {"type": "rgb", "value": vec![coat.base_reflectance(); 3]},
-            }),
-            Material::Mirror { index } => json!({
-                "type": "plastic", "int_ior": index, "ext_ior": 1.0, "nonlinear": true,
-                "diffuse_reflectance": {"type": "rgb", "value": vec![0.0; 3]},
-            }),
+        let bsdf = if route == Route::Export && export::is_black(&o.material) {
+            // gonio's exporter refuses a black table (no retro-reflection to derive the ndf
+            // from); what the table would render is black.
+            json!({"type": "diffuse", "reflectance": {"type": "rgb", "value": vec![0.0; 3]}})
+        } else if route == Route::Export {
+            let path = export::mitsuba_file(dir, scene.id.name(), &o.name);
+            export::write_mitsuba(&o.material, &path)?;
+            json!({"type": "measured", "filename": path.display().to_string()})
+        } else {
+            native(&o.material)
         };
         let shape = match o.geometry {
             Geometry::Sphere { center, radius } => {
@@ -103,20 +101,40 @@ pub fn scene_dict(scene: &Scene, spp: u32) -> Value {
         objects.insert(format!("light{k}"), value);
     }
     let c = &scene.camera;
-    json!({
+    Ok(json!({
         "variant": if spectral { "scalar_spectral" } else { "scalar_rgb" },
         "size": SIZE, "spp": spp, "seed": 1,
         "sensor": {"origin": c.position, "target": c.look_at, "up": c.up, "fov": c.fov_deg},
         "objects": objects,
-    })
+    }))
 }
 
-/// Mitsuba's picture of `scene` (files in `dir`), `None` when Mitsuba is missing.
-pub fn render(scene: &Scene, dir: &Path, spp: u32) -> Result<Option<Vec<[f64; 3]>>> {
-    let name = scene.id.name();
+/// The native plugin standing for `material`.
+fn native(material: &Material) -> Value {
+    match material {
+        Material::Lambert { albedo } => {
+            json!({"type": "diffuse", "reflectance": {"type": "rgb", "value": albedo}})
+        }
+        Material::Spectral { reflectance } => {
+            json!({"type": "diffuse", "reflectance": spectrum(reflectance)})
+        }
+        Material::Coat(coat) => json!({
+            "type": "plastic", "int_ior": coat.index, "ext_ior": 1.0, "nonlinear": true,
+            "diffuse_reflectance": {"type": "rgb", "value": vec![coat.base_reflectance(); 3]},
+        }),
+        Material::Mirror { index } => json!({
+            "type": "plastic", "int_ior": index, "ext_ior": 1.0, "nonlinear": true,
+            "diffuse_reflectance": {"type": "rgb", "value": vec![0.0; 3]},
+        }),
+    }
+}
+
+/// Mitsuba's picture of `scene` by `route` (files in `dir`), `None` when Mitsuba is missing.
+pub fn render(scene: &Scene, dir: &Path, spp: u32, route: Route) -> Result<Option<Vec<[f64; 3]>>> {
+    let name = format!("{}_{}", scene.id.name(), route.name());
     let spec = dir.join(format!("{name}.mitsuba.json"));
     let out = dir.join(format!("{name}.mitsuba.f32"));
-    let text = serde_json::to_string_pretty(&scene_dict(scene, spp))?;
+    let text = serde_json::to_string_pretty(&scene_dict(scene, spp, route, dir)?)?;
     std::fs::write(&spec, text).map_err(|e| crate::Error::io(&spec.display().to_string(), e))?;
     if python::run("mitsuba_driver.py", DRIVER, dir, &[&spec, &out])?.is_none() {
         return Ok(None);

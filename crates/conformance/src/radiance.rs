@@ -3,24 +3,28 @@
 //! embedded driver `radiance.py`, with one ambient bounce sampled without caching (`-ab 1 -aa 0
 //! -ad 256`): the uniform sky is a `glow` source of 360° reached only by ambient rays.
 //!
-//! Materials, and which export each is. A Lambertian is `plastic` with no specular part (its
-//! diffuse reflectance is the colour, per RGB channel). The coat is gonio's export of the coat's
-//! body table as an XML BSDF (`gonio_brdf::formats::radiance_xml`, a tensor tree) for the
-//! `BSDF` material: a tensor tree has no delta component, so the coat's mirror reflection
-//! `F(θv) L` is lost. The mirror is Radiance's `mirror`, whose reflectance is one constant, set
-//! to the Fresnel reflectance at 45° (the middle of the region's angles): Radiance has no
-//! smooth dielectric reflector without transmission, so the change of F across the region is
-//! lost. Radiance is an RGB renderer: a spectral patch becomes its linear sRGB under D65 and
-//! the sky's colour that of the illuminant's white, so two patches equal under D65 stay equal
-//! under any light: the metameric pair collapses.
+//! Materials, two ways ([`crate::suite::Route`]). Through gonio's exports: every material is
+//! gonio's table of it ([`crate::export::table`]) written as an XML BSDF
+//! (`gonio_brdf::formats::radiance_xml`, a tensor tree) for the `BSDF` material; a tensor tree
+//! has no delta component, so the coat's mirror reflection `F(θv) L` and the whole mirror are
+//! lost. Natively, for comparison: a Lambertian is `plastic` with no specular part (its diffuse
+//! reflectance the colour, per RGB channel); the mirror is Radiance's `mirror`, whose
+//! reflectance is one constant, set to the Fresnel reflectance at 45° (the middle of the
+//! region's angles): Radiance has no smooth dielectric reflector without transmission, so the
+//! change of F across the region is lost; the coat has no native version (Radiance has no
+//! smooth coat over a diffuse base). Radiance is an RGB renderer: a spectral patch becomes its
+//! linear sRGB under D65 (natively) or its XYZ (the XML), and the sky's colour that of the
+//! illuminant's white, so two patches equal under D65 stay equal under any light: the
+//! metameric pair collapses.
 
 use crate::error::{Error, Result};
+use crate::export;
 use crate::metamer;
 use crate::optics::fresnel;
 use crate::python;
 use crate::scene::{Geometry, Light, Material, SIZE, Scene, rect_frame};
+use crate::suite::Route;
 use glam::DVec3;
-use gonio_brdf::table::{BrdfTable, Channels, Resolution};
 use gonio_color::{Illuminant, LinearSrgb, Observer, SpectralToXyz};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -58,8 +62,16 @@ fn polygon(center: [f64; 3], half: [f64; 2], rotate_x_deg: f64) -> String {
     s
 }
 
-/// The `.rad` text of `scene`, writing the XML BSDF it names into `dir`.
-pub fn scene_rad(scene: &Scene, dir: &Path) -> Result<String> {
+/// Whether Radiance has a native version of `scene`'s materials (not of the coat).
+pub fn has_native(scene: &Scene) -> bool {
+    !scene
+        .objects
+        .iter()
+        .any(|o| matches!(o.material, Material::Coat(_)))
+}
+
+/// The `.rad` text of `scene` by `route`, writing the XML BSDFs it names into `dir`.
+pub fn scene_rad(scene: &Scene, dir: &Path, route: Route) -> Result<String> {
     let mut t = format!("# {}\n", scene.title);
     let d65 = SpectralToXyz::new(
         &metamer::wavelengths_nm(),
@@ -97,7 +109,13 @@ pub fn scene_rad(scene: &Scene, dir: &Path) -> Result<String> {
     }
     for o in &scene.objects {
         let name = &o.name;
+        if route == Route::Export {
+            let xml = export::radiance_file(dir, scene.id.name(), name);
+            export::write_radiance(&o.material, &xml)?;
+            let _ = writeln!(t, "void BSDF {name}_m 6 0 {} 0 1 0 . 0 0", xml.display());
+        }
         let _ = match &o.material {
+            _ if route == Route::Export => Ok(()),
             Material::Lambert { albedo } => {
                 writeln!(t, "void plastic {name}_m 0 0 5 {} 0 0", rgb_line(*albedo))
             }
@@ -112,10 +130,10 @@ pub fn scene_rad(scene: &Scene, dir: &Path) -> Result<String> {
                 let f = fresnel(MIRROR_ANGLE_DEG.to_radians().cos(), *index);
                 writeln!(t, "void mirror {name}_m 0 0 3 {f} {f} {f}")
             }
-            Material::Coat(coat) => {
-                let xml = dir.join(format!("{name}.xml"));
-                write_coat_xml(&coat.description(), &xml)?;
-                writeln!(t, "void BSDF {name}_m 6 0 {} 0 1 0 . 0 0", xml.display())
+            Material::Coat(_) => {
+                return Err(Error::Invalid(
+                    "Radiance has no native smooth coat over a diffuse base".into(),
+                ));
             }
         };
         let _ = match o.geometry {
@@ -138,35 +156,6 @@ pub fn scene_rad(scene: &Scene, dir: &Path) -> Result<String> {
     Ok(t)
 }
 
-/// The coat's body table (gonio's closed form for a smooth coat over a diffuse base, at 500 and
-/// 600 nm, the first band kept: the coat is grey) exported as an XML BSDF to `path`.
-fn write_coat_xml(description: &str, path: &Path) -> Result<()> {
-    let bands = gonio_coating::system::default_bands();
-    let coating = gonio_coating::description::parse(description, &bands)
-        .map_err(|e| Error::Invalid(format!("coat: {e}")))?;
-    let stack = coating
-        .clear_coat()
-        .ok_or_else(|| Error::Invalid("coat: not a smooth coat over a diffuse base".into()))?;
-    let res = Resolution::isotropic(45, 45, 24);
-    let spectral = stack
-        .body_table(
-            res,
-            &[500.0, 600.0],
-            gonio_coating::clear_coat::body_provenance("gonio conformance coat"),
-        )
-        .map_err(|e| Error::Invalid(format!("coat: {e}")))?;
-    let mono = BrdfTable::from_values(
-        res,
-        Channels::Mono,
-        spectral.provenance().clone(),
-        spectral.values().iter().step_by(2).copied().collect(),
-    )
-    .map_err(|e| Error::Invalid(format!("coat table: {e}")))?;
-    gonio_brdf::formats::radiance_xml::write(&mono, path, "coat", None)
-        .map_err(|e| Error::Invalid(format!("coat XML: {e}")))?;
-    Ok(())
-}
-
 /// The rays, 2 × 2 per pixel, "ox oy oz dx dy dz" per line, pixels row by row from the top.
 pub fn rays(scene: &Scene) -> String {
     let o = scene.camera.position;
@@ -181,15 +170,16 @@ pub fn rays(scene: &Scene) -> String {
     s
 }
 
-/// Radiance's picture of `scene` (files in `dir`), `None` when pyradiance is missing.
-pub fn render(scene: &Scene, dir: &Path) -> Result<Option<Vec<[f64; 3]>>> {
-    let name = scene.id.name();
+/// Radiance's picture of `scene` by `route` (files in `dir`), `None` when pyradiance is
+/// missing.
+pub fn render(scene: &Scene, dir: &Path, route: Route) -> Result<Option<Vec<[f64; 3]>>> {
+    let name = format!("{}_{}", scene.id.name(), route.name());
     let rad = dir.join(format!("{name}.rad"));
     let rays_path = dir.join(format!("{name}.rays"));
     let options = dir.join("rtrace_options.json");
     let out = dir.join(format!("{name}.radiance.f32"));
     let io = |p: &Path, e| Error::io(&p.display().to_string(), e);
-    std::fs::write(&rad, scene_rad(scene, dir)?).map_err(|e| io(&rad, e))?;
+    std::fs::write(&rad, scene_rad(scene, dir, route)?).map_err(|e| io(&rad, e))?;
     std::fs::write(&rays_path, rays(scene)).map_err(|e| io(&rays_path, e))?;
     std::fs::write(&options, serde_json::to_string(&OPTIONS)?).map_err(|e| io(&options, e))?;
     if python::run(

@@ -1,5 +1,6 @@
 //! Running the suite: every scene through every renderer asked for, each picture compared with
-//! the scene's reference, a verdict per scene and renderer, and the pictures written.
+//! the scene's reference, a verdict per scene and renderer, and the pictures and results written
+//! (the report composed from them is `gonio_report::conformance`'s).
 //!
 //! The verdicts. A scene of luminance (the furnaces, the plate, the coat, the mirror) passes
 //! when every region's mean luminance is within `4 SE + 1e-4 Y_ref + loss Y_ref` of the
@@ -52,6 +53,46 @@ impl Renderer {
     }
 }
 
+/// How a renderer got the scene's materials.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Route {
+    /// gonio's renderer on gonio's own scene.
+    Own,
+    /// A peer through gonio's exports of the materials (tables: Mitsuba's tensor `.bsdf`,
+    /// Radiance's XML BSDF; [`crate::export`]).
+    Export,
+    /// A peer on its native plugins for the same models, where it has them: beside the export,
+    /// it shows what the export loses.
+    Native,
+}
+
+impl Route {
+    /// Its name in file names and the report.
+    pub fn name(self) -> &'static str {
+        match self {
+            Route::Own => "own",
+            Route::Export => "export",
+            Route::Native => "native",
+        }
+    }
+}
+
+impl Renderer {
+    /// The routes by which `self` renders `scene`: gonio its own; a peer gonio's export and,
+    /// where it has one, its native version.
+    pub fn routes(self, scene: &Scene) -> Vec<Route> {
+        match self {
+            Renderer::Gonio => vec![Route::Own],
+            Renderer::Mitsuba => vec![Route::Export, Route::Native],
+            Renderer::Radiance if radiance::has_native(scene) => {
+                vec![Route::Export, Route::Native]
+            }
+            Renderer::Radiance => vec![Route::Export],
+        }
+    }
+}
+
 /// What to run.
 #[derive(Debug, Clone)]
 pub struct Options {
@@ -91,6 +132,7 @@ pub struct Check {
 #[derive(Debug, Clone, Serialize)]
 pub struct Run {
     pub renderer: Renderer,
+    pub route: Route,
     pub verdict: Verdict,
     pub loss: Option<Loss>,
     pub regions: Vec<RegionStats>,
@@ -116,6 +158,22 @@ pub struct Results {
     pub scenes: Vec<SceneResult>,
 }
 
+/// A run's name in the report and the pictures' file names: `gonio`, `mitsuba_export`,
+/// `radiance_native`.
+pub fn label(renderer: Renderer, route: Route) -> String {
+    match route {
+        Route::Own => renderer.name().to_string(),
+        r => format!("{}_{}", renderer.name(), r.name()),
+    }
+}
+
+impl Run {
+    /// Its name ([`label`]).
+    pub fn label(&self) -> String {
+        label(self.renderer, self.route)
+    }
+}
+
 impl Results {
     /// Whether every available renderer passed every scene it can represent.
     pub fn passed(&self) -> bool {
@@ -137,8 +195,20 @@ fn write(path: &Path, bytes: &[u8]) -> Result<()> {
     )
 }
 
-/// Run the suite.
+/// Enlargement of the pictures in a run's strip (`NAME_RENDERER_strip.png`: reference, picture,
+/// difference, FLIP map), so that a 64-pixel picture shows its pixels in the report.
+const STRIP_SCALE: usize = 3;
+
+/// Run the suite: the pictures (PNG) and `results.json` are written into `options.dir`, the
+/// scenes' files for each renderer into its `files/`; the report is composed above this crate
+/// (`gonio_report::conformance`).
 pub fn run(options: &Options) -> Result<Results> {
+    if !(1..=65536).contains(&options.spp) {
+        return Err(Error::Invalid(format!(
+            "spp: {} samples per pixel is not between 1 and 65536",
+            options.spp
+        )));
+    }
     let dir = &options.dir;
     let files = dir.join("files");
     std::fs::create_dir_all(&files).map_err(|e| Error::io(&files.display().to_string(), e))?;
@@ -147,26 +217,31 @@ pub fn run(options: &Options) -> Result<Results> {
         let scene = Scene::new(id)?;
         let reference = scene.reference()?;
         let name = id.name();
+        let reference8 = compare::srgb8(&reference.rgb, scene.white);
         write(
             &dir.join(format!("{name}_reference.png")),
-            &compare::png(compare::srgb8(&reference.rgb, scene.white))?,
+            &compare::png(reference8.clone())?,
         )?;
         let mut runs = vec![];
-        for &renderer in &options.renderers {
+        for (renderer, route) in options
+            .renderers
+            .iter()
+            .flat_map(|&r| r.routes(&scene).into_iter().map(move |route| (r, route)))
+        {
             let start = std::time::Instant::now();
             let spp = samples(&scene, options.spp);
             let picture = match renderer {
                 Renderer::Gonio => Some(gonio::render(&scene, &files, spp)?),
-                Renderer::Mitsuba => mitsuba::render(&scene, &files, spp)?,
-                Renderer::Radiance => radiance::render(&scene, &files)?,
+                Renderer::Mitsuba => mitsuba::render(&scene, &files, spp, route)?,
+                Renderer::Radiance => radiance::render(&scene, &files, route)?,
             };
             let seconds = start.elapsed().as_secs_f64();
-            let loss = loss(renderer, id);
             let Some(mut picture) = picture else {
                 runs.push(Run {
                     renderer,
+                    route,
                     verdict: Verdict::Unavailable,
-                    loss,
+                    loss: None,
                     regions: vec![],
                     checks: vec![],
                     flip_mean: f64::NAN,
@@ -177,26 +252,25 @@ pub fn run(options: &Options) -> Result<Results> {
             if scene.is_spectral() {
                 normalise_to_white(&scene, &reference, &mut picture);
             }
+            let loss = loss(renderer, route, &scene, &files)?;
             let regions = compare::regions(&scene, &reference, &picture);
             let checks = checks(&scene, &regions, loss.as_ref());
             let (flip_map, flip_mean) = compare::flip(&reference.rgb, &picture, scene.white);
-            let tag = format!("{name}_{}", renderer.name());
+            let tag = format!("{name}_{}", label(renderer, route));
+            let picture8 = compare::srgb8(&picture, scene.white);
+            let diff8 = compare::difference(&reference.rgb, &picture, 0.1 * scene.white);
+            let (strip, w, h) =
+                compare::strip(&[&reference8, &picture8, &diff8, &flip_map], STRIP_SCALE);
             write(
-                &dir.join(format!("{tag}.png")),
-                &compare::png(compare::srgb8(&picture, scene.white))?,
+                &dir.join(format!("{tag}_strip.png")),
+                &compare::png_sized(strip, w, h)?,
             )?;
+            write(&dir.join(format!("{tag}.png")), &compare::png(picture8)?)?;
             write(
                 &dir.join(format!("{tag}_flip.png")),
                 &compare::png(flip_map)?,
             )?;
-            write(
-                &dir.join(format!("{tag}_diff.png")),
-                &compare::png(compare::difference(
-                    &reference.rgb,
-                    &picture,
-                    0.1 * scene.white,
-                ))?,
-            )?;
+            write(&dir.join(format!("{tag}_diff.png")), &compare::png(diff8)?)?;
             let pass = checks.iter().all(|c| c.pass);
             let verdict = match (&loss, pass) {
                 (_, true) => Verdict::Pass,
@@ -205,6 +279,7 @@ pub fn run(options: &Options) -> Result<Results> {
             };
             runs.push(Run {
                 renderer,
+                route,
                 verdict,
                 loss,
                 regions,
@@ -223,10 +298,6 @@ pub fn run(options: &Options) -> Result<Results> {
     write(
         &dir.join("results.json"),
         serde_json::to_string_pretty(&results)?.as_bytes(),
-    )?;
-    write(
-        &dir.join("report.html"),
-        crate::report::html(&results).as_bytes(),
     )?;
     Ok(results)
 }

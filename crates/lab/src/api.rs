@@ -64,6 +64,7 @@ pub fn router(lab: Arc<Lab>) -> Router {
         .route("/api/match", post(start_match))
         .route("/api/sensitivity", post(start_sensitivity))
         .route("/api/report/demo", post(start_report))
+        .route("/api/report/conformance", post(start_conformance))
         .route("/api/reports/{name}", get(report_page))
         .route("/api/jobs/{id}", get(job))
         .route("/api/jobs/{id}/cancel", post(cancel_job))
@@ -490,6 +491,20 @@ async fn start_report(
     let writer = lab.clone();
     Ok(start_job(lab, "report", None, move |job, _| {
         crate::report::run(&writer, job, &request)
+    }))
+}
+
+/// Start the conformance suite's report as a job (crate::report); a bad request is refused
+/// before the job starts.
+async fn start_conformance(
+    State(lab): Shared,
+    raw: Result<Bytes, BytesRejection>,
+) -> Result<(StatusCode, axum::Json<Value>), ApiError> {
+    let request: crate::report::ConformanceRequest = parse(raw, &lab)?;
+    let (name, folder) = lab.report_folder();
+    let options = request.options(folder)?;
+    Ok(start_job(lab, "report", None, move |_, _| {
+        crate::report::run_conformance(&name, &options)
     }))
 }
 

@@ -111,6 +111,9 @@ impl From<gonio_report::ReportError> for Error {
             E::Instrument(i) => i.into(),
             E::Formulation(f) => f.into(),
             E::Render(r) => r.into(),
+            E::Conformance(gonio_conformance::Error::Io { ref source, .. }) => {
+                os(source.kind(), e.to_string())
+            }
             other => invalid(other.to_string()),
         }
     }

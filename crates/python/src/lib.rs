@@ -39,6 +39,7 @@ fn _gonio(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(render::render_scene, m)?)?;
     m.add_function(wrap_pyfunction!(report::report_demo, m)?)?;
     m.add_function(wrap_pyfunction!(render::booth_json, m)?)?;
+    m.add_function(wrap_pyfunction!(report::report_conformance, m)?)?;
     m.add_function(wrap_pyfunction!(color::xyz, m)?)?;
     m.add_function(wrap_pyfunction!(color::from_lab, m)?)?;
     m.add_class::<coating::Coating>()?;

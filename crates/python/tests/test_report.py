@@ -35,3 +35,25 @@ def test_an_output_folder_that_cannot_be_made_is_an_os_error(tmp_path: Path) -> 
     taken.write_text("a file")
     with pytest.raises(OSError, match="taken"):
         gonio.report.demo(taken / "out", quick=True)
+
+
+def test_conformance_on_gonio_returns_the_results_and_writes_the_report(tmp_path: Path) -> None:
+    out = tmp_path / "conformance"
+    results = gonio.report.conformance(out, renderers=["gonio"], spp=16)
+    assert results["report"] == out / "report.html"
+    html = results["report"].read_text(encoding="utf-8")
+    assert (out / "results.json").is_file()
+    names = [s["scene"]["id"] for s in results["scenes"]]
+    assert "white_furnace" in names and "metamer_a" in names
+    for scene in results["scenes"]:
+        (run,) = scene["runs"]
+        assert run["renderer"] == "gonio"
+        assert run["verdict"] == "pass", scene["scene"]["id"]
+        assert f"<h2>{scene['scene']['id']}</h2>" in html
+
+
+def test_conformance_refuses_an_unknown_renderer_and_a_bad_spp(tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match="unknown renderer 'povray'"):
+        gonio.report.conformance(tmp_path, renderers=["povray"])
+    with pytest.raises(ValueError, match="not between 1 and 65536"):
+        gonio.report.conformance(tmp_path, renderers=["gonio"], spp=0)

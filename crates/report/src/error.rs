@@ -37,9 +37,9 @@ pub enum ReportError {
     #[error(transparent)]
     Render(#[from] gonio_render::RenderError),
     #[error(transparent)]
-    Plot(#[from] gonio_plot::PlotError),
-    #[error(transparent)]
     Conformance(#[from] gonio_conformance::Error),
+    #[error(transparent)]
+    Plot(#[from] gonio_plot::PlotError),
     /// Formatting the page failed (writing into a `String` does not; kept for `write!`).
     #[error("formatting the report: {0}")]
     Format(#[from] std::fmt::Error),

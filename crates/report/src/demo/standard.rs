@@ -15,7 +15,7 @@ use crate::output::{copy, create_dir};
 use gonio_brdf::table::Resolution;
 use gonio_coating::description;
 use gonio_coating::system::default_bands;
-use gonio_conformance::{Options, Renderer, Verdict};
+use gonio_conformance::{Options, Renderer};
 use gonio_instrument::multiangle::E2194;
 use gonio_io::Progress;
 use gonio_render::booth::closure::ClosurePicture;
@@ -169,7 +169,7 @@ pub(super) fn standard_section(dir: &Path, quick: bool, work: &Progress) -> Resu
                 .iter()
                 .find(|d| d.space == DisplaySpace::DisplayP3)
                 .context("write_view wrote no Display P3 rendering")?;
-            let luminance = mean_specimen_luminance(view);
+            let luminance = booth::closure::specimen_mean(view)?.xyz[1];
             blocks.push(Block::Image {
                 path: srgb.png.clone(),
                 caption: format!(
@@ -267,7 +267,7 @@ pub(super) fn standard_section(dir: &Path, quick: bool, work: &Progress) -> Resu
 /// the link to the suite's own report.
 fn conformance_blocks(dir: &Path, spp: u32) -> Result<Vec<Block>> {
     let out = dir.join("conformance");
-    let results = gonio_conformance::run(&Options {
+    let (results, _) = crate::conformance::run(&Options {
         renderers: vec![Renderer::Gonio],
         spp,
         dir: out,
@@ -286,13 +286,7 @@ fn conformance_blocks(dir: &Path, spp: u32) -> Result<Vec<Block>> {
                 vec![
                     s.scene.id.name().to_string(),
                     s.scene.title.clone(),
-                    match r.verdict {
-                        Verdict::Pass => "pass",
-                        Verdict::KnownLoss => "fails: known loss",
-                        Verdict::Fail => "FAIL",
-                        Verdict::Unavailable => "unavailable",
-                    }
-                    .to_string(),
+                    crate::conformance::verdict_name(r.verdict).to_string(),
                     format!(
                         "{} of {}",
                         r.checks.iter().filter(|c| c.pass).count(),
@@ -334,18 +328,6 @@ fn conformance_blocks(dir: &Path, spp: u32) -> Result<Vec<Block>> {
             links: vec![("report.html".into(), "conformance/report.html".into())],
         },
     ])
-}
-
-/// The mean luminance of the pixels the specimen covers whole, cd/m².
-fn mean_specimen_luminance(view: &booth::BoothView) -> f64 {
-    let (sum, n) = view
-        .image
-        .xyz
-        .iter()
-        .zip(&view.specimen)
-        .filter(|(_, on)| **on)
-        .fold((0.0, 0usize), |(s, n), (p, _)| (s + f64::from(p[1]), n + 1));
-    sum / n.max(1) as f64
 }
 
 /// The closure's paragraph and table.

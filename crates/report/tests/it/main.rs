@@ -1,4 +1,5 @@
 //! Integration tests of gonio-report: the reports as the front ends compose them through the
 //! library. One test binary per crate; each module is one subject.
 
+mod conformance;
 mod demo;
