@@ -2,25 +2,17 @@
 //! internal diffuse reflectance of a smooth interface, Kubelka-Munk reflectance of a layer over a
 //! substrate, and the radiance of a smooth coat over a diffuse base under a uniform sky.
 //!
-//! Written here from the sources, not taken from `gonio-coating`, so that the references are an
+//! The Fresnel reflectance is gonio's own ([`gonio_brdf::fresnel::dielectric`]); the rest is
+//! written here from the sources, not taken from `gonio-coating`, so that the references are an
 //! independent computation of what the renderers must reproduce.
 
 /// Unpolarised Fresnel reflectance of light arriving from a medium of index 1 onto a dielectric
 /// of relative index `n` (`n < 1`: from inside a denser medium), `cos_i` the cosine of the angle
-/// of incidence (Born & Wolf, *Principles of Optics*, §1.5.2; `docs/physics.md`, "Fresnel"):
-/// `ct = √(1 − (1 − c²)/n²)`, `rs = (c − n ct)/(c + n ct)`, `rp = (n c − ct)/(n c + ct)`,
-/// `R = (rs² + rp²)/2`; 1 beyond the critical angle.
-pub fn fresnel(cos_i: f64, n: f64) -> f64 {
-    let c = cos_i.clamp(0.0, 1.0);
-    let st2 = (1.0 - c * c) / (n * n);
-    if st2 >= 1.0 {
-        return 1.0;
-    }
-    let ct = (1.0 - st2).sqrt();
-    let rs = (c - n * ct) / (c + n * ct);
-    let rp = (n * c - ct) / (n * c + ct);
-    0.5 * (rs * rs + rp * rp)
-}
+/// of incidence; 1 beyond the critical angle. It is gonio's one Fresnel formula
+/// ([`gonio_brdf::fresnel::dielectric`], Born & Wolf §1.5.2; `docs/physics.md`, "Fresnel"),
+/// which the brdf crate's tests hold against tmm: the references' independence lies in their
+/// closed forms and quadratures, not in writing the same formula twice.
+pub use gonio_brdf::fresnel::dielectric as fresnel;
 
 /// Hemispherical (diffuse) reflectance of the smooth interface for Lambertian light arriving
 /// from the medium of index 1 onto relative index `n`:
