@@ -13,7 +13,6 @@
 use super::{BoothPictures, BoothSpec, Run, material, render};
 use crate::error::{RenderError, Result};
 use crate::picture::{ViewFiles, XyzPicture, write_manifest, write_view};
-use image::ImageEncoder;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 
@@ -218,21 +217,11 @@ fn write_views(
 /// An 8-bit grey PNG, 255 where `inside`, 0 elsewhere, written atomically.
 fn write_grey_png(path: &Path, width: usize, height: usize, inside: &[bool]) -> Result<()> {
     let bytes: Vec<u8> = inside.iter().map(|&i| if i { 255 } else { 0 }).collect();
-    let too_large = || RenderError::image(path, format!("{width} × {height} is too large for PNG"));
-    let (w, h) = (
-        u32::try_from(width).map_err(|_| too_large())?,
-        u32::try_from(height).map_err(|_| too_large())?,
-    );
-    gonio_io::write_atomic(
+    crate::picture::write_png(
         path,
-        |out| {
-            image::codecs::png::PngEncoder::new(out)
-                .write_image(&bytes, w, h, image::ExtendedColorType::L8)
-                .map_err(|e| RenderError::image(path, format!("cannot encode the PNG: {e}")))
-        },
-        |e| RenderError::Io {
-            path: path.to_path_buf(),
-            error: e,
-        },
+        (width, height),
+        &bytes,
+        image::ExtendedColorType::L8,
+        None,
     )
 }

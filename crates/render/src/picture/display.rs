@@ -250,7 +250,24 @@ fn write_rgb_png(
     rgb: &[[u8; 3]],
     icc: Option<&[u8]>,
 ) -> Result<()> {
-    let bytes: &[u8] = rgb.as_flattened();
+    write_png(
+        path,
+        (width, height),
+        rgb.as_flattened(),
+        image::ExtendedColorType::Rgb8,
+        icc,
+    )
+}
+
+/// An 8-bit PNG of `bytes` (`colour`: grey `L8` or `Rgb8`), with `icc` in its iCCP chunk when
+/// given, written atomically.
+pub(crate) fn write_png(
+    path: &Path,
+    (width, height): (usize, usize),
+    bytes: &[u8],
+    colour: image::ExtendedColorType,
+    icc: Option<&[u8]>,
+) -> Result<()> {
     let too_large = || RenderError::image(path, format!("{width} × {height} is too large for PNG"));
     let (w, h) = (
         u32::try_from(width).map_err(|_| too_large())?,
@@ -266,7 +283,7 @@ fn write_rgb_png(
                 })?;
             }
             encoder
-                .write_image(bytes, w, h, image::ExtendedColorType::Rgb8)
+                .write_image(bytes, w, h, colour)
                 .map_err(|e| RenderError::image(path, format!("cannot encode the PNG: {e}")))
         },
         |e| RenderError::Io {

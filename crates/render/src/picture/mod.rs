@@ -22,6 +22,7 @@ mod profile;
 mod view;
 mod xyz_exr;
 
+pub(crate) use display::write_png;
 pub use display::{DisplayPicture, MASK_BOTH, MASK_OUT_OF_GAMUT, MASK_OVER_RANGE};
 pub use manifest::{MANIFEST_FORMAT, sha256_file, write_manifest};
 pub use profile::{DisplaySpace, RENDERING_INTENT};
