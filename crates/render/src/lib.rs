@@ -21,6 +21,7 @@ pub mod camera;
 pub mod coating_material;
 pub mod denoise;
 pub mod difference;
+mod env_guide;
 pub mod error;
 pub mod flakes;
 pub mod geometry;

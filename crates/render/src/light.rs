@@ -1,17 +1,20 @@
 //! Light sources and their sampling for next-event estimation: point lights, distant
-//! (collimated) lights, spherical and planar (rectangle, disk) area lights, an equirectangular environment map importance-sampled
-//! by luminance, and a uniform sky. Every sampler returns the direction, the radiance and the
-//! solid-angle pdf together, and [`Light::pdf`] gives the same pdf for any direction, so that
-//! multiple importance sampling can weigh light and BRDF samples (Veach 1997, ch. 9).
+//! (collimated) lights, spherical and planar (rectangle, disk) area lights, an equirectangular
+//! environment map importance-sampled by luminance times the cosine to the lit surface's normal
+//! ([`crate::env_guide`]), and a uniform sky sampled by that cosine. Every sampler returns the
+//! direction, the radiance and the solid-angle pdf together, and [`Light::pdf`] gives the same
+//! pdf for any direction and normal, so that multiple importance sampling can weigh light and
+//! BRDF samples (Veach 1997, ch. 9).
 //!
 //! The environment is mapped with +y up: a direction `(sin θ cos φ, cos θ, sin θ sin φ)` reads
 //! the map at `u = (φ - rotation)/2π` (column), `v = θ/π` (row, 0 at the top).
 
+use crate::env_guide::CosineGuide;
 use crate::geometry::{Shape, planar_coords};
 use crate::image::Image;
 use glam::{DVec2, DVec3};
 use gonio_brdf::Rgb;
-use gonio_brdf::sampling::{Frame, PiecewiseConstant2D, concentric_disk};
+use gonio_brdf::sampling::{Frame, concentric_disk, cosine_hemisphere, cosine_hemisphere_pdf};
 use std::f64::consts::{PI, TAU};
 
 /// A light sample seen from a point.
@@ -54,8 +57,11 @@ impl Light {
         matches!(self, Light::Environment(_) | Light::Sky { .. })
     }
 
-    /// Sample a direction toward the light from `p`.
-    pub fn sample(&self, p: DVec3, u: DVec2, shapes: &[Shape]) -> Option<LightSample> {
+    /// Sample a direction toward the light from `p`, a point of a surface of unit shading
+    /// normal `n` (which the infinite lights sample by the cosine to it), from the uniform
+    /// numbers `u.x`, `u.y` and `u.z` (the environment's choice among its distributions).
+    pub fn sample(&self, p: DVec3, n: DVec3, u: DVec3, shapes: &[Shape]) -> Option<LightSample> {
+        let (choice, u) = (u.z, u.truncate());
         match self {
             Light::Point {
                 position,
@@ -91,31 +97,31 @@ impl Light {
                     delta: false,
                 })
             }
-            Light::Environment(env) => env.sample(u),
+            Light::Environment(env) => env.sample(n, u, choice),
             Light::Sky { radiance } => {
-                // Uniform sphere (pbrt-v4 §A.5.2).
-                let z = 1.0 - 2.0 * u.x;
-                let r = (1.0 - z * z).max(0.0).sqrt();
-                let phi = TAU * u.y;
+                // The cosine law about the normal (pbrt-v4 §A.5.3): the whole integrand of a
+                // Lambertian surface under a uniform sky, so its estimate has no variance.
+                let local = cosine_hemisphere(u);
                 Some(LightSample {
-                    wi: DVec3::new(r * phi.cos(), r * phi.sin(), z),
+                    wi: Frame::from_z(n).to_world(local).normalize(),
                     dist: f64::INFINITY,
                     li: *radiance,
-                    pdf: 1.0 / (4.0 * PI),
+                    pdf: cosine_hemisphere_pdf(local.z),
                     delta: false,
                 })
             }
         }
     }
 
-    /// The solid-angle pdf with which [`Light::sample`] returns `wi` from `p`; for an area
-    /// light `hit` is the point of the light the direction reaches.
-    pub fn pdf(&self, p: DVec3, wi: DVec3, hit: DVec3, shapes: &[Shape]) -> f64 {
+    /// The solid-angle pdf with which [`Light::sample`] returns `wi` from `p` on a surface of
+    /// unit shading normal `n`; for an area light `hit` is the point of the light the
+    /// direction reaches.
+    pub fn pdf(&self, p: DVec3, n: DVec3, wi: DVec3, hit: DVec3, shapes: &[Shape]) -> f64 {
         match self {
             Light::Point { .. } | Light::Distant { .. } => 0.0,
             Light::Area { prim, .. } => shape_pdf(&shapes[*prim], p, wi, hit),
-            Light::Environment(env) => env.pdf(wi),
-            Light::Sky { .. } => 1.0 / (4.0 * PI),
+            Light::Environment(env) => env.pdf(n, wi),
+            Light::Sky { .. } => cosine_hemisphere_pdf(n.dot(wi)),
         }
     }
 
@@ -223,14 +229,14 @@ fn shape_pdf(shape: &Shape, p: DVec3, wi: DVec3, hit: DVec3) -> f64 {
 }
 
 /// An equirectangular environment map, importance-sampled in proportion to luminance times
-/// `sin θ` with a marginal distribution over rows and a conditional one per row (pbrt-v4 §A.4.2).
+/// `sin θ` times the cosine to the lit surface's normal ([`CosineGuide`]).
 #[derive(Debug)]
 pub struct EnvMap {
     image: Image,
     scale: f64,
     rotation: f64,
-    /// Pixels in proportion to luminance times `sin θ` (x: columns, y: rows).
-    pixels: PiecewiseConstant2D,
+    /// Pixels in proportion to luminance times `sin θ` times the cosine, per normal.
+    guide: CosineGuide,
 }
 
 impl EnvMap {
@@ -244,12 +250,12 @@ impl EnvMap {
                 (0..w).map(move |i| luminance(image.get(i, j)) * sin_t)
             })
             .collect();
-        let pixels = PiecewiseConstant2D::new(&weights, w);
+        let guide = CosineGuide::new(&weights, w, h, rotation_rad);
         EnvMap {
             image,
             scale,
             rotation: rotation_rad,
-            pixels,
+            guide,
         }
     }
 
@@ -274,11 +280,11 @@ impl EnvMap {
         Rgb::from_array(self.image.get(i, j).map(f64::from)) * self.scale
     }
 
-    fn sample(&self, u: DVec2) -> Option<LightSample> {
-        if self.pixels.total() <= 0.0 {
+    fn sample(&self, n: DVec3, u: DVec2, choice: f64) -> Option<LightSample> {
+        if self.guide.total() <= 0.0 {
             return None;
         }
-        let ((i, j), p) = self.pixels.sample(u);
+        let ((i, j), p, pdf_uv) = self.guide.sample(n, u, choice)?;
         let (uu, v) = (p.x, p.y);
         // Keep off the poles, where the density per steradian is singular.
         let theta = PI * v.clamp(1e-9, 1.0 - 1e-9);
@@ -287,7 +293,6 @@ impl EnvMap {
         if sin_t <= 0.0 {
             return None;
         }
-        let pdf_uv = self.pixels.density(i, j);
         let wi = DVec3::new(sin_t * phi.cos(), theta.cos(), sin_t * phi.sin());
         // The radiance of the sampled pixel itself (recomputing it from `wi` could round into a
         // neighbour at a pixel edge).
@@ -300,8 +305,8 @@ impl EnvMap {
         })
     }
 
-    fn pdf(&self, d: DVec3) -> f64 {
-        if self.pixels.total() <= 0.0 {
+    fn pdf(&self, n: DVec3, d: DVec3) -> f64 {
+        if self.guide.total() <= 0.0 {
             return 0.0;
         }
         let (u, v) = self.dir_to_uv(d);
@@ -310,7 +315,7 @@ impl EnvMap {
         if sin_t <= 0.0 {
             return 0.0;
         }
-        self.pixels.density(i, j) / (2.0 * PI * PI * sin_t)
+        self.guide.density(n, i, j) / (2.0 * PI * PI * sin_t)
     }
 }
 
@@ -350,16 +355,67 @@ mod tests {
         EnvMap::new(img, 2.0, 0.3)
     }
 
+    /// Normals to light from: the poles, the map's seam, and directions between.
+    fn normals() -> Vec<DVec3> {
+        let mut n = vec![DVec3::Y, -DVec3::Y, DVec3::X, DVec3::Z, -DVec3::Z];
+        n.extend((0..12).map(|k| {
+            let (t, p) = (0.3 + 0.21 * k as f64, 1.7 * k as f64);
+            DVec3::new(t.sin() * p.cos(), t.cos(), t.sin() * p.sin())
+        }));
+        n
+    }
+
     #[test]
-    fn environment_pdf_integrates_to_one_and_matches_samples() {
+    fn environment_pdf_integrates_to_one_covers_the_hemisphere_and_matches_samples() {
         let env = test_map();
-        let total = pdf_integral(|d| env.pdf(d), 400);
-        assert!((total - 1.0).abs() < 2e-3, "{total}");
-        for k in 1..500 {
-            let u = DVec2::new((k as f64 * 0.618034).fract(), (k as f64 * 0.7548).fract());
-            let s = env.sample(u).unwrap();
-            assert!((env.pdf(s.wi) / s.pdf - 1.0).abs() < 1e-6);
-            assert_eq!(s.li, env.radiance(s.wi));
+        for n in normals() {
+            let total = pdf_integral(|d| env.pdf(n, d), 400);
+            assert!((total - 1.0).abs() < 2e-3, "{n}: {total}");
+            // Every direction above the horizon (the map has no black pixel) can be sampled:
+            // a light sample alone is unbiased.
+            let uncovered =
+                pdf_integral(|d| f64::from(d.dot(n) > 1e-9 && env.pdf(n, d) <= 0.0), 200);
+            assert_eq!(uncovered, 0.0, "{n}");
+            for k in 1..500 {
+                let u = DVec2::new((k as f64 * 0.618034).fract(), (k as f64 * 0.7548).fract());
+                let s = env.sample(n, u, (k as f64 * 0.4142).fract()).unwrap();
+                assert!((env.pdf(n, s.wi) / s.pdf - 1.0).abs() < 1e-6);
+                assert_eq!(s.li, env.radiance(s.wi));
+            }
+        }
+    }
+
+    #[test]
+    fn few_environment_samples_fall_below_the_horizon() {
+        // A 256 × 128 map has 64 × 32 cells of 5.6°, each within about 4° of its centre, and
+        // the normal cells reach about 4° from theirs: the cosine bound lets the density
+        // spill into a band about 8° deep below the horizon, where the bound is at most
+        // sin 8° = 0.14; the band holds about 2π ∫₀^0.14 (0.14 − x) dx / π ≈ 2% of the
+        // density of a uniform map (the test map's pixels vary 130-fold, hence 4%).
+        let mut img = Image::new(256, 128);
+        for (k, p) in img.pixels.iter_mut().enumerate() {
+            *p = [0.1 + ((k * 7919) % 13) as f32; 3];
+        }
+        let env = EnvMap::new(img, 1.0, 0.3);
+        for n in normals() {
+            let below = pdf_integral(|d| if d.dot(n) < 0.0 { env.pdf(n, d) } else { 0.0 }, 400);
+            assert!(below < 0.04, "{n}: {below}");
+        }
+    }
+
+    #[test]
+    fn sky_pdf_is_the_cosine_law_about_the_normal() {
+        let sky = Light::Sky { radiance: Rgb::ONE };
+        for n in normals() {
+            let total = pdf_integral(|d| sky.pdf(DVec3::ZERO, n, d, DVec3::ZERO, &[]), 400);
+            assert!((total - 1.0).abs() < 2e-3, "{n}: {total}");
+            for k in 1..200 {
+                let u = DVec2::new((k as f64 * 0.618034).fract(), (k as f64 * 0.7548).fract());
+                let s = sky.sample(DVec3::ZERO, n, u.extend(0.5), &[]).unwrap();
+                assert!(s.wi.dot(n) >= 0.0);
+                let pdf = sky.pdf(DVec3::ZERO, n, s.wi, DVec3::ZERO, &[]);
+                assert!((pdf / s.pdf - 1.0).abs() < 1e-9, "{pdf} {}", s.pdf);
+            }
         }
     }
 

@@ -285,9 +285,14 @@ fn sample_ld<S: Shading>(
         return S::C::ZERO;
     }
     let p_select = 1.0 / n_lights as f64;
-    let k = ((sampler.next() * n_lights as f64) as usize).min(n_lights - 1);
-    let u = sampler.next2();
-    let Some(ls) = scene.lights[k].sample(at.p, u, scene.accel.shapes()) else {
+    // The light's choice, and the rest of that number for the light's own choice among its
+    // distributions (an environment's normal nodes).
+    let choice = sampler.next() * n_lights as f64;
+    let k = (choice as usize).min(n_lights - 1);
+    let u = sampler
+        .next2()
+        .extend((choice - k as f64).clamp(0.0, 1.0 - 1e-12));
+    let Some(ls) = scene.lights[k].sample(at.p, at.frame.n, u, scene.accel.shapes()) else {
         return S::C::ZERO;
     };
     let wi = at.frame.to_local(ls.wi);
@@ -342,13 +347,15 @@ pub(crate) fn radiance<S: Shading>(
     // Density of the BRDF sample that produced `ray` (None: a camera ray).
     let mut prev_pdf: Option<f64> = None;
     let mut prev_p = ray.origin;
+    // The shading normal there (the light samples' density depends on it).
+    let mut prev_n = DVec3::Z;
     for bounce in 0..=opts.max_bounces {
         *rays += 1;
         let Some(hit) = scene.accel.intersect(&ray, 0.0, f64::INFINITY) else {
             for light in scene.lights.iter().filter(|l| l.is_infinite()) {
                 let le = shading.carry_rgb(light.le(ray.dir));
                 let w = emission_weight(prev_pdf, || {
-                    p_select * light.pdf(prev_p, ray.dir, DVec3::ZERO, shapes)
+                    p_select * light.pdf(prev_p, prev_n, ray.dir, DVec3::ZERO, shapes)
                 });
                 l += beta * le * w;
             }
@@ -359,7 +366,7 @@ pub(crate) fn radiance<S: Shading>(
                 let light = &scene.lights[k];
                 let le = shading.carry_rgb(light.emitted(hit.ng, ray.dir));
                 let w = emission_weight(prev_pdf, || {
-                    p_select * light.pdf(prev_p, ray.dir, hit.p, shapes)
+                    p_select * light.pdf(prev_p, prev_n, ray.dir, hit.p, shapes)
                 });
                 l += beta * le * w;
                 break;
@@ -446,6 +453,7 @@ pub(crate) fn radiance<S: Shading>(
         }
         prev_pdf = pdf;
         prev_p = hit.p;
+        prev_n = frame.n;
         ray = Ray {
             origin: at.origin,
             dir: wi_world.normalize(),
