@@ -2,20 +2,27 @@
 """gonio's path tracer against Mitsuba 3 on the same exported BRDF table (results in
 docs/performance.md, "Against Mitsuba 3 on the same exported table").
 
-A GGX table (alpha 0.2, index 1.5, over a coloured Lambert base) is tabulated by gonio and
-exported as a Mitsuba 3 tensor `.bsdf`; a sphere wearing it is rendered under
-examples/studio.hdr by `gonio render` (the .gbrdf) and by Mitsuba 3 (`scalar_rgb`, the `measured`
-plugin on the .bsdf, `ldsampler`, the `path` integrator), at the same size and samples per
-pixel. Each renderer's image is compared with its own converged reference (the same renderer
-at REF_SPP), so the figure is each renderer's noise at equal samples, whatever small
-differences of convention remain between the two scenes; and each render is timed (wall clock,
-both on all cores, the time to write the image included for gonio, the scene load excluded for
-neither).
+Each case tabulates a GGX model over a coloured Lambert base with gonio and exports it as a
+Mitsuba 3 tensor `.bsdf`; a unit sphere wearing it is rendered by `gonio render` (the .gbrdf) and
+by Mitsuba 3 (`scalar_rgb`, the `measured` plugin on the .bsdf, `ldsampler`, the `path`
+integrator), at the same size and samples per pixel, under one of two lights:
 
-    python3 crates/render/benches/versus_mitsuba.py [path/to/gonio]   (default target/release/gonio)
+- studio: examples/studio.hdr, the demo's studio (two soft boxes over a grey floor);
+- booth: the viewing booth's light (docs/standard.md), half diffuse and half directional: a
+  uniform sky and a collimated source at 45° giving the same irradiance on a horizontal plane.
 
-Prints one JSON object. Relative RMSE: sqrt(mean((I - R)²)) / mean(R) over every pixel and
-channel of the linear image; the reference's own noise adds sqrt(SPP/REF_SPP) of its RMSE in
+Each renderer's image is compared with its own converged reference (the same renderer at
+REF_SPP), so the figure is each renderer's noise at equal samples, whatever small differences of
+convention remain between the two scenes. Each render is timed without its scene's loading:
+Mitsuba's `mi.render` after a warm-up render, gonio's own render time (`gonio render --json`,
+the tiles alone: not the process's start, the table's loading or the image's writing; the wall
+time of the whole command is printed beside it). Efficiency is 1 / (time × relative RMSE²).
+
+    python3 crates/render/benches/versus_mitsuba.py [path/to/gonio] [case ...]
+    (default target/release/gonio and every case)
+
+Prints one JSON object per case. Relative RMSE: sqrt(mean((I - R)²)) / mean(R) over every pixel
+and channel of the linear image; the reference's own noise adds sqrt(SPP/REF_SPP) of its RMSE in
 quadrature (1/4 with the defaults: the figures are about 3% high). Needs `pip install mitsuba
 numpy`.
 """
@@ -32,8 +39,21 @@ import numpy as np
 
 SIZE, SPP, REF_SPP = 256, 64, 1024
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-MODEL = '{"model":"ggx","alpha":0.2,"index":1.5,"diffuse":[0.5,0.3,0.1]}'
 CAMERA = dict(origin=[0.0, 0.0, 4.0], target=[0.0, 0.0, 0.0], up=[0.0, 1.0, 0.0], fov=30.0)
+# The booth's light: a uniform sky of radiance L gives pi L on a horizontal plane; the collimated
+# source at 45° (toward +y and +z, in front of the sphere, above) gives the same there.
+SKY = 0.5
+TOWARD_LIGHT = [0.0, 1.0, 1.0]
+DISTANT = math.pi * SKY / math.cos(math.radians(45.0))
+
+CASES = {
+    "studio-ggx0.2": dict(model='{"model":"ggx","alpha":0.2,"index":1.5,"diffuse":[0.5,0.3,0.1]}',
+                          light="studio"),
+    "studio-ggx0.05": dict(model='{"model":"ggx","alpha":0.05,"index":1.5,"diffuse":[0.5,0.3,0.1]}',
+                           light="studio"),
+    "booth-ggx0.05": dict(model='{"model":"ggx","alpha":0.05,"index":1.5,"diffuse":[0.5,0.3,0.1]}',
+                          light="booth"),
+}
 
 SCENE = """
 [camera]
@@ -55,27 +75,61 @@ type = "sphere"
 center = [0.0, 0.0, 0.0]
 radius = 1.0
 material = "paint"
+"""
 
+STUDIO = """
 [[lights]]
 type = "environment"
 file = "{envmap}"
 """
 
+BOOTH = """
+[[lights]]
+type = "sky"
+radiance = {sky}
+
+[[lights]]
+type = "distant"
+direction = {toward}
+irradiance = {distant}
+"""
+
 
 def gonio_render(gonio, scene, out, spp):
     start = time.perf_counter()
-    subprocess.run(
-        [gonio, "render", scene, "--spp", str(spp), "--seed", "1", "-o", out],
+    run = subprocess.run(
+        [gonio, "render", scene, "--spp", str(spp), "--seed", "1", "-o", out, "--json"],
         check=True,
-        stdout=subprocess.DEVNULL,
+        capture_output=True,
+        text=True,
     )
-    seconds = time.perf_counter() - start
-    return np.array(mi.Bitmap(out)).astype(np.float64)[..., :3], seconds
+    wall = time.perf_counter() - start
+    seconds = json.loads(run.stdout)["seconds"]
+    return np.array(mi.Bitmap(out)).astype(np.float64)[..., :3], seconds, wall
 
 
-def mitsuba_scene(bsdf_file, envmap):
-    # gonio reads the map at u = phi/360° with phi from +x toward +z; Mitsuba at
-    # u = atan2(x, -z)/360°, a quarter turn ahead: turning its map by -90° about +y aligns them.
+def mitsuba_scene(bsdf_file, light, envmap):
+    if light == "studio":
+        # gonio reads the map at u = phi/360° with phi from +x toward +z; Mitsuba at
+        # u = atan2(x, -z)/360°, a quarter turn ahead: turning its map by -90° about +y aligns
+        # them.
+        lights = {
+            "light": {
+                "type": "envmap",
+                "filename": envmap,
+                "to_world": mi.ScalarTransform4f().rotate([0.0, 1.0, 0.0], -90.0),
+            }
+        }
+    else:
+        lights = {
+            "sky": {"type": "constant", "radiance": {"type": "rgb", "value": [SKY] * 3}},
+            # Mitsuba's direction is the light's travel, away from the light.
+            "sun": {
+                "type": "directional",
+                "direction": [-c for c in TOWARD_LIGHT],
+                "irradiance": {"type": "rgb", "value": [DISTANT] * 3},
+            },
+        }
     return mi.load_dict(
         {
             "type": "scene",
@@ -95,11 +149,7 @@ def mitsuba_scene(bsdf_file, envmap):
                 "radius": 1.0,
                 "bsdf": {"type": "measured", "filename": bsdf_file},
             },
-            "light": {
-                "type": "envmap",
-                "filename": envmap,
-                "to_world": mi.ScalarTransform4f().rotate([0.0, 1.0, 0.0], -90.0),
-            },
+            **lights,
         }
     )
 
@@ -115,36 +165,49 @@ def rel_rmse(image, ref):
     return float(math.sqrt(np.mean((image - ref) ** 2)) / np.mean(ref))
 
 
-def main():
-    gonio = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "target", "release", "gonio")
-    mi.set_variant("scalar_rgb")
+def run_case(gonio, name, case, d):
     envmap = os.path.join(ROOT, "examples", "studio.hdr")
-    with tempfile.TemporaryDirectory() as d:
-        table, bsdf = os.path.join(d, "ggx.gbrdf"), os.path.join(d, "ggx.bsdf")
-        subprocess.run([gonio, "brdf", "tabulate", "--model", MODEL, "-o", table], check=True,
-                       stdout=subprocess.DEVNULL)
-        subprocess.run([gonio, "brdf", "export", table, "--format", "mitsuba", "-o", bsdf],
-                       check=True, stdout=subprocess.DEVNULL)
-        scene = os.path.join(d, "scene.toml")
-        with open(scene, "w") as f:
-            f.write(SCENE.format(size=SIZE, table=table, envmap=envmap, **CAMERA))
-        g_img, g_time = gonio_render(gonio, scene, os.path.join(d, "g.exr"), SPP)
-        g_ref, g_ref_time = gonio_render(gonio, scene, os.path.join(d, "g_ref.exr"), REF_SPP)
-        m_scene = mitsuba_scene(bsdf, envmap)
-        mitsuba_render(m_scene, 4, 0)  # warm the caches (the texture, the tensor file)
-        m_img, m_time = mitsuba_render(m_scene, SPP, 1)
-        m_ref, m_ref_time = mitsuba_render(m_scene, REF_SPP, 2)
-    print(json.dumps({
+    table, bsdf = os.path.join(d, name + ".gbrdf"), os.path.join(d, name + ".bsdf")
+    subprocess.run([gonio, "brdf", "tabulate", "--model", case["model"], "-o", table], check=True,
+                   stdout=subprocess.DEVNULL)
+    subprocess.run([gonio, "brdf", "export", table, "--format", "mitsuba", "-o", bsdf],
+                   check=True, stdout=subprocess.DEVNULL)
+    scene = os.path.join(d, name + ".toml")
+    lights = (STUDIO.format(envmap=envmap) if case["light"] == "studio"
+              else BOOTH.format(sky=SKY, toward=TOWARD_LIGHT, distant=DISTANT))
+    with open(scene, "w") as f:
+        f.write(SCENE.format(size=SIZE, table=table, **CAMERA) + lights)
+    g_img, g_time, g_wall = gonio_render(gonio, scene, os.path.join(d, name + "_g.exr"), SPP)
+    g_ref, g_ref_time, _ = gonio_render(gonio, scene, os.path.join(d, name + "_gref.exr"), REF_SPP)
+    m_scene = mitsuba_scene(bsdf, case["light"], envmap)
+    mitsuba_render(m_scene, 4, 0)  # warm the caches (the texture, the tensor file)
+    m_img, m_time = mitsuba_render(m_scene, SPP, 1)
+    m_ref, m_ref_time = mitsuba_render(m_scene, REF_SPP, 2)
+    g_err, m_err = rel_rmse(g_img, g_ref), rel_rmse(m_img, m_ref)
+    return {
+        "case": name, "model": json.loads(case["model"]), "light": case["light"],
         "size": SIZE, "spp": SPP, "reference_spp": REF_SPP,
         "mitsuba": mi.__version__, "variant": "scalar_rgb", "threads": os.cpu_count(),
-        "gonio_seconds": round(g_time, 2), "mitsuba_seconds": round(m_time, 2),
-        "time_ratio_gonio_over_mitsuba": round(g_time / m_time, 3),
-        "gonio_relative_rmse": round(rel_rmse(g_img, g_ref), 4),
-        "mitsuba_relative_rmse": round(rel_rmse(m_img, m_ref), 4),
+        "gonio_seconds": round(g_time, 2), "gonio_wall_seconds": round(g_wall, 2),
+        "mitsuba_seconds": round(m_time, 2),
+        "gonio_relative_rmse": round(g_err, 4),
+        "mitsuba_relative_rmse": round(m_err, 4),
+        "efficiency_gonio_over_mitsuba": round((m_time * m_err**2) / (g_time * g_err**2), 2),
         "reference_seconds": {"gonio": round(g_ref_time, 1), "mitsuba": round(m_ref_time, 1)},
         "mean_radiance": {"gonio": round(float(np.mean(g_ref)), 4),
                           "mitsuba": round(float(np.mean(m_ref)), 4)},
-    }, indent=1))
+    }
+
+
+def main():
+    args = sys.argv[1:]
+    gonio = os.path.join(ROOT, "target", "release", "gonio")
+    if args and args[0] not in CASES:
+        gonio, args = args[0], args[1:]
+    mi.set_variant("scalar_rgb")
+    with tempfile.TemporaryDirectory() as d:
+        for name in args or list(CASES):
+            print(json.dumps(run_case(gonio, name, CASES[name], d), indent=1), flush=True)
 
 
 if __name__ == "__main__":

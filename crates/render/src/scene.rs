@@ -319,6 +319,12 @@ pub enum LightDesc {
     },
     /// Uniform radiance from every direction.
     Sky { radiance: Reflectance },
+    /// A distant, collimated light (the sun, a booth's directional source) from `direction`
+    /// (toward the light, normalised on reading), giving `irradiance` W/m² on a plane facing it.
+    Distant {
+        direction: [f64; 3],
+        irradiance: Reflectance,
+    },
 }
 
 /// What a primitive is: a surface with a material, or an area light.
@@ -706,6 +712,21 @@ fn build_lights(descs: &[LightDesc], file: &SceneFile, prims: &mut Prims) -> Res
             LightDesc::Sky { radiance } => Light::Sky {
                 radiance: rgb(radiance, "radiance")?,
             },
+            LightDesc::Distant {
+                direction,
+                irradiance,
+            } => {
+                let d = DVec3::from_array(*direction);
+                if !(d.length() > 0.0 && d.is_finite()) {
+                    return Err(bad(
+                        "a distant light's `direction` must be a non-zero vector",
+                    ));
+                }
+                Light::Distant {
+                    direction: d.normalize(),
+                    irradiance: rgb(irradiance, "irradiance")?,
+                }
+            }
         };
         lights.push(light);
     }
