@@ -58,10 +58,8 @@ impl Light {
     }
 
     /// Sample a direction toward the light from `p`, a point of a surface of unit shading
-    /// normal `n` (which the infinite lights sample by the cosine to it), from the uniform
-    /// numbers `u.x`, `u.y` and `u.z` (the environment's choice among its distributions).
-    pub fn sample(&self, p: DVec3, n: DVec3, u: DVec3, shapes: &[Shape]) -> Option<LightSample> {
-        let (choice, u) = (u.z, u.truncate());
+    /// normal `n` (which the infinite lights sample by the cosine to it).
+    pub fn sample(&self, p: DVec3, n: DVec3, u: DVec2, shapes: &[Shape]) -> Option<LightSample> {
         match self {
             Light::Point {
                 position,
@@ -97,7 +95,7 @@ impl Light {
                     delta: false,
                 })
             }
-            Light::Environment(env) => env.sample(n, u, choice),
+            Light::Environment(env) => env.sample(n, u),
             Light::Sky { radiance } => {
                 // The cosine law about the normal (pbrt-v4 §A.5.3): the whole integrand of a
                 // Lambertian surface under a uniform sky, so its estimate has no variance.
@@ -280,11 +278,11 @@ impl EnvMap {
         Rgb::from_array(self.image.get(i, j).map(f64::from)) * self.scale
     }
 
-    fn sample(&self, n: DVec3, u: DVec2, choice: f64) -> Option<LightSample> {
+    fn sample(&self, n: DVec3, u: DVec2) -> Option<LightSample> {
         if self.guide.total() <= 0.0 {
             return None;
         }
-        let ((i, j), p, pdf_uv) = self.guide.sample(n, u, choice)?;
+        let ((i, j), p, pdf_uv) = self.guide.sample(n, u)?;
         let (uu, v) = (p.x, p.y);
         // Keep off the poles, where the density per steradian is singular.
         let theta = PI * v.clamp(1e-9, 1.0 - 1e-9);
@@ -378,7 +376,7 @@ mod tests {
             assert_eq!(uncovered, 0.0, "{n}");
             for k in 1..500 {
                 let u = DVec2::new((k as f64 * 0.618034).fract(), (k as f64 * 0.7548).fract());
-                let s = env.sample(n, u, (k as f64 * 0.4142).fract()).unwrap();
+                let s = env.sample(n, u).unwrap();
                 assert!((env.pdf(n, s.wi) / s.pdf - 1.0).abs() < 1e-6);
                 assert_eq!(s.li, env.radiance(s.wi));
             }
@@ -411,7 +409,7 @@ mod tests {
             assert!((total - 1.0).abs() < 2e-3, "{n}: {total}");
             for k in 1..200 {
                 let u = DVec2::new((k as f64 * 0.618034).fract(), (k as f64 * 0.7548).fract());
-                let s = sky.sample(DVec3::ZERO, n, u.extend(0.5), &[]).unwrap();
+                let s = sky.sample(DVec3::ZERO, n, u, &[]).unwrap();
                 assert!(s.wi.dot(n) >= 0.0);
                 let pdf = sky.pdf(DVec3::ZERO, n, s.wi, DVec3::ZERO, &[]);
                 assert!((pdf / s.pdf - 1.0).abs() < 1e-9, "{pdf} {}", s.pdf);

@@ -285,13 +285,8 @@ fn sample_ld<S: Shading>(
         return S::C::ZERO;
     }
     let p_select = 1.0 / n_lights as f64;
-    // The light's choice, and the rest of that number for the light's own choice among its
-    // distributions (an environment's normal nodes).
-    let choice = sampler.next() * n_lights as f64;
-    let k = (choice as usize).min(n_lights - 1);
-    let u = sampler
-        .next2()
-        .extend((choice - k as f64).clamp(0.0, 1.0 - 1e-12));
+    let k = ((sampler.next() * n_lights as f64) as usize).min(n_lights - 1);
+    let u = sampler.next2();
     let Some(ls) = scene.lights[k].sample(at.p, at.frame.n, u, scene.accel.shapes()) else {
         return S::C::ZERO;
     };
