@@ -24,11 +24,12 @@ fn lobe_table(n: f64, k: f64) -> BrdfTable {
 /// `f cos / pdf` against the albedo by quadrature, each sample's value and pdf against
 /// `eval` and `pdf`) at several viewing angles. The pdf is piecewise constant over small
 /// half-vector cells, so the expected counts need a finer quadrature than the default 4 × 4
-/// points per bin.
+/// points per bin. 85° and 88° lie between bins near grazing, where the lobe is cut by the
+/// horizon and the mixture of two bins is sampled.
 #[test]
 fn table_sampler_passes_the_sampler_checks() {
     let t = SampledTable::new(lobe_table(40.0, 0.6));
-    for theta in [0.0f64, 30.0, 60.0, 80.0] {
+    for theta in [0.0f64, 30.0, 60.0, 80.0, 85.0, 88.0] {
         let wo = dir(theta.to_radians(), 0.7);
         let opts = gonio_brdf::validate::SamplerCheck {
             quadrature: 12,
@@ -46,7 +47,7 @@ fn estimator_integrates_to_albedo_and_pays() {
     let table = lobe_table(2000.0, 0.7);
     let sampled = SampledTable::new(table.clone());
     let n = 100_000;
-    for theta in [0.0f64, 45.0, 75.0] {
+    for theta in [0.0f64, 45.0, 75.0, 86.0] {
         let wo = dir(theta.to_radians(), 0.2);
         let reference = table.albedo(theta.to_radians(), 0.2)[0];
         let mut rng = rand_pcg::Pcg64::seed_from_u64(3);
@@ -80,11 +81,15 @@ fn estimator_integrates_to_albedo_and_pays() {
 /// from 256 points of a randomly shifted Hammersley set (Cranley–Patterson rotation; each shift
 /// an unbiased estimate) varies less between shifts than the estimate from 256 independent
 /// points. The cell choice inverts cumulative distributions, monotone in each coordinate; the
-/// alias method it replaced sends neighbouring points to unrelated cells, a ratio of 1. The gain
-/// is modest (measured 2.1 at 10°, 1.3 at 50°): `f cos / pdf` jumps at the edges of 11 520
-/// cells, far more than 256 strata. Tolerance: the ratio's estimate from 256 shifts has a
+/// alias method it replaced sends neighbouring points to unrelated cells, a ratio of 1. Between
+/// two bins the mixture's distributions are inverted, not a bin chosen with part of `u.x` (which
+/// gave ratios of 2.1 at 10°, 1.3 at 50°, and *below 1* near grazing: 0.28 at 80°, 0.44 at
+/// 86°); measured now 4.8 at 10°, 2.0 at 50°, 1.2 at 80°, 1.04 at 86°. The gain stays modest
+/// near grazing: `f cos / pdf` jumps at the edges of 11 520 cells, far more than 256 strata,
+/// and the horizon cuts the lobe. Tolerance: the ratio's estimate from 256 shifts has a
 /// relative standard deviation of about sqrt(2/255) = 9%, so 1.2 lies 2 of them above an alias
-/// sampler's 1 and below both measured ratios.
+/// sampler's 1 and below the measured ratios at 10° and 50°; near grazing 0.75 lies 3 of them
+/// below the measured ratios and above the bin choice's.
 #[test]
 fn sampler_keeps_the_stratification_of_low_discrepancy_points() {
     let t = SampledTable::new(lobe_table(40.0, 0.6));
@@ -103,7 +108,7 @@ fn sampler_keeps_the_stratification_of_low_discrepancy_points() {
         }
         (s / n as f64, s2 / n as f64)
     };
-    for theta in [10.0f64, 50.0] {
+    for (theta, min_ratio) in [(10.0f64, 1.2), (50.0, 1.2), (80.0, 0.75), (86.0, 0.75)] {
         let wo = dir(theta.to_radians(), 0.4);
         let mut rng = rand_pcg::Pcg64::seed_from_u64(11);
         // Variance of one independent sample, from many.
@@ -132,7 +137,7 @@ fn sampler_keeps_the_stratification_of_low_discrepancy_points() {
         let h = h / shifts as f64;
         let var_hammersley = (h2 / shifts as f64 - h * h) * shifts as f64 / (shifts - 1) as f64;
         assert!(
-            var_independent > 1.2 * var_hammersley,
+            var_independent > min_ratio * var_hammersley,
             "theta_o {theta}: variance {var_independent:.3e} independent, \
              {var_hammersley:.3e} stratified"
         );
