@@ -27,14 +27,6 @@ pub struct HalfDiff {
     pub phi_d: f64,
 }
 
-fn rot_z(v: DVec3, a: f64) -> DVec3 {
-    rot_z_by(v, a.sin_cos())
-}
-
-fn rot_y(v: DVec3, a: f64) -> DVec3 {
-    rot_y_by(v, a.sin_cos())
-}
-
 /// `v` turned about z by the angle of sine `s` and cosine `c`.
 fn rot_z_by(v: DVec3, (s, c): (f64, f64)) -> DVec3 {
     DVec3::new(v.x * c - v.y * s, v.x * s + v.y * c, v.z)
@@ -45,8 +37,10 @@ fn rot_y_by(v: DVec3, (s, c): (f64, f64)) -> DVec3 {
     DVec3::new(v.x * c + v.z * s, v.y, -v.x * s + v.z * c)
 }
 
+/// An azimuth from `atan2`, in [-π, π], brought into [0, 2π) (as `rem_euclid(2π)` would, without
+/// its division: for |a| < 2π both give `a`, or `a + 2π` when `a` is negative).
 fn wrap_2pi(a: f64) -> f64 {
-    let w = a.rem_euclid(TAU);
+    let w = if a < 0.0 { a + TAU } else { a };
     if w >= TAU { 0.0 } else { w }
 }
 
@@ -54,12 +48,36 @@ impl HalfDiff {
     /// The angles of the pair (`wi` toward the light, `wo` toward the viewer), both unit length.
     /// `None` when `wi + wo` vanishes (opposite directions).
     pub fn from_dirs(wi: DVec3, wo: DVec3) -> Option<HalfDiff> {
+        HalfDiff::from_dirs_with(wi, wo, true)
+    }
+
+    /// [`HalfDiff::from_dirs`], with `phi_h` left at 0 unless `with_phi_h` (an isotropic table's
+    /// stencil does not read it, and its `atan2` is a good part of the conversion's cost).
+    ///
+    /// `d = Ry(-theta_h) Rz(-phi_h) wi` with the sines and cosines of the two turns read off `h`
+    /// instead of found from the angles: `cos theta_h = h.z`, `sin theta_h = r = |(h.x, h.y)|`
+    /// and `(cos phi_h, sin phi_h) = (h.x, h.y) / r`. Then `d.z = wi · h`,
+    /// `r d.x = (wi.x h.x + wi.y h.y) h.z - wi.z r²` and `r d.y = wi.y h.x - wi.x h.y`; the
+    /// common factor `r > 0` leaves `phi_d = atan2(d.y, d.x)` unchanged, so neither a square
+    /// root nor a division is needed. When `h` is on the pole (`r = 0`, `phi_h = 0`),
+    /// `d = Ry(-theta_h) wi`.
+    pub(crate) fn from_dirs_with(wi: DVec3, wo: DVec3, with_phi_h: bool) -> Option<HalfDiff> {
         let h = (wi + wo).try_normalize()?;
         let theta_h = h.z.clamp(-1.0, 1.0).acos();
-        let phi_h = wrap_2pi(h.y.atan2(h.x));
-        let d = rot_y(rot_z(wi, -phi_h), -theta_h);
-        let theta_d = d.z.clamp(-1.0, 1.0).acos();
-        let phi_d = wrap_2pi(d.y.atan2(d.x));
+        let r2 = h.x * h.x + h.y * h.y;
+        let (dx, dy) = if r2 > 0.0 {
+            let along = wi.x * h.x + wi.y * h.y;
+            (along * h.z - wi.z * r2, wi.y * h.x - wi.x * h.y)
+        } else {
+            (wi.x * h.z, wi.y)
+        };
+        let theta_d = wi.dot(h).clamp(-1.0, 1.0).acos();
+        let phi_d = wrap_2pi(dy.atan2(dx));
+        let phi_h = if with_phi_h {
+            wrap_2pi(h.y.atan2(h.x))
+        } else {
+            0.0
+        };
         Some(HalfDiff {
             theta_h,
             phi_h,
@@ -270,20 +288,36 @@ impl Resolution {
     /// weights (`1 − t` for the lower node, `t` for the upper). The weights sum to 1; an
     /// isotropic table's phi_h corners, and any axis on a node, give corners of weight 0.
     pub fn corners(&self, a: &HalfDiff) -> [(usize, f64); 16] {
-        let s = self.stencil(a);
-        std::array::from_fn(|corner| {
-            let mut w = 1.0;
-            let mut idx = [0usize; 4];
-            for (k, (i0, i1, t)) in s.iter().enumerate() {
-                if corner & (8 >> k) == 0 {
-                    idx[k] = *i0;
-                    w *= 1.0 - t;
-                } else {
-                    idx[k] = *i1;
-                    w *= t;
-                }
-            }
-            (self.cell_index(idx[0], idx[1], idx[2], idx[3]), w)
+        self.corners_of(&self.stencil(a))
+    }
+
+    /// The first `N` of the 16 corners of [`Resolution::corners`] for a stencil: `N = 8` gives
+    /// those at the lower phi_h node, all that carry weight in an isotropic table (its phi_h
+    /// weight is 0). Corner `k` takes the upper node on axis `j` (phi_h, theta_h, theta_d, phi_d)
+    /// when bit `3 − j` of `k` is set; its weight is the product of the axes' weights in that
+    /// order.
+    #[inline]
+    pub(crate) fn corners_of<const N: usize>(
+        &self,
+        s: &[(usize, usize, f64); 4],
+    ) -> [(usize, f64); N] {
+        let strides = [
+            self.theta_h * self.theta_d * self.phi_d,
+            self.theta_d * self.phi_d,
+            self.phi_d,
+            1,
+        ];
+        let axis = |k: usize| {
+            let (i0, i1, t) = s[k];
+            ([i0 * strides[k], i1 * strides[k]], [1.0 - t, t])
+        };
+        let (ph, th, td, pd) = (axis(0), axis(1), axis(2), axis(3));
+        std::array::from_fn(|c| {
+            let (bh, bt, bd, bp) = ((c >> 3) & 1, (c >> 2) & 1, (c >> 1) & 1, c & 1);
+            (
+                ph.0[bh] + th.0[bt] + td.0[bd] + pd.0[bp],
+                ph.1[bh] * th.1[bt] * td.1[bd] * pd.1[bp],
+            )
         })
     }
 }
@@ -303,7 +337,12 @@ fn clamped(x: f64, n: usize) -> (usize, usize, f64) {
 /// Bracketing nodes of `x` on a periodic grid of `n` nodes.
 #[inline]
 fn periodic(x: f64, n: usize) -> (usize, usize, f64) {
-    let x = x.rem_euclid(n as f64);
+    // rem_euclid only off the common path: it is the identity on [0, n).
+    let x = if (0.0..n as f64).contains(&x) {
+        x
+    } else {
+        x.rem_euclid(n as f64)
+    };
     let i = (x.floor() as usize).min(n - 1);
     (i, (i + 1) % n, x - i as f64)
 }

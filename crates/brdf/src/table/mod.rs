@@ -304,27 +304,38 @@ impl BrdfTable {
         if wi.z <= 0.0 || wo.z <= 0.0 {
             return;
         }
-        if let Some(a) = HalfDiff::from_dirs(wi, wo) {
+        if let Some(a) = HalfDiff::from_dirs_with(wi, wo, !self.res.is_isotropic()) {
             self.eval_angles(&a, out);
         }
     }
 
     /// Interpolated `f` at half/difference angles, written into `out`.
     pub fn eval_angles(&self, a: &HalfDiff, out: &mut [f64]) {
-        let nc = self.channel_count();
+        let s = self.res.stencil(a);
+        if self.res.is_isotropic() {
+            self.interpolate(&self.res.corners_of::<8>(&s), out);
+        } else {
+            self.interpolate(&self.res.corners_of::<16>(&s), out);
+        }
+    }
+
+    /// The weighted mean of the corners' values, over the corners with data.
+    #[inline]
+    fn interpolate(&self, corners: &[(usize, f64)], out: &mut [f64]) {
+        let nc = out.len();
         let data = self.values();
         out.fill(0.0);
         let mut wsum = 0.0;
-        for (cell, w) in self.res.corners(a) {
+        for &(cell, w) in corners {
             if w == 0.0 {
                 continue;
             }
-            let base = cell * nc;
-            if data[base].is_nan() {
+            let values = &data[cell * nc..(cell + 1) * nc];
+            if values[0].is_nan() {
                 continue;
             }
             wsum += w;
-            for (o, v) in out.iter_mut().zip(&data[base..base + nc]) {
+            for (o, v) in out.iter_mut().zip(values) {
                 *o += w * f64::from(*v);
             }
         }
@@ -370,9 +381,14 @@ pub(crate) fn rgb_weights(channels: &Channels) -> Result<Vec<[f64; 3]>> {
 
 impl Brdf for BrdfTable {
     fn eval(&self, wo: DVec3, wi: DVec3) -> Rgb {
-        let mut buf = [0.0f64; 64];
         let nc = self.channel_count();
-        if nc <= buf.len() {
+        if nc <= 3 {
+            // Mono and RGB: a buffer of their size (a render calls this twice per path).
+            let mut buf = [0.0f64; 3];
+            self.eval_channels(wo, wi, &mut buf[..nc]);
+            self.to_rgb(&buf[..nc])
+        } else if nc <= 64 {
+            let mut buf = [0.0f64; 64];
             self.eval_channels(wo, wi, &mut buf[..nc]);
             self.to_rgb(&buf[..nc])
         } else {
