@@ -330,7 +330,8 @@ fn clamped(x: f64, n: usize) -> (usize, usize, f64) {
     if x.is_nan() || x >= last {
         return (n - 1, n - 1, 0.0);
     }
-    let i = x.floor() as usize;
+    // x >= 0 (the callers clamp the angles at 0): truncation is floor, without its libm call.
+    let i = x as usize;
     (i, i + 1, x - i as f64)
 }
 
@@ -343,7 +344,8 @@ fn periodic(x: f64, n: usize) -> (usize, usize, f64) {
     } else {
         x.rem_euclid(n as f64)
     };
-    let i = (x.floor() as usize).min(n - 1);
+    // x >= 0 here (NaN casts to 0 either way): truncation is floor.
+    let i = (x as usize).min(n - 1);
     (i, (i + 1) % n, x - i as f64)
 }
 

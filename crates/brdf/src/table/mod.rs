@@ -322,25 +322,13 @@ impl BrdfTable {
     /// The weighted mean of the corners' values, over the corners with data.
     #[inline]
     fn interpolate(&self, corners: &[(usize, f64)], out: &mut [f64]) {
-        let nc = out.len();
         let data = self.values();
-        out.fill(0.0);
-        let mut wsum = 0.0;
-        for &(cell, w) in corners {
-            if w == 0.0 {
-                continue;
-            }
-            let values = &data[cell * nc..(cell + 1) * nc];
-            if values[0].is_nan() {
-                continue;
-            }
-            wsum += w;
-            for (o, v) in out.iter_mut().zip(values) {
-                *o += w * f64::from(*v);
-            }
-        }
-        if wsum > 0.0 {
-            out.iter_mut().for_each(|o| *o /= wsum);
+        // The channel counts of mono and RGB tables as constants, so that the loops over the
+        // channels unroll.
+        match out.len() {
+            1 => weighted_mean(data, 1, corners, out),
+            3 => weighted_mean(data, 3, corners, out),
+            nc => weighted_mean(data, nc, corners, out),
         }
     }
 
@@ -357,6 +345,32 @@ impl BrdfTable {
             rgb += Rgb::from_array(*w) * *v;
         }
         rgb
+    }
+}
+
+/// The mean of the values of the `corners` (cell index, weight) in `data` (`nc` channels per
+/// cell), weighted and over the cells with data (not NaN), written into `out` (length `nc`);
+/// zeros when no corner of nonzero weight has data.
+#[inline(always)]
+fn weighted_mean(data: &[f32], nc: usize, corners: &[(usize, f64)], out: &mut [f64]) {
+    let out = &mut out[..nc];
+    out.fill(0.0);
+    let mut wsum = 0.0;
+    for &(cell, w) in corners {
+        if w == 0.0 {
+            continue;
+        }
+        let values = &data[cell * nc..][..nc];
+        if values[0].is_nan() {
+            continue;
+        }
+        wsum += w;
+        for (o, v) in out.iter_mut().zip(values) {
+            *o += w * f64::from(*v);
+        }
+    }
+    if wsum > 0.0 {
+        out.iter_mut().for_each(|o| *o /= wsum);
     }
 }
 
@@ -386,7 +400,11 @@ impl Brdf for BrdfTable {
             // Mono and RGB: a buffer of their size (a render calls this twice per path).
             let mut buf = [0.0f64; 3];
             self.eval_channels(wo, wi, &mut buf[..nc]);
-            self.to_rgb(&buf[..nc])
+            if matches!(self.channels, Channels::Rgb) {
+                Rgb::from_array(buf)
+            } else {
+                self.to_rgb(&buf[..nc])
+            }
         } else if nc <= 64 {
             let mut buf = [0.0f64; 64];
             self.eval_channels(wo, wi, &mut buf[..nc]);
