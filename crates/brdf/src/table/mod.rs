@@ -304,32 +304,31 @@ impl BrdfTable {
         if wi.z <= 0.0 || wo.z <= 0.0 {
             return;
         }
-        if let Some(a) = HalfDiff::from_dirs(wi, wo) {
+        if let Some(a) = HalfDiff::from_dirs_with(wi, wo, !self.res.is_isotropic()) {
             self.eval_angles(&a, out);
         }
     }
 
     /// Interpolated `f` at half/difference angles, written into `out`.
     pub fn eval_angles(&self, a: &HalfDiff, out: &mut [f64]) {
-        let nc = self.channel_count();
-        let data = self.values();
-        out.fill(0.0);
-        let mut wsum = 0.0;
-        for (cell, w) in self.res.corners(a) {
-            if w == 0.0 {
-                continue;
-            }
-            let base = cell * nc;
-            if data[base].is_nan() {
-                continue;
-            }
-            wsum += w;
-            for (o, v) in out.iter_mut().zip(&data[base..base + nc]) {
-                *o += w * f64::from(*v);
-            }
+        let s = self.res.stencil(a);
+        if self.res.is_isotropic() {
+            self.interpolate(&self.res.corners_of::<8>(&s), out);
+        } else {
+            self.interpolate(&self.res.corners_of::<16>(&s), out);
         }
-        if wsum > 0.0 {
-            out.iter_mut().for_each(|o| *o /= wsum);
+    }
+
+    /// The weighted mean of the corners' values, over the corners with data.
+    #[inline]
+    fn interpolate(&self, corners: &[(usize, f64)], out: &mut [f64]) {
+        let data = self.values();
+        // The channel counts of mono and RGB tables as constants, so that the loops over the
+        // channels unroll.
+        match out.len() {
+            1 => weighted_mean(data, 1, corners, out),
+            3 => weighted_mean(data, 3, corners, out),
+            nc => weighted_mean(data, nc, corners, out),
         }
     }
 
@@ -346,6 +345,32 @@ impl BrdfTable {
             rgb += Rgb::from_array(*w) * *v;
         }
         rgb
+    }
+}
+
+/// The mean of the values of the `corners` (cell index, weight) in `data` (`nc` channels per
+/// cell), weighted and over the cells with data (not NaN), written into `out` (length `nc`);
+/// zeros when no corner of nonzero weight has data.
+#[inline(always)]
+fn weighted_mean(data: &[f32], nc: usize, corners: &[(usize, f64)], out: &mut [f64]) {
+    let out = &mut out[..nc];
+    out.fill(0.0);
+    let mut wsum = 0.0;
+    for &(cell, w) in corners {
+        if w == 0.0 {
+            continue;
+        }
+        let values = &data[cell * nc..][..nc];
+        if values[0].is_nan() {
+            continue;
+        }
+        wsum += w;
+        for (o, v) in out.iter_mut().zip(values) {
+            *o += w * f64::from(*v);
+        }
+    }
+    if wsum > 0.0 {
+        out.iter_mut().for_each(|o| *o /= wsum);
     }
 }
 
@@ -370,9 +395,18 @@ pub(crate) fn rgb_weights(channels: &Channels) -> Result<Vec<[f64; 3]>> {
 
 impl Brdf for BrdfTable {
     fn eval(&self, wo: DVec3, wi: DVec3) -> Rgb {
-        let mut buf = [0.0f64; 64];
         let nc = self.channel_count();
-        if nc <= buf.len() {
+        if nc <= 3 {
+            // Mono and RGB: a buffer of their size (a render calls this twice per path).
+            let mut buf = [0.0f64; 3];
+            self.eval_channels(wo, wi, &mut buf[..nc]);
+            if matches!(self.channels, Channels::Rgb) {
+                Rgb::from_array(buf)
+            } else {
+                self.to_rgb(&buf[..nc])
+            }
+        } else if nc <= 64 {
+            let mut buf = [0.0f64; 64];
             self.eval_channels(wo, wi, &mut buf[..nc]);
             self.to_rgb(&buf[..nc])
         } else {
