@@ -10,6 +10,7 @@
 //! leaves no half-written file; the manifest is written last, so a folder with a manifest holds
 //! a complete set. A view that cannot be written is named in the error.
 
+use super::closure::specimen_mean;
 use super::{BoothPictures, BoothSpec, Run, material, render};
 use crate::error::{RenderError, Result};
 use crate::picture::{ViewFiles, XyzPicture, write_manifest, write_view};
@@ -196,17 +197,12 @@ fn write_views(
             let specimen_mask = dir.join(format!("{}-specimen.png", view.name));
             write_grey_png(&specimen_mask, image.width, image.height, &view.specimen)
                 .map_err(failed)?;
-            let (sum, n) = image
-                .xyz
-                .iter()
-                .zip(&view.specimen)
-                .filter(|(_, inside)| **inside)
-                .fold((0.0, 0usize), |(s, n), (p, _)| (s + f64::from(p[1]), n + 1));
+            let mean = specimen_mean(view);
             Ok(ViewSummary {
                 name: view.name.clone(),
                 aspecular_deg: spec_view.aspecular_deg,
-                specimen_luminance: if n > 0 { sum / n as f64 } else { f64::NAN },
-                specimen_pixels: n,
+                specimen_luminance: mean.xyz[1],
+                specimen_pixels: mean.pixels,
                 files,
                 specimen_mask,
             })
