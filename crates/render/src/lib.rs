@@ -22,6 +22,7 @@ pub mod coating_material;
 pub mod denoise;
 pub mod difference;
 pub mod error;
+mod extension;
 pub mod flakes;
 pub mod geometry;
 pub mod image;
