@@ -13,6 +13,7 @@
 use super::closure::specimen_mean;
 use super::{BoothPictures, BoothSpec, Run, material, render};
 use crate::error::{RenderError, Result};
+use crate::material::Material;
 use crate::picture::{ViewFiles, XyzPicture, write_manifest, write_view};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -118,20 +119,50 @@ fn finite_or_null(v: f64) -> Value {
 
 /// Render the booth of `job` and write its files into the folder `dir` (made if missing):
 /// per view `NAME.exr`, `NAME-srgb.png`, `NAME-srgb-mask.png`, `NAME-p3.png`,
-/// `NAME-p3-mask.png`, `NAME-specimen.png`, then `manifest.json`.
+/// `NAME-p3-mask.png`, `NAME-specimen.png`, then `manifest.json`. The material is read from
+/// its file ([`material`]); [`write_booth_of`] takes one already made.
 pub fn write_booth(job: &BoothJob, dir: &Path, run: &Run) -> Result<BoothSummary> {
-    let spec = job.spec;
+    let file = job.spec.material_path(job.material)?;
+    let made = material(&file)?;
+    let specimen = Specimen {
+        material: &made,
+        file: &file,
+        made: None,
+    };
+    write_booth_of(job.spec, job.spec_file, &specimen, dir, run)
+}
+
+/// A specimen's material made by the caller (a table computed at its own resolution, say),
+/// and what the manifest records of it.
+#[derive(Debug, Clone, Copy)]
+pub struct Specimen<'a> {
+    /// The material on the specimen.
+    pub material: &'a Material,
+    /// The file it was made from (an input of the manifest).
+    pub file: &'a Path,
+    /// How it was made from the file, when not as [`material`] makes it (the manifest's
+    /// setting `material_made`).
+    pub made: Option<&'a Value>,
+}
+
+/// The booth `spec` (from the file `spec_file`, when it came from one) rendered with
+/// `specimen` and written into `dir` as [`write_booth`] writes it.
+pub fn write_booth_of(
+    spec: &BoothSpec,
+    spec_file: Option<&Path>,
+    specimen: &Specimen,
+    dir: &Path,
+    run: &Run,
+) -> Result<BoothSummary> {
     let checked = spec.check()?;
-    let material_file = spec.material_path(job.material)?;
-    let specimen = material(&material_file)?;
     std::fs::create_dir_all(dir).map_err(|error| RenderError::Io {
         path: dir.to_path_buf(),
         error,
     })?;
-    let pictures = render(spec, &specimen, run)?;
+    let pictures = render(spec, specimen.material, run)?;
     let views = write_views(&pictures, dir, &checked.views)?;
 
-    let mut inputs: Vec<PathBuf> = job.spec_file.map(Path::to_path_buf).into_iter().collect();
+    let mut inputs: Vec<PathBuf> = spec_file.map(Path::to_path_buf).into_iter().collect();
     if let Some(file) = &spec.light.spectrum {
         inputs.push(if file.is_absolute() {
             file.clone()
@@ -139,15 +170,15 @@ pub fn write_booth(job: &BoothJob, dir: &Path, run: &Run) -> Result<BoothSummary
             spec.dir.join(file)
         });
     }
-    inputs.push(material_file.clone());
+    inputs.push(specimen.file.to_path_buf());
     let mut outputs: Vec<&Path> = Vec::new();
     for v in &views {
         outputs.extend(v.files.paths());
         outputs.push(&v.specimen_mask);
     }
-    let settings = json!({
+    let mut settings = json!({
         "booth": spec,
-        "material": material_file,
+        "material": specimen.file,
         "light": pictures.light,
         "white_xyz_cd_m2": pictures.white,
         "render": {
@@ -156,6 +187,9 @@ pub fn write_booth(job: &BoothJob, dir: &Path, run: &Run) -> Result<BoothSummary
             "denoise": false,
         },
     });
+    if let Some(made) = specimen.made {
+        settings["material_made"] = made.clone();
+    }
     let manifest = dir.join("manifest.json");
     let input_refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
     write_manifest(
@@ -168,7 +202,7 @@ pub fn write_booth(job: &BoothJob, dir: &Path, run: &Run) -> Result<BoothSummary
     Ok(BoothSummary {
         views,
         manifest,
-        material: material_file,
+        material: specimen.file.to_path_buf(),
         white: pictures.white,
         illuminance_lux: pictures.illuminance_lux,
         light: pictures.light,

@@ -26,7 +26,7 @@ pub mod material;
 pub mod scene;
 pub mod spec;
 
-pub use files::{BoothJob, BoothSummary, ViewSummary, write_booth};
+pub use files::{BoothJob, BoothSummary, Specimen, ViewSummary, write_booth, write_booth_of};
 pub use input::{BoothInput, Resolved};
 pub use material::material;
 pub use scene::ViewGeometry;
