@@ -2,7 +2,8 @@
 //! material ([`super::render`]) and write into a folder each view's pictures
 //! ([`crate::picture::write_view`]: the absolute XYZ OpenEXR, an sRGB and a Display P3 PNG with
 //! their masks), the specimen's mask, and the manifest ([`crate::picture::write_manifest`]:
-//! every input's and output's SHA-256, the seed and every setting), and return a summary that a
+//! every input's and output's SHA-256, the files a coating description names among the inputs,
+//! the seed and every setting), and return a summary that a
 //! front end prints: per view the specimen's mean luminance and what each display could not
 //! show.
 //!
@@ -13,6 +14,7 @@
 use super::closure::specimen_mean;
 use super::{BoothPictures, BoothSpec, Run, material, render};
 use crate::error::{RenderError, Result};
+use crate::extension::extension;
 use crate::material::Material;
 use crate::picture::{ViewFiles, XyzPicture, write_manifest, write_view};
 use serde_json::{Value, json};
@@ -138,7 +140,9 @@ pub fn write_booth(job: &BoothJob, dir: &Path, run: &Run) -> Result<BoothSummary
 pub struct Specimen<'a> {
     /// The material on the specimen.
     pub material: &'a Material,
-    /// The file it was made from (an input of the manifest).
+    /// The file it was made from: an input of the manifest, with the files it names (a
+    /// coating description's height map or index table,
+    /// [`gonio_coating::description::referenced_files`]).
     pub file: &'a Path,
     /// How it was made from the file, when not as [`material`] makes it (the manifest's
     /// setting `material_made`).
@@ -171,6 +175,12 @@ pub fn write_booth_of(
         });
     }
     inputs.push(specimen.file.to_path_buf());
+    if extension(specimen.file) == "toml" {
+        inputs.extend(
+            gonio_coating::description::referenced_files(specimen.file)
+                .map_err(|e| RenderError::scene(specimen.file, e.to_string()))?,
+        );
+    }
     let mut outputs: Vec<&Path> = Vec::new();
     for v in &views {
         outputs.extend(v.files.paths());
