@@ -122,7 +122,7 @@ fn finite_or_null(v: f64) -> Value {
 /// Render the booth of `job` and write its files into the folder `dir` (made if missing):
 /// per view `NAME.exr`, `NAME-srgb.png`, `NAME-srgb-mask.png`, `NAME-p3.png`,
 /// `NAME-p3-mask.png`, `NAME-specimen.png`, then `manifest.json`. The material is read from
-/// its file ([`material`]); [`write_booth_of`] takes one already made.
+/// its file ([`material()`]); [`write_booth_of`] takes one already made.
 pub fn write_booth(job: &BoothJob, dir: &Path, run: &Run) -> Result<BoothSummary> {
     let file = job.spec.material_path(job.material)?;
     let made = material(&file)?;
@@ -144,7 +144,7 @@ pub struct Specimen<'a> {
     /// coating description's height map or index table,
     /// [`gonio_coating::description::referenced_files`]).
     pub file: &'a Path,
-    /// How it was made from the file, when not as [`material`] makes it (the manifest's
+    /// How it was made from the file, when not as [`material()`] makes it (the manifest's
     /// setting `material_made`).
     pub made: Option<&'a Value>,
 }
