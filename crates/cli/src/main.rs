@@ -1,5 +1,10 @@
 //! The `gonio` command: parses flags, calls into the gonio crates and formats their results.
 //! No physics lives here.
+//!
+//! The doc comments of the flags are the help text clap prints (`gonio booth --help`), written
+//! for a terminal: `[render]` there is a TOML table, `<angle>` a placeholder, not rustdoc links
+//! or HTML, so rustdoc is told not to read them as such.
+#![allow(rustdoc::broken_intra_doc_links, rustdoc::invalid_html_tags)]
 
 mod booth;
 mod brdf;

@@ -19,7 +19,7 @@
 //! a Lambertian under a smooth dielectric; its directional-hemispherical reflectance is
 //! `F(θi) + (1 − F(θi)) ρ (1 − F̄)/(1 − ρ F̄)` with F̄ the internal hemispherical Fresnel average).
 //! `r̄` is computed by Gauss-Legendre quadrature split at the critical angle (see
-//! [`internal_return`]). The formula is reciprocal by construction.
+//! `internal_return`). The formula is reciprocal by construction.
 //!
 //! Not modelled: scattering inside the coat, a rough top interface (the ray method will give
 //! it), interference in a thin coat (coats are tens of micrometres: incoherent), the base's own

@@ -168,7 +168,7 @@ impl Interface {
     }
 
     /// The BSDF in 1/sr for light from `wi` to `wo` (either side; 0 for a smooth interface):
-    /// single scattering and the lobes of [`Compensation`].
+    /// single scattering and the lobes of `Compensation`.
     pub fn f(&self, wo: DVec3, wi: DVec3, mode: Transport) -> f64 {
         match &self.compensation {
             Some(c) if wo.z != 0.0 && wi.z != 0.0 => {

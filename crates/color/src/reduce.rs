@@ -80,7 +80,7 @@ impl SpectralToXyz {
         self.wavelengths_nm.len()
     }
 
-    /// [W_X, W_Y, W_Z] of each band: X = Σ_j W_X[j] v[j].
+    /// `[W_X, W_Y, W_Z]` of each band: `X = Σ_j W_X[j] v[j]`.
     pub fn xyz_weights(&self) -> &[[f64; 3]] {
         &self.xyz_weights
     }

@@ -174,7 +174,7 @@ pub enum Format {
     Radiance,
 }
 
-/// The largest relative error, over the view angles of [`VIEW_DEG`], of the exported file at
+/// The largest relative error, over the view angles of `VIEW_DEG`, of the exported file at
 /// `path` of `material` against the model (without its delta) under the uniform sky:
 /// `max |a_file(θv) − a_model(θv)| / max a_model`, the luminances as above (a spectral patch's:
 /// the mean over its wavelengths, in Mitsuba's file only; `None` in Radiance's, whose tree holds

@@ -8,7 +8,7 @@
 //! ([`crate::matching`], unchanged) runs on the best few finalists, each started from its
 //! screened concentrations; the finalist that ends lowest is the selection.
 //!
-//! The steps are public so that a front end can spread them ([`screen`], then
+//! The steps are public so that a front end can spread them ([`screen()`], then
 //! [`finalist_start`] and [`matching::search`] per finalist anywhere, then [`conclude`]): the
 //! result equals [`run`]'s, every reading being made with seed 0.
 
@@ -192,7 +192,7 @@ pub fn check_run(
     matching::check(&coating, target, gloss, &all, settings)
 }
 
-/// [`screen`] under `watch`: told after every combination the combinations screened, of how
+/// [`screen()`] under `watch`: told after every combination the combinations screened, of how
 /// many, and the lowest screen score so far (`Progress`' readings, total and best), and stopped
 /// ([`FormulationError::Cancelled`]) before the next combination once its flag is raised.
 pub fn screen_watched(
@@ -479,7 +479,7 @@ impl Selection {
     }
 
     /// The selection against `target` as JSON: the chosen finalist's match
-    /// ([`Match::to_json`]'s fields) and `selection` {`candidates` [names], `combinations`
+    /// ([`Match::to_json`]'s fields) and `selection` {`candidates` \[names\], `combinations`
     /// (how many were screened), `tried` [{pigments, concentrations, score}] (the best
     /// `shown`, best first), `finalists` [{pigments, screen_concentrations, screen_score,
     /// objective, mean_de00, de00 [per geometry, the target's order], concentrations, sigma,

@@ -272,7 +272,7 @@ impl MatchPlan {
     /// `line` (and a selection's steps to `stage`): `Match::to_json` (docs/formulation.md:
     /// `constituents` with `sigma`, `geometries` with `de00_start` and `de00_fitted`, the
     /// means …), for a selection `Selection::to_json` (the chosen finalist's match and
-    /// `selection`: the pigments chosen, the combinations screened, the best [`SHOWN`] tried,
+    /// `selection`: the pigments chosen, the combinations screened, the best `SHOWN` tried,
     /// the finalists), with `formulation` and `toml`, the fitted formulation.
     pub fn run(
         &self,

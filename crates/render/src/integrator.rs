@@ -1,5 +1,5 @@
 //! The render loop: samples per pixel, tiles over threads, and the film. Each sample traces one
-//! path ([`crate::path`]) and the pixel is their mean, in linear sRGB. In the spectral mode
+//! path (`crate::path`) and the pixel is their mean, in linear sRGB. In the spectral mode
 //! ([`ColourMode::Spectral`]) each sample also draws its wavelengths ([`crate::spectral`]) and
 //! the film turns the path's spectral values into linear sRGB.
 //!

@@ -9,7 +9,7 @@
 //!
 //! MERL readers take a negative value for a missing measurement, so colours outside the sRGB
 //! gamut (a saturated paint's linear sRGB has a negative component) cannot be written as they
-//! are: [`write`] maps each such colour into the gamut at constant luminance, moving it toward
+//! are: [`write()`] maps each such colour into the gamut at constant luminance, moving it toward
 //! the grey of its own luminance `Y = 0.2126 R + 0.7152 G + 0.0722 B` (IEC 61966-2-1) just far
 //! enough that its smallest component is 0: `rgb' = Y + t (rgb − Y)`, `t = Y / (Y − min)`. Hue
 //! (the direction of `rgb − Y` in the chromaticity plane) and luminance are kept, chroma is
@@ -80,7 +80,7 @@ pub fn read(path: &Path) -> Result<BrdfTable> {
     b.build()
 }
 
-/// What [`write`] did to fit the table into the format.
+/// What [`write()`] did to fit the table into the format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 pub struct MerlExport {
     /// Cells written (above the horizon).

@@ -8,15 +8,15 @@
 //!
 //! | field | shape | meaning |
 //! |---|---|---|
-//! | `description` | [n] u8 | text |
-//! | `jacobian` | [1] u8 | 1: values are multiplied by `ndf / (4 sigma)` |
-//! | `theta_i`, `phi_i` | [n] f32 | parameter nodes in radians (one phi_i node: isotropic) |
-//! | `ndf` | [ny, nx] f32 | microfacet distribution `D(m)` on the (u(φ), u(θ)) grid |
-//! | `sigma` | [ny, nx] f32 | projected area `σ(v) = ∫ D(m) max(0, m·v) dm` |
-//! | `vndf` | [φi, θi, ny, nx] f32 | visible normals `D(m) (m·v)` × `2π² u sin θ`, a warp |
-//! | `luminance` | [φi, θi, n, n] f32 | luminance of the values over the vndf's sample square, a warp |
-//! | `rgb` / `spectra` | [φi, θi, c, n, n] f32 | values over the vndf's sample square |
-//! | `wavelengths` | [c] f32 | nm (spectral files only) |
+//! | `description` | `[n] u8` | text |
+//! | `jacobian` | `[1] u8` | 1: values are multiplied by `ndf / (4 sigma)` |
+//! | `theta_i`, `phi_i` | `[n] f32` | parameter nodes in radians (one phi_i node: isotropic) |
+//! | `ndf` | `[ny, nx] f32` | microfacet distribution `D(m)` on the (u(φ), u(θ)) grid |
+//! | `sigma` | `[ny, nx] f32` | projected area `σ(v) = ∫ D(m) max(0, m·v) dm` |
+//! | `vndf` | `[φi, θi, ny, nx] f32` | visible normals `D(m) (m·v)` × `2π² u sin θ`, a warp |
+//! | `luminance` | `[φi, θi, n, n] f32` | luminance of the values over the vndf's sample square, a warp |
+//! | `rgb` / `spectra` | `[φi, θi, c, n, n] f32` | values over the vndf's sample square |
+//! | `wavelengths` | `[c] f32` | nm (spectral files only) |
 //!
 //! Evaluation: `s = vndf.invert(u(m))`, then `f(l, v) cos θ_l = values(s) ndf(u(m)) /
 //! (4 sigma(u(v)))`. The writer therefore stores, at each node `s` of the value grid, with

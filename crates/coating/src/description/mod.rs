@@ -240,6 +240,28 @@ pub fn read(path: &Path, wavelengths_nm: &[f64]) -> Result<Coating> {
         .map_err(|e| CoatingError::Invalid(format!("{}: {e}", path.display())))
 }
 
+/// The files the coating description `path` names, each as [`read`] opens it (relative to the
+/// description's folder): the top's height map (`top.roughness.map`) and the coat's index table
+/// (`coat.index = { file = ... }`), so that a record of what a picture was made from (a
+/// manifest) can list them. The description is parsed, not checked; nothing else is read.
+pub fn referenced_files(path: &Path) -> Result<Vec<PathBuf>> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CoatingError::Invalid(format!("{}: {e}", path.display())))?;
+    let file: File = toml::from_str(&text)
+        .map_err(|e| CoatingError::Invalid(format!("{}: {e}", path.display())))?;
+    let folder = path.parent().unwrap_or(Path::new("."));
+    let map = file.top.and_then(|t| t.roughness.map);
+    let index = match file.coat.index {
+        IndexField::File { file } => Some(file),
+        _ => None,
+    };
+    Ok(map
+        .into_iter()
+        .chain(index)
+        .map(|f| folder.join(f))
+        .collect())
+}
+
 /// Parse the text of a coating description (see [`read`]); maps relative to the current folder.
 pub fn parse(text: &str, wavelengths_nm: &[f64]) -> Result<Coating> {
     parse_in(text, Path::new("."), wavelengths_nm)

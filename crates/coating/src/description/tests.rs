@@ -182,3 +182,35 @@ fn errors_name_the_field() {
         "at least one",
     );
 }
+
+/// The files a description names are its top's map and its coat's index table, beside it, as
+/// `read` opens them (so that they need not exist to be listed); a description naming none
+/// lists none, and an unreadable description is an error naming it.
+#[test]
+fn referenced_files_are_the_map_and_the_index_table() {
+    let dir = tempfile::tempdir().unwrap();
+    let both = dir.path().join("both.toml");
+    std::fs::write(
+        &both,
+        "[top]\nroughness = { map = \"maps/peel.x3p\" }\n\
+         [coat]\nindex = { file = \"index.csv\" }\nthickness_um = 40\n\
+         [base]\nkind = \"diffuse\"\nreflectance = 0.3\n",
+    )
+    .unwrap();
+    assert_eq!(
+        referenced_files(&both).unwrap(),
+        vec![
+            dir.path().join("maps/peel.x3p"),
+            dir.path().join("index.csv")
+        ]
+    );
+    let none = dir.path().join("none.toml");
+    std::fs::write(
+        &none,
+        "[coat]\nindex = 1.5\nthickness_um = 40\n[base]\nkind = \"diffuse\"\nreflectance = 0.3\n",
+    )
+    .unwrap();
+    assert!(referenced_files(&none).unwrap().is_empty());
+    let err = referenced_files(&dir.path().join("absent.toml")).unwrap_err();
+    assert!(err.to_string().contains("absent.toml"), "{err}");
+}

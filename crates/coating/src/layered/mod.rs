@@ -36,7 +36,7 @@
 //! number of visits, and two walks are joined only where the path stays within it, so that
 //! every strategy counted in the weights can make the path. The estimate converges to the
 //! exact answer of the model; it is reciprocal in expectation, and results do not depend on
-//! the thread count: each estimate draws from its own streams ([`stream`]), seeded from the
+//! the thread count: each estimate draws from its own streams (`stream`), seeded from the
 //! pair's place in the table.
 //!
 //! All bands of one walk share the directions (the coat's index is the same for them); their

@@ -45,9 +45,10 @@ impl Default for ClosurePicture {
 /// The mean of a specimen's pixels.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpecimenMean {
-    /// The mean X, Y, Z, cd/m².
+    /// The mean X, Y, Z, cd/m² (NaN when no pixel is covered).
     pub xyz: [f64; 3],
-    /// The standard error of each mean, from the pixels' spread, cd/m².
+    /// The standard error of each mean, from the pixels' spread, cd/m² (NaN when fewer than
+    /// two pixels are covered).
     pub standard_error: [f64; 3],
     /// The pixels the specimen covers whole.
     pub pixels: usize,
@@ -65,8 +66,11 @@ pub struct PictureReading {
 }
 
 /// The mean of X, Y, Z over the pixels `view`'s specimen covers whole, and the standard error
-/// of each mean from the pixels' spread. An error if fewer than two pixels are covered.
-pub fn specimen_mean(view: &BoothView) -> Result<SpecimenMean> {
+/// of each mean from the pixels' spread (the sample variance over the pixels' number). The
+/// one computation of a specimen's mean: the closure reads it, and so does the booth's summary
+/// ([`super::write_booth`]). Where a view covers too few pixels, the undefined values are NaN
+/// (see [`SpecimenMean`]); [`read_flat_panel`] refuses fewer than two.
+pub fn specimen_mean(view: &BoothView) -> SpecimenMean {
     let pixels: Vec<[f64; 3]> = view
         .image
         .xyz
@@ -75,24 +79,26 @@ pub fn specimen_mean(view: &BoothView) -> Result<SpecimenMean> {
         .filter(|(_, on)| **on)
         .map(|(p, _)| p.map(f64::from))
         .collect();
-    if pixels.len() < 2 {
-        return Err(crate::RenderError::Invalid(format!(
-            "the view {} covers {} pixels of the specimen whole: too few for a mean and its spread",
-            view.name,
-            pixels.len()
-        )));
-    }
     let n = pixels.len() as f64;
-    let xyz: [f64; 3] = std::array::from_fn(|c| pixels.iter().map(|p| p[c]).sum::<f64>() / n);
+    let xyz: [f64; 3] = std::array::from_fn(|c| {
+        if pixels.is_empty() {
+            f64::NAN
+        } else {
+            pixels.iter().map(|p| p[c]).sum::<f64>() / n
+        }
+    });
     let standard_error = std::array::from_fn(|c| {
+        if pixels.len() < 2 {
+            return f64::NAN;
+        }
         let var = pixels.iter().map(|p| (p[c] - xyz[c]).powi(2)).sum::<f64>() / (n - 1.0);
         (var / n).sqrt()
     });
-    Ok(SpecimenMean {
+    SpecimenMean {
         xyz,
         standard_error,
         pixels: pixels.len(),
-    })
+    }
 }
 
 /// The booth of the closure at one geometry: D65, the collimated light alone at
@@ -127,7 +133,14 @@ pub fn read_flat_panel(
     let spec = flat_panel_spec(illumination_deg, aspecular_deg, picture);
     let pictures = render(&spec, material, run)?;
     let white = Xyz::from_array(pictures.white);
-    let mean = specimen_mean(&pictures.views[0])?;
+    let view = &pictures.views[0];
+    let mean = specimen_mean(view);
+    if mean.pixels < 2 {
+        return Err(crate::RenderError::Invalid(format!(
+            "the view {} covers {} pixels of the specimen whole: too few for a mean and its spread",
+            view.name, mean.pixels
+        )));
+    }
     let lab = |xyz: [f64; 3]| -> Lab { Xyz::from_array(xyz).to_lab(white) };
     let at_mean = lab(mean.xyz);
     let noise_bound = (0..3)

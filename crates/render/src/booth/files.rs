@@ -2,7 +2,8 @@
 //! material ([`super::render`]) and write into a folder each view's pictures
 //! ([`crate::picture::write_view`]: the absolute XYZ OpenEXR, an sRGB and a Display P3 PNG with
 //! their masks), the specimen's mask, and the manifest ([`crate::picture::write_manifest`]:
-//! every input's and output's SHA-256, the seed and every setting), and return a summary that a
+//! every input's and output's SHA-256, the files a coating description names among the inputs,
+//! the seed and every setting), and return a summary that a
 //! front end prints: per view the specimen's mean luminance and what each display could not
 //! show.
 //!
@@ -10,8 +11,11 @@
 //! leaves no half-written file; the manifest is written last, so a folder with a manifest holds
 //! a complete set. A view that cannot be written is named in the error.
 
+use super::closure::specimen_mean;
 use super::{BoothPictures, BoothSpec, Run, material, render};
 use crate::error::{RenderError, Result};
+use crate::extension::extension;
+use crate::material::Material;
 use crate::picture::{ViewFiles, XyzPicture, write_manifest, write_view};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -117,20 +121,52 @@ fn finite_or_null(v: f64) -> Value {
 
 /// Render the booth of `job` and write its files into the folder `dir` (made if missing):
 /// per view `NAME.exr`, `NAME-srgb.png`, `NAME-srgb-mask.png`, `NAME-p3.png`,
-/// `NAME-p3-mask.png`, `NAME-specimen.png`, then `manifest.json`.
+/// `NAME-p3-mask.png`, `NAME-specimen.png`, then `manifest.json`. The material is read from
+/// its file ([`material()`]); [`write_booth_of`] takes one already made.
 pub fn write_booth(job: &BoothJob, dir: &Path, run: &Run) -> Result<BoothSummary> {
-    let spec = job.spec;
+    let file = job.spec.material_path(job.material)?;
+    let made = material(&file)?;
+    let specimen = Specimen {
+        material: &made,
+        file: &file,
+        made: None,
+    };
+    write_booth_of(job.spec, job.spec_file, &specimen, dir, run)
+}
+
+/// A specimen's material made by the caller (a table computed at its own resolution, say),
+/// and what the manifest records of it.
+#[derive(Debug, Clone, Copy)]
+pub struct Specimen<'a> {
+    /// The material on the specimen.
+    pub material: &'a Material,
+    /// The file it was made from: an input of the manifest, with the files it names (a
+    /// coating description's height map or index table,
+    /// [`gonio_coating::description::referenced_files`]).
+    pub file: &'a Path,
+    /// How it was made from the file, when not as [`material()`] makes it (the manifest's
+    /// setting `material_made`).
+    pub made: Option<&'a Value>,
+}
+
+/// The booth `spec` (from the file `spec_file`, when it came from one) rendered with
+/// `specimen` and written into `dir` as [`write_booth`] writes it.
+pub fn write_booth_of(
+    spec: &BoothSpec,
+    spec_file: Option<&Path>,
+    specimen: &Specimen,
+    dir: &Path,
+    run: &Run,
+) -> Result<BoothSummary> {
     let checked = spec.check()?;
-    let material_file = spec.material_path(job.material)?;
-    let specimen = material(&material_file)?;
     std::fs::create_dir_all(dir).map_err(|error| RenderError::Io {
         path: dir.to_path_buf(),
         error,
     })?;
-    let pictures = render(spec, &specimen, run)?;
+    let pictures = render(spec, specimen.material, run)?;
     let views = write_views(&pictures, dir, &checked.views)?;
 
-    let mut inputs: Vec<PathBuf> = job.spec_file.map(Path::to_path_buf).into_iter().collect();
+    let mut inputs: Vec<PathBuf> = spec_file.map(Path::to_path_buf).into_iter().collect();
     if let Some(file) = &spec.light.spectrum {
         inputs.push(if file.is_absolute() {
             file.clone()
@@ -138,15 +174,21 @@ pub fn write_booth(job: &BoothJob, dir: &Path, run: &Run) -> Result<BoothSummary
             spec.dir.join(file)
         });
     }
-    inputs.push(material_file.clone());
+    inputs.push(specimen.file.to_path_buf());
+    if extension(specimen.file) == "toml" {
+        inputs.extend(
+            gonio_coating::description::referenced_files(specimen.file)
+                .map_err(|e| RenderError::scene(specimen.file, e.to_string()))?,
+        );
+    }
     let mut outputs: Vec<&Path> = Vec::new();
     for v in &views {
         outputs.extend(v.files.paths());
         outputs.push(&v.specimen_mask);
     }
-    let settings = json!({
+    let mut settings = json!({
         "booth": spec,
-        "material": material_file,
+        "material": specimen.file,
         "light": pictures.light,
         "white_xyz_cd_m2": pictures.white,
         "render": {
@@ -155,6 +197,9 @@ pub fn write_booth(job: &BoothJob, dir: &Path, run: &Run) -> Result<BoothSummary
             "denoise": false,
         },
     });
+    if let Some(made) = specimen.made {
+        settings["material_made"] = made.clone();
+    }
     let manifest = dir.join("manifest.json");
     let input_refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
     write_manifest(
@@ -167,7 +212,7 @@ pub fn write_booth(job: &BoothJob, dir: &Path, run: &Run) -> Result<BoothSummary
     Ok(BoothSummary {
         views,
         manifest,
-        material: material_file,
+        material: specimen.file.to_path_buf(),
         white: pictures.white,
         illuminance_lux: pictures.illuminance_lux,
         light: pictures.light,
@@ -196,17 +241,12 @@ fn write_views(
             let specimen_mask = dir.join(format!("{}-specimen.png", view.name));
             write_grey_png(&specimen_mask, image.width, image.height, &view.specimen)
                 .map_err(failed)?;
-            let (sum, n) = image
-                .xyz
-                .iter()
-                .zip(&view.specimen)
-                .filter(|(_, inside)| **inside)
-                .fold((0.0, 0usize), |(s, n), (p, _)| (s + f64::from(p[1]), n + 1));
+            let mean = specimen_mean(view);
             Ok(ViewSummary {
                 name: view.name.clone(),
                 aspecular_deg: spec_view.aspecular_deg,
-                specimen_luminance: if n > 0 { sum / n as f64 } else { f64::NAN },
-                specimen_pixels: n,
+                specimen_luminance: mean.xyz[1],
+                specimen_pixels: mean.pixels,
                 files,
                 specimen_mask,
             })

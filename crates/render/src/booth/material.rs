@@ -12,11 +12,7 @@ use std::path::Path;
 
 /// The material in `path`: a coating description (`.toml`) or a `.gbrdf` table.
 pub fn material(path: &Path) -> Result<Material> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase)
-        .unwrap_or_default();
+    let ext = crate::extension::extension(path);
     match ext.as_str() {
         "toml" => {
             let coating = gonio_coating::description::read(path, &default_bands())

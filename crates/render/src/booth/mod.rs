@@ -8,7 +8,7 @@
 //!
 //! - [`spec`]: the description (TOML) and its checks.
 //! - [`scene`]: the booth as a scene, its lights scaled to the illuminance, the views' cameras.
-//! - [`material`]: the specimen's material from a coating description or a `.gbrdf` table.
+//! - [`mod@material`]: the specimen's material from a coating description or a `.gbrdf` table.
 //! - [`closure`]: the picture's side of the closure against the multi-angle instrument (a flat
 //!   panel's mean CIELAB at a geometry, with its noise bound).
 //! - [`input`]: a booth spec, a coating or a table, told apart by its file.
@@ -26,7 +26,7 @@ pub mod material;
 pub mod scene;
 pub mod spec;
 
-pub use files::{BoothJob, BoothSummary, ViewSummary, write_booth};
+pub use files::{BoothJob, BoothSummary, Specimen, ViewSummary, write_booth, write_booth_of};
 pub use input::{BoothInput, Resolved};
 pub use material::material;
 pub use scene::ViewGeometry;

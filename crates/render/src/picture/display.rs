@@ -85,10 +85,7 @@ impl DisplayPicture {
         };
         // The profiles as embedded (parsed back from their ICC bytes), so that the conversion
         // uses the colorants a reader of the PNG finds, rounded to s15Fixed16.
-        let icc = space
-            .profile()?
-            .icc()
-            .map_err(|e| lcms("profile's bytes", e))?;
+        let icc = space.icc()?;
         let display = Profile::new_icc(&icc).map_err(|e| lcms("profile", e))?;
         let linear_icc = space
             .linear_profile()?

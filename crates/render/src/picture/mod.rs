@@ -25,7 +25,7 @@ mod xyz_exr;
 pub(crate) use display::write_png;
 pub use display::{DisplayPicture, MASK_BOTH, MASK_OUT_OF_GAMUT, MASK_OVER_RANGE};
 pub use manifest::{MANIFEST_FORMAT, sha256_file, write_manifest};
-pub use profile::{DisplaySpace, RENDERING_INTENT};
+pub use profile::{DisplaySpace, ICC_CREATED, RENDERING_INTENT};
 pub use view::{DisplayFiles, ViewFiles, write_view};
 pub use xyz_exr::{UNITS_ATTRIBUTE, write_xyz_exr};
 

@@ -25,6 +25,12 @@ use lcms2::{CIExyY, CIExyYTRIPLE, Intent, Locale, MLU, Profile, Tag, TagSignatur
 /// CMS would fall back to the colorimetric transform anyway (ICC.1:2010 section 8.3).
 pub const RENDERING_INTENT: Intent = Intent::RelativeColorimetric;
 
+/// The creation date and time written in the embedded profiles' header (ICC.1:2010 section
+/// 7.2.8, bytes 24 to 35: year, month, day, hours, minutes, seconds, each a big-endian u16, UTC):
+/// the day these profiles' definition was last changed, fixed so that a PNG does not depend on
+/// when it was written.
+pub const ICC_CREATED: [u16; 6] = [2026, 12, 6, 0, 0, 0];
+
 /// The display a rendering is made for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum DisplaySpace {
@@ -77,6 +83,27 @@ impl DisplaySpace {
             ToneCurve::new_parametric(4, &[2.4, 1.0 / 1.055, 0.055 / 1.055, 1.0 / 12.92, 0.04045])
                 .map_err(|e| RenderError::Invalid(format!("Little CMS: the sRGB curve: {e}")))?;
         self.build(&curve, self.description())
+    }
+
+    /// The display's ICC profile as a PNG embeds it: [`DisplaySpace::profile`]'s bytes with the
+    /// creation date and time [`ICC_CREATED`] in the header instead of the clock's, which Little CMS
+    /// stamps (and has no setter for). So the same picture is the same bytes from run to run, as
+    /// the manifest's SHA-256 of each PNG expects. Little CMS leaves the header's profile ID
+    /// (its MD5, which would cover the date) zero, so no checksum needs recomputing.
+    pub fn icc(self) -> Result<Vec<u8>> {
+        let mut bytes = self.profile()?.icc().map_err(|e| {
+            RenderError::Invalid(format!("Little CMS: the {self:?} profile's bytes: {e}"))
+        })?;
+        if bytes.len() < 128 || bytes[84..100].iter().any(|&b| b != 0) {
+            return Err(RenderError::Invalid(format!(
+                "Little CMS: the {self:?} profile's header is not the 128 bytes with a zero \
+                 profile ID that its creation date can be set in"
+            )));
+        }
+        for (k, v) in ICC_CREATED.iter().enumerate() {
+            bytes[24 + 2 * k..26 + 2 * k].copy_from_slice(&v.to_be_bytes());
+        }
+        Ok(bytes)
     }
 
     /// The display's linear twin: its primaries and white with the identity curve, whose RGB

@@ -145,6 +145,48 @@ fn booth_picture_is_the_same_for_any_number_of_threads() {
     assert_eq!(one, two);
 }
 
+/// The booth's manifest lists among its inputs the files the specimen's coating description
+/// names (here its coat's index table, beside it), each with its SHA-256, after the
+/// description itself.
+#[test]
+fn manifest_names_the_files_a_coating_names() {
+    let dir = tempfile::tempdir().unwrap();
+    let coating = dir.path().join("coating.toml");
+    std::fs::write(
+        &coating,
+        "[coat]\nindex = { file = \"index.csv\" }\nthickness_um = 40\n\
+         [base]\nkind = \"diffuse\"\nreflectance = 0.3\n",
+    )
+    .unwrap();
+    let index = dir.path().join("index.csv");
+    std::fs::write(&index, "wavelength_nm,value\n380,1.52\n780,1.49\n").unwrap();
+    let s = spec("[render]\nwidth = 8\nheight = 6\nspp = 1\n[camera]\nviews = [\"45\"]\n");
+    let m = lambert(0.3);
+    let specimen = booth::Specimen {
+        material: &m,
+        file: &coating,
+        made: None,
+    };
+    let out = dir.path().join("out");
+    let summary = booth::write_booth_of(&s, None, &specimen, &out, &Run::default()).unwrap();
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&summary.manifest).unwrap()).unwrap();
+    let inputs: Vec<(&str, &str)> = manifest["inputs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|i| (i["path"].as_str().unwrap(), i["sha256"].as_str().unwrap()))
+        .collect();
+    let sha = |p: &Path| gonio_render::picture::sha256_file(p).unwrap().0;
+    assert_eq!(
+        inputs,
+        [
+            (coating.to_str().unwrap(), sha(&coating).as_str()),
+            (index.to_str().unwrap(), sha(&index).as_str())
+        ]
+    );
+}
+
 /// Closure (a): a Lambertian panel of albedo ρ in the booth has the luminance ρE/π, E the
 /// spec's illuminance, under the collimated light alone, the diffuse booth alone and the
 /// default half and half, by the distant camera along the normal and by the perspective
@@ -171,7 +213,7 @@ fn lambertian_panel_luminance_is_rho_e_over_pi() {
              [render]\nwidth = 40\nheight = 30\nspp = 32\n"
         ));
         let pictures = booth::render(&s, &lambert(rho), &Run::default()).unwrap();
-        let mean = booth::closure::specimen_mean(&pictures.views[0]).unwrap();
+        let mean = booth::closure::specimen_mean(&pictures.views[0]);
         let (se, n) = (mean.standard_error, mean.pixels);
         let expected = rho * 1500.0 / std::f64::consts::PI;
         let ratio = mean.xyz[1] / expected;

@@ -139,8 +139,8 @@ print(json.dumps(results))
     }
 }
 
-/// The PNG carries the display's ICC profile: Little CMS parses it back, its primaries are the
-/// display's, gonio's sRGB is Little CMS's built-in sRGB, and the pixels are the rendering's.
+/// The PNG carries the display's ICC profile: Little CMS parses it back, its creation date is
+/// the fixed one, its primaries are the display's, gonio's sRGB is Little CMS's built-in sRGB, and the pixels are the rendering's.
 #[test]
 fn png_embeds_the_display_profile() {
     let dir = tempfile::tempdir().unwrap();
@@ -159,6 +159,13 @@ fn png_embeds_the_display_profile() {
         let file = std::io::BufReader::new(std::fs::File::open(&path).unwrap());
         let mut decoder = image::codecs::png::PngDecoder::new(file).unwrap();
         let icc = decoder.icc_profile().unwrap().expect("no iCCP chunk");
+        // The header's creation date is the fixed one, not the clock's, so that the PNG's
+        // bytes do not depend on when it was written.
+        let created: Vec<u16> = icc[24..36]
+            .chunks(2)
+            .map(|b| u16::from_be_bytes([b[0], b[1]]))
+            .collect();
+        assert_eq!(created, gonio_render::picture::ICC_CREATED, "{space:?}");
         let profile = Profile::new_icc(&icc).unwrap();
         let Tag::CIExyYTRIPLE(chrm) = profile.read_tag(TagSignature::ChromaticityTag) else {
             panic!("{space:?}: no chromaticity tag")

@@ -1,7 +1,8 @@
 //! The demo report's standard of appearance (issue 44, `docs/standard.md`): a silver metallic
 //! and a red solid in the virtual viewing booth (`gonio_render::booth`), their three named
 //! views as pictures of absolute CIE XYZ written with their display renderings, masks and
-//! manifest (`gonio_render::picture`), and the closure table: at each ASTM E2194 geometry, what
+//! manifest as `gonio booth` writes them (`gonio_render::booth::write_booth_of`, from the
+//! section's own tables), and the closure table: at each ASTM E2194 geometry, what
 //! a picture of a flat panel reads against what the multi-angle instrument reads of the same
 //! table ([`crate::closure`]); and the summary of the appearance conformance suite on gonio's
 //! renderer (`gonio_conformance`, `docs/conformance.md`).
@@ -19,10 +20,10 @@ use gonio_conformance::{Options, Renderer};
 use gonio_instrument::multiangle::E2194;
 use gonio_io::Progress;
 use gonio_render::booth::closure::ClosurePicture;
-use gonio_render::booth::{self, BoothSpec, Run};
+use gonio_render::booth::{self, BoothSpec, Run, Specimen};
 use gonio_render::material::Material;
 use gonio_render::panel;
-use gonio_render::picture::{DisplaySpace, XyzPicture, write_manifest, write_view};
+use gonio_render::picture::DisplaySpace;
 use serde_json::json;
 use std::path::Path;
 
@@ -122,7 +123,9 @@ pub(super) fn standard_section(dir: &Path, quick: bool, work: &Progress) -> Resu
         create_dir(&out)?;
         let toml = out.join(format!("{file}.toml"));
         copy(&source, &toml)?;
-        let coating = description::read(&source, &bands)?;
+        // Read from the copy, so that the manifest's input (and the files it names, beside
+        // it) is what the table was made from.
+        let coating = description::read(&toml, &bands)?;
         let resolution = plan
             .resolution
             .unwrap_or_else(|| panel::resolution(&coating));
@@ -148,17 +151,22 @@ pub(super) fn standard_section(dir: &Path, quick: bool, work: &Progress) -> Resu
             progress: work.clone(),
             ..Run::default()
         };
-        let pictures = booth::render(&spec, &material, &run)
+        let made = json!({
+            "table": {
+                "resolution": [resolution.theta_h, resolution.theta_d, resolution.phi_d],
+                "walks_per_cell": plan.walks,
+            },
+            "coat_index": coat,
+        });
+        let specimen = Specimen {
+            material: &material,
+            file: &toml,
+            made: Some(&made),
+        };
+        let summary = booth::write_booth_of(&spec, None, &specimen, &out, &run)
             .with_context(|| format!("{file}: the booth's pictures"))?;
-        let mut outputs = Vec::new();
-        for view in &pictures.views {
-            let xyz = XyzPicture::new(
-                view.image.width,
-                view.image.height,
-                &view.image.xyz,
-                pictures.observer,
-            )?;
-            let files = write_view(&out, &view.name, &xyz, pictures.white)?;
+        for view in &summary.views {
+            let files = &view.files;
             let srgb = files
                 .displays
                 .iter()
@@ -169,15 +177,15 @@ pub(super) fn standard_section(dir: &Path, quick: bool, work: &Progress) -> Resu
                 .iter()
                 .find(|d| d.space == DisplaySpace::DisplayP3)
                 .context("write_view wrote no Display P3 rendering")?;
-            let luminance = booth::closure::specimen_mean(view)?.xyz[1];
             blocks.push(Block::Image {
                 path: srgb.png.clone(),
                 caption: format!(
-                    "{label}, view {} (aspecular {}°): mean luminance of the panel {luminance:.0} \
+                    "{label}, view {} (aspecular {}°): mean luminance of the panel {:.0} \
                      cd/m²; beyond sRGB's gamut {:.1}% of the pixels, over its white {:.1}% (Display \
                      P3: {:.1}%, {:.1}%).",
                     view.name,
-                    view.camera.aspecular_deg,
+                    view.aspecular_deg,
+                    view.specimen_luminance,
                     100.0 * srgb.out_of_gamut_fraction,
                     100.0 * srgb.over_range_fraction,
                     100.0 * p3.out_of_gamut_fraction,
@@ -199,27 +207,7 @@ pub(super) fn standard_section(dir: &Path, quick: bool, work: &Progress) -> Resu
                     ("Display P3 mask".into(), rel(&p3.mask)),
                 ],
             });
-            outputs.extend(files.paths().into_iter().map(Path::to_path_buf));
         }
-        let manifest = out.join("manifest.json");
-        let outputs: Vec<&Path> = outputs.iter().map(|p| p.as_path()).collect();
-        write_manifest(
-            &manifest,
-            &[toml.as_path()],
-            u64::from(spec.render.seed),
-            &json!({
-                "booth": "the standard booth (docs/standard.md, examples/booth.toml)",
-                "width": spec.render.width,
-                "height": spec.render.height,
-                "spp": spec.render.spp,
-                "max_bounces": spec.render.max_bounces,
-                "table": {
-                    "resolution": [resolution.theta_h, resolution.theta_d, resolution.phi_d],
-                    "walks_per_cell": plan.walks,
-                },
-            }),
-            &outputs,
-        )?;
         blocks.push(Block::Links {
             lead: format!("{label}: the files' SHA-256 and the settings:"),
             links: vec![(

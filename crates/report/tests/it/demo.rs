@@ -87,7 +87,13 @@ fn standard_section_is_complete(html: &str, out: &Path) {
         assert!(section.contains(&format!("href=\"{manifest}\"")));
         let json: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(out.join(&manifest)).unwrap()).unwrap();
-        assert_eq!(json["outputs"].as_array().unwrap().len(), 15, "{manifest}");
+        // Three views, each an OpenEXR, two renderings, their two masks and the specimen's mask.
+        assert_eq!(json["outputs"].as_array().unwrap().len(), 18, "{manifest}");
+        assert_eq!(
+            json["inputs"][0]["path"],
+            format!("{coating}.toml"),
+            "{manifest}"
+        );
     }
     let table = &section[section.find("<table>").expect("the closure table")..];
     let table = &table[..table.find("</table>").unwrap()];

@@ -8,11 +8,11 @@
 //! reflected ray meets the surface again (masking) are found by marching over the height field;
 //! an optional second bounce follows masked rays one more reflection. Each lit facet of a
 //! dielectric also refracts the rest of its share, `1 - R(wi·n)`, into the material by Snell's
-//! law ([`transmission`]), masked when it meets the surface again from below.
+//! law (`transmission`), masked when it meets the surface again from below.
 //!
 //! The engine is planned once per map ([`RayEngine::new`]: normals, facet table, height field)
 //! and then queried per incidence: [`RayEngine::detect`] for any set of cone detectors (exact
-//! cone test, O(N + D·k) through a [direction index](index)), [`RayEngine::detect_hemisphere`]
+//! cone test, O(N + D·k) through a direction index, `index`), [`RayEngine::detect_hemisphere`]
 //! for a grid of cells that tiles the hemisphere, [`RayEngine::inplane`] for an in-plane curve;
 //! [`RayEngine::transmit_hemisphere`] for the transmitted light on the mirrored grid below the
 //! surface and [`RayEngine::energy_budget`] for where the incident power goes.
