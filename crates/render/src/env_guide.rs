@@ -57,7 +57,10 @@ pub(crate) struct CosineGuide {
 
 /// The largest divisor of `n` that is at most `most`.
 fn divisor_at_most(n: usize, most: usize) -> usize {
-    (1..=most.min(n)).rev().find(|d| n.is_multiple_of(*d)).unwrap_or(1)
+    (1..=most.min(n))
+        .rev()
+        .find(|d| n.is_multiple_of(*d))
+        .unwrap_or(1)
 }
 
 /// The unit direction of the point (`x`, `y`) of the octahedral square [-1, 1]² (the lower
