@@ -197,9 +197,10 @@ mod slow {
     /// do (their largest relative difference over incidences 0-60°, where the panel is seen
     /// and lit; each table's own half-vector quadrature), plus three standard errors of the
     /// ratio. The denoised preview departs from its raw estimate by the filter's bias where a
-    /// sample is rare (a smooth coat's mirror is chosen with probability F ≈ 0.05): within 6%
-    /// (measured: 4.8% for the red in the studio at 16 samples per pixel; 21% at 4, which
-    /// is why the preview takes 16).
+    /// sample is rare: within 6% (measured when a smooth coat's mirror was chosen with
+    /// probability F ≈ 0.05: 4.8% for the red in the studio at 16 samples per pixel, 21% at 4,
+    /// which is why the preview takes 16; since the mirror is split off at the first
+    /// interaction the bound is looser than it needs to be).
     #[test]
     fn preview_is_the_converged_picture_coarser() {
         for name in ["silver_metallic", "red_solid"] {
