@@ -129,7 +129,7 @@ const SKY_POINTS: usize = 96;
 
 /// `∫ f(v, l) cos θ_l dω_l` over the hemisphere of `l` (the reflection under a uniform sky of
 /// radiance 1) for the viewer at `theta_v`, `f` giving the luminance BRDF.
-fn under_sky(theta_v: f64, f: impl Fn(DVec3, DVec3) -> f64) -> f64 {
+pub fn under_sky(theta_v: f64, f: impl Fn(DVec3, DVec3) -> f64) -> f64 {
     let v = DVec3::new(theta_v.sin(), 0.0, theta_v.cos());
     let n = SKY_POINTS as f64;
     let mut sum = 0.0;

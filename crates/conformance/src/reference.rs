@@ -12,6 +12,18 @@ use gonio_color::LinearSrgb;
 impl Scene {
     /// The analytic picture and regions.
     pub fn reference(&self) -> crate::Result<Reference> {
+        self.reference_with(None)
+    }
+
+    /// The picture and regions with the coat's reflection under the sky taken from `coat`, the
+    /// radiance under a sky of radiance 1 as a function of the cosine of the view to the normal,
+    /// in place of the closed form (what a renderer holding the coat as a table shows,
+    /// [`crate::loss`]).
+    pub fn reference_with_coat(&self, coat: &dyn Fn(f64) -> f64) -> crate::Result<Reference> {
+        self.reference_with(Some(coat))
+    }
+
+    fn reference_with(&self, coat: Option<&dyn Fn(f64) -> f64>) -> crate::Result<Reference> {
         let patch_rgb = self
             .objects
             .iter()
@@ -44,7 +56,7 @@ impl Scene {
                     for i in 0..SUPERSAMPLE {
                         let fx = x as f64 + (i as f64 + 0.5) / s;
                         let fy = y as f64 + (j as f64 + 0.5) / s;
-                        let (value, member) = self.trace(fx, fy, &patch_rgb, sky_rgb);
+                        let (value, member) = self.trace(fx, fy, &patch_rgb, sky_rgb, coat);
                         for c in 0..3 {
                             sum[c] += value[c] / (s * s);
                         }
@@ -61,13 +73,15 @@ impl Scene {
     }
 
     /// The analytic radiance along the ray through film point (fx, fy) (`sky_rgb` the colour of
-    /// the sky seen directly), and the region the point belongs to.
+    /// the sky seen directly; `coat` the coat's reflection under a unit sky by the cosine of the
+    /// view, the closed form when `None`), and the region the point belongs to.
     fn trace(
         &self,
         fx: f64,
         fy: f64,
         patch_rgb: &[[f64; 3]],
         sky_rgb: [f64; 3],
+        coat_under_sky: Option<&dyn Fn(f64) -> f64>,
     ) -> ([f64; 3], Option<usize>) {
         let origin = DVec3::from(self.camera.position);
         let dir = self.camera.ray(fx, fy);
@@ -94,7 +108,11 @@ impl Scene {
             (Material::Lambert { albedo }, _) => (albedo.map(|a| lambert_under_sky(a, sky)), true),
             (Material::Spectral { .. }, _) => (patch_rgb[k].map(|c| c * sky), true),
             (Material::Coat(coat), Local::Sphere { normal }) => {
-                let v = coat_radiance(normal.dot(-dir), coat.index, coat.base_reflectance(), sky);
+                let cos = normal.dot(-dir);
+                let v = match coat_under_sky {
+                    Some(f) => f(cos) * sky,
+                    None => coat_radiance(cos, coat.index, coat.base_reflectance(), sky),
+                };
                 ([v; 3], true)
             }
             (Material::Coat(_), Local::Rectangle { .. }) => ([0.0; 3], false),

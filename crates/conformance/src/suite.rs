@@ -6,8 +6,9 @@
 //! when every region's mean luminance is within `4 SE + 1e-4 Y_ref + loss Y_ref` of the
 //! reference: 4 standard errors of the Monte Carlo mean (a normal deviate beyond 4 σ has
 //! probability 6e-5), 1e-4 for the pictures' f32 pixels (24-bit mantissas summed over a region
-//! of a few thousand pixels: below 1e-5, rounded up), and the relative size of the export's
-//! bounded loss where one applies ([`crate::loss`]). A metameric scene passes when each patch's
+//! of a few thousand pixels: below 1e-5, rounded up), and the relative size of the renderer's
+//! bounded loss where one applies (an export's table, gonio's own table of the coat's body:
+//! [`crate::loss`]). A metameric scene passes when each patch's
 //! CIELAB is within `ΔE_noise + 0.2` of the reference and the pair's ΔE00 within the sum of the
 //! patches' tolerances of the reference pair's: ΔE_noise is the CIEDE2000 that 4 standard
 //! errors of the patch's mean make ([`crate::compare::delta_e_noise`]), 0.2 the difference

@@ -26,10 +26,11 @@
 //! of some normal near the node, so the density covers the whole integrand and a light sample
 //! alone (the last vertex of a path, which takes no BRDF sample) stays unbiased.
 
+use crate::light::map_direction;
 use glam::{DVec2, DVec3};
 use gonio_brdf::sampling::PiecewiseConstant2D;
 use rayon::prelude::*;
-use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use std::f64::consts::FRAC_PI_2;
 
 /// Cells per side of the octahedral grid of normals.
 const NORMAL_SIDE: usize = 32;
@@ -129,23 +130,16 @@ impl CosineGuide {
                 PiecewiseConstant2D::new(&block_weights, block.0)
             })
             .collect();
-        let map_dir = |u: f64, v: f64| {
-            let (theta, phi) = (PI * v, TAU * u + rotation);
-            DVec3::new(
-                theta.sin() * phi.cos(),
-                theta.cos(),
-                theta.sin() * phi.sin(),
-            )
-        };
         // Per map cell: its centre, its angular radius, its weight and 3 × 3 directions
         // spread over it (centres of its ninths in (u, v)).
         let map_cells: Vec<(DVec3, f64, f64, [DVec3; 9])> = (0..cells.0 * cells.1)
             .map(|c| {
                 let (ci, cj) = (c % cells.0, c / cells.0);
                 let at = |a: f64, b: f64| {
-                    map_dir(
+                    map_direction(
                         (ci as f64 + a) / cells.0 as f64,
                         (cj as f64 + b) / cells.1 as f64,
+                        rotation,
                     )
                 };
                 let (centre, radius) = cell_extent(at);

@@ -226,6 +226,14 @@ fn shape_pdf(shape: &Shape, p: DVec3, wi: DVec3, hit: DVec3) -> f64 {
     }
 }
 
+/// The direction of an equirectangular map's coordinates `(u, v)` in [0, 1]²: θ = πv from +y
+/// (the map's top), φ = 2πu + `rotation` from +x toward +z; [`EnvMap`]'s `dir_to_uv` inverts it.
+pub(crate) fn map_direction(u: f64, v: f64, rotation: f64) -> DVec3 {
+    let (sin_t, cos_t) = (PI * v).sin_cos();
+    let (sin_p, cos_p) = (TAU * u + rotation).sin_cos();
+    DVec3::new(sin_t * cos_p, cos_t, sin_t * sin_p)
+}
+
 /// An equirectangular environment map, importance-sampled in proportion to luminance times
 /// `sin θ` times the cosine to the lit surface's normal ([`CosineGuide`]).
 #[derive(Debug)]
@@ -285,13 +293,12 @@ impl EnvMap {
         let ((i, j), p, pdf_uv) = self.guide.sample(n, u)?;
         let (uu, v) = (p.x, p.y);
         // Keep off the poles, where the density per steradian is singular.
-        let theta = PI * v.clamp(1e-9, 1.0 - 1e-9);
-        let phi = TAU * uu + self.rotation;
-        let sin_t = theta.sin();
+        let v = v.clamp(1e-9, 1.0 - 1e-9);
+        let sin_t = (PI * v).sin();
         if sin_t <= 0.0 {
             return None;
         }
-        let wi = DVec3::new(sin_t * phi.cos(), theta.cos(), sin_t * phi.sin());
+        let wi = map_direction(uu, v, self.rotation);
         // The radiance of the sampled pixel itself (recomputing it from `wi` could round into a
         // neighbour at a pixel edge).
         Some(LightSample {
@@ -332,12 +339,7 @@ mod tests {
         for i in 0..n {
             let theta = PI * (i as f64 + 0.5) / n as f64;
             for k in 0..2 * n {
-                let phi = PI * (k as f64 + 0.5) / n as f64;
-                let d = DVec3::new(
-                    theta.sin() * phi.cos(),
-                    theta.cos(),
-                    theta.sin() * phi.sin(),
-                );
+                let d = map_direction((k as f64 + 0.5) / (2 * n) as f64, theta / PI, 0.0);
                 sum += pdf(d) * theta.sin();
             }
         }
@@ -358,7 +360,7 @@ mod tests {
         let mut n = vec![DVec3::Y, -DVec3::Y, DVec3::X, DVec3::Z, -DVec3::Z];
         n.extend((0..12).map(|k| {
             let (t, p) = (0.3 + 0.21 * k as f64, 1.7 * k as f64);
-            DVec3::new(t.sin() * p.cos(), t.cos(), t.sin() * p.sin())
+            map_direction(p / TAU, t / PI, 0.0)
         }));
         n
     }

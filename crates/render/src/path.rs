@@ -252,6 +252,10 @@ impl<C: Carried> Interaction<'_, C> {
     }
 }
 
+/// Mixed into a pixel's scramble seed for the sampler of the coat's mirror split off at the
+/// first interaction ([`radiance`]).
+const MIRROR_STREAM: u32 = 0x6d69_7272;
+
 /// The probability of following a discrete flake's mirror, where there is one, rather than
 /// sampling the BRDF (of what a smooth coat's mirror leaves): a flake's glint and the body's
 /// reflection are of the same order.
@@ -327,13 +331,39 @@ fn sample_ld<S: Shading>(
 /// Radiance along `ray`, as `shading` carries it: at each interaction a light sample
 /// ([`sample_ld`]) and a BRDF sample that continues the path, whose emission found on the way is
 /// weighted against the light sample ([`emission_weight`]).
+///
+/// At the camera ray's first interaction a smooth coat's mirror is split off rather than chosen
+/// with probability F: its reflection is traced as a path of its own (from the same pixel
+/// sample, on a sampler of its own) and added with weight F, and the path goes on by the lobes
+/// beneath. Chosen with probability F, the mirror put the whole radiance of the mirrored
+/// surroundings into a few samples per pixel: in the viewing booth, a red solid's pixels had
+/// 17% luminance noise at 32 samples, and 2.6% with the mirror off (`docs/performance.md`).
+/// Splitting is Russian roulette's opposite (Arvo & Kirk, "Particle transport and image
+/// synthesis", SIGGRAPH 1990, §4): one more path per camera sample on coated surfaces.
 pub(crate) fn radiance<S: Shading>(
+    scene: &Scene,
+    opts: &Settings,
+    shading: &S,
+    ray: Ray,
+    sampler: &mut Sampler,
+    rays: &mut u64,
+) -> S::C {
+    trace(scene, opts, shading, ray, sampler, rays, 0, true)
+}
+
+/// The path of [`radiance`] from interaction `first` on (the count Russian roulette and the
+/// longest path go by), splitting a smooth coat's mirror off at its first interaction when
+/// `split`.
+#[allow(clippy::too_many_arguments)]
+fn trace<S: Shading>(
     scene: &Scene,
     opts: &Settings,
     shading: &S,
     mut ray: Ray,
     sampler: &mut Sampler,
     rays: &mut u64,
+    first: u32,
+    split: bool,
 ) -> S::C {
     let shapes = scene.accel.shapes();
     let p_select = 1.0 / scene.lights.len().max(1) as f64;
@@ -344,7 +374,7 @@ pub(crate) fn radiance<S: Shading>(
     let mut prev_p = ray.origin;
     // The shading normal there (the light samples' density depends on it).
     let mut prev_n = DVec3::Z;
-    for bounce in 0..=opts.max_bounces {
+    for bounce in first..=opts.max_bounces {
         *rays += 1;
         let Some(hit) = scene.accel.intersect(&ray, 0.0, f64::INFINITY) else {
             for light in scene.lights.iter().filter(|l| l.is_infinite()) {
@@ -373,7 +403,12 @@ pub(crate) fn radiance<S: Shading>(
         if wo.z <= 0.0 {
             break;
         }
-        let mirror = material.mirror(wo.z);
+        let last = bounce == opts.max_bounces;
+        // The coat's mirror: split off here (the path goes on by the lobes beneath), or one of
+        // the lobes the path chooses among.
+        let coat_mirror = material.mirror(wo.z);
+        let split_here = split && bounce == first && coat_mirror > 0.0 && !last;
+        let mirror = if split_here { 0.0 } else { coat_mirror };
         // Discrete flakes: the flake under the point (or a gap), the direction it mirrors
         // and its weight (unless the field leaves its glint to the caller), and what the
         // point lets through of the light from inside.
@@ -408,8 +443,32 @@ pub(crate) fn radiance<S: Shading>(
             body_share: 1.0 - mirror - glint_share,
             body_scale,
         };
-        let last = bounce == opts.max_bounces;
         l += beta * sample_ld(scene, shading, &at, opts.sampling, last, sampler, rays);
+        if split_here {
+            let wi = frame.to_world(DVec3::new(-wo.x, -wo.y, wo.z));
+            if wi.dot(ng) > 0.0 {
+                let mut own = Sampler {
+                    index: sampler.index,
+                    seed: mix(sampler.seed ^ MIRROR_STREAM),
+                    dim: 0,
+                };
+                let mirrored = Ray {
+                    origin: at.origin,
+                    dir: wi.normalize(),
+                };
+                let lm = trace(
+                    scene,
+                    opts,
+                    shading,
+                    mirrored,
+                    &mut own,
+                    rays,
+                    bounce + 1,
+                    false,
+                );
+                l += beta * lm * coat_mirror;
+            }
+        }
         if last {
             break;
         }

@@ -249,7 +249,7 @@ pub fn report(results: &Results, dir: &Path) -> Report {
              difference says what each export loses: {0} × {0} pixels, {1} samples per \
              pixel (gonio, Mitsuba; four times that in the metameric scenes). Values are mean \
              luminances (linear sRGB) over each region; the tolerance is 4 standard errors of \
-             the Monte Carlo mean plus the export's bounded loss (docs/conformance.md).",
+             the Monte Carlo mean plus the bounded loss of the renderer's tables (docs/conformance.md).",
             results.size, results.spp
         ),
         summary: summary(results),

@@ -377,11 +377,12 @@ mod slow {
 /// A smooth clear coat over a BRDF (`coat_index`): in the white furnace (a convex sphere under a
 /// uniform sky of radiance 1, so every path sees the sky after one reflection) each pixel is the
 /// coat's mirror reflectance F(θo) (Fresnel, n 1.5) plus the albedo of the BRDF beneath. The
-/// mirror is chosen with probability F and weighs 1, so its part of a sample is 1 or 0: over N
-/// samples its standard error is sqrt(⟨F(1 − F)⟩ / N), and the bound is four of them plus the
-/// BRDF's own 1% (as above). Over black the mirror is alone; over a GGX lobe the light samples
-/// and the BRDF samples (whose density the mirror's share scales by 1 − F) must still weigh to
-/// one, or the lobe's part is off.
+/// mirror is split off at the first interaction (its reflection of the sky, weight F, has no
+/// variance); the bound still allows for a mirror chosen with probability F and weighing 1
+/// (its part of a sample 1 or 0, standard error sqrt(⟨F(1 − F)⟩ / N) over N samples): four of
+/// those plus the BRDF's own 1% (as above), looser than the split needs. Over black the mirror
+/// is alone; over a GGX lobe the light samples and the BRDF samples must still weigh to one, or
+/// the lobe's part is off.
 #[test]
 fn white_furnace_coated_materials_render_mirror_plus_albedo() {
     let n = 1.5;
