@@ -259,11 +259,18 @@ impl obvhs::Boundable for Bounded {
     }
 }
 
-/// The primitives of a scene with their BVH.
+/// The primitives of a scene with their BVH (none for a scene of at most [`LINEAR_MAX`]
+/// primitives, which are tested one by one).
 pub struct Accel {
     shapes: Vec<Shape>,
     bvh: Option<CwBvh>,
 }
+
+/// The most primitives a scene tests one by one instead of through a BVH: on a scene of one
+/// sphere the traversal cost about 470 instructions a ray beyond the sphere's own test, about
+/// 120 (callgrind, `crates/render/benches/versus_mitsuba.py`'s scene), so a handful of tests
+/// costs less than one traversal.
+const LINEAR_MAX: usize = 4;
 
 impl Accel {
     /// Build the hierarchy over `shapes`.
@@ -275,7 +282,7 @@ impl Accel {
                 Bounded(Aabb::new(lo.as_vec3a(), hi.as_vec3a()))
             })
             .collect();
-        let bvh = (!boxes.is_empty()).then(|| {
+        let bvh = (shapes.len() > LINEAR_MAX).then(|| {
             obvhs::cwbvh::builder::build_cwbvh(
                 &boxes,
                 obvhs::BvhBuildParams::medium_build(),
@@ -305,8 +312,16 @@ impl Accel {
 
     /// The nearest hit in `(t_min, t_max)`.
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
-        let bvh = self.bvh.as_ref()?;
         let mut best: Option<(f64, usize)> = None;
+        let Some(bvh) = self.bvh.as_ref() else {
+            for (prim, shape) in self.shapes.iter().enumerate() {
+                let limit = best.map_or(t_max, |b| b.0);
+                if let Some(t) = shape.intersect(ray, t_min, limit) {
+                    best = Some((t, prim));
+                }
+            }
+            return best.map(|(t, prim)| self.shapes[prim].hit(ray, t, prim));
+        };
         let mut hit = RayHit::none();
         bvh.ray_traverse(Self::bvh_ray(ray, t_min, t_max), &mut hit, |_, id| {
             let prim = bvh.primitive_indices[id] as usize;
@@ -325,7 +340,10 @@ impl Accel {
     /// Whether anything lies on the ray in `(t_min, t_max)`.
     pub fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         let Some(bvh) = self.bvh.as_ref() else {
-            return false;
+            return self
+                .shapes
+                .iter()
+                .any(|s| s.intersect(ray, t_min, t_max).is_some());
         };
         !bvh.ray_traverse_miss(Self::bvh_ray(ray, t_min, t_max), |_, id| {
             let prim = bvh.primitive_indices[id] as usize;

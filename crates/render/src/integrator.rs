@@ -234,11 +234,7 @@ fn pixel(
     let mut sum = Rgb::ZERO;
     let mut sum_sq = 0.0;
     for s in 0..opts.spp {
-        let mut sampler = Sampler {
-            index: s,
-            seed,
-            dim: 0,
-        };
+        let mut sampler = Sampler::new(s, seed);
         let film = DVec2::new(x as f64, y as f64) + sampler.next2();
         let ray = scene.camera.ray(film);
         let l = match opts.colour {

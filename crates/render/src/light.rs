@@ -15,6 +15,7 @@ use crate::image::Image;
 use glam::{DVec2, DVec3};
 use gonio_brdf::Rgb;
 use gonio_brdf::sampling::{Frame, concentric_disk, cosine_hemisphere, cosine_hemisphere_pdf};
+use gonio_brdf::table::coords::{acos, atan2};
 use std::f64::consts::{PI, TAU};
 
 /// A light sample seen from a point.
@@ -266,8 +267,8 @@ impl EnvMap {
     }
 
     fn dir_to_uv(&self, d: DVec3) -> (f64, f64) {
-        let theta = d.y.clamp(-1.0, 1.0).acos();
-        let phi = (d.z.atan2(d.x) - self.rotation).rem_euclid(TAU);
+        let theta = acos(d.y.clamp(-1.0, 1.0));
+        let phi = (atan2(d.z, d.x) - self.rotation).rem_euclid(TAU);
         (phi / TAU, theta / PI)
     }
 

@@ -123,31 +123,63 @@ pub(crate) fn mix(mut x: u32) -> u32 {
     x ^ (x >> 16)
 }
 
-/// The sample stream of one path: successive dimensions of one Owen-scrambled Sobol sample.
+/// The sample stream of one path: successive dimensions of one Owen-scrambled Sobol sample
+/// (Burley 2020), drawn four dimensions at a time (`sobol_burley::sample_4d`, the same values
+/// as four calls of `sample`, at about a third of their cost).
 pub(crate) struct Sampler {
     /// The sample's index within its pixel.
-    pub index: u32,
+    index: u32,
     /// The pixel's scramble seed.
-    pub seed: u32,
+    seed: u32,
     /// The next dimension.
-    pub dim: u32,
+    dim: u32,
+    /// The set of four dimensions held in `values` (`u32::MAX`: none yet).
+    set: u32,
+    /// Dimensions `4 set .. 4 set + 4`.
+    values: [f32; 4],
 }
 
 impl Sampler {
+    /// The stream of sample `index` of the pixel scrambled by `seed`, from its first dimension.
+    pub(crate) fn new(index: u32, seed: u32) -> Sampler {
+        Sampler {
+            index,
+            seed,
+            dim: 0,
+            set: u32::MAX,
+            values: [0.0; 4],
+        }
+    }
+
+    /// The sample's index within its pixel.
+    pub(crate) fn index(&self) -> u32 {
+        self.index
+    }
+
+    /// The pixel's scramble seed.
+    pub(crate) fn seed(&self) -> u32 {
+        self.seed
+    }
+
     pub(crate) fn next(&mut self) -> f64 {
         let d = self.dim;
         self.dim += 1;
-        // Past the 256 dimensions of the tables, continue with freshly seeded sequences.
-        let seed = if d < sobol_burley::NUM_DIMENSIONS {
-            self.seed
-        } else {
-            mix(self.seed ^ mix(d / sobol_burley::NUM_DIMENSIONS))
-        };
-        f64::from(sobol_burley::sample(
-            self.index,
-            d % sobol_burley::NUM_DIMENSIONS,
-            seed,
-        ))
+        let set = d / 4;
+        if set != self.set {
+            // Past the 256 dimensions of the tables, continue with freshly seeded sequences.
+            let seed = if d < sobol_burley::NUM_DIMENSIONS {
+                self.seed
+            } else {
+                mix(self.seed ^ mix(d / sobol_burley::NUM_DIMENSIONS))
+            };
+            self.values = sobol_burley::sample_4d(
+                self.index,
+                set % sobol_burley::NUM_DIMENSION_SETS_4D,
+                seed,
+            );
+            self.set = set;
+        }
+        f64::from(self.values[(d % 4) as usize])
     }
 
     pub(crate) fn next2(&mut self) -> DVec2 {
@@ -447,11 +479,7 @@ fn trace<S: Shading>(
         if split_here {
             let wi = frame.to_world(DVec3::new(-wo.x, -wo.y, wo.z));
             if wi.dot(ng) > 0.0 {
-                let mut own = Sampler {
-                    index: sampler.index,
-                    seed: mix(sampler.seed ^ MIRROR_STREAM),
-                    dim: 0,
-                };
+                let mut own = Sampler::new(sampler.index(), mix(sampler.seed() ^ MIRROR_STREAM));
                 let mirrored = Ray {
                     origin: at.origin,
                     dir: wi.normalize(),
@@ -522,4 +550,28 @@ fn trace<S: Shading>(
         }
     }
     l
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The stream drawn four dimensions at a time gives each dimension's own
+    /// `sobol_burley::sample`, past the tables' 256 dimensions too (where each further 256 take
+    /// a fresh seed).
+    #[test]
+    fn stream_by_fours_is_the_per_dimension_sample() {
+        for (index, seed) in [(0, 1), (5, 0x1234_5678), (1023, 99)] {
+            let mut s = Sampler::new(index, seed);
+            for d in 0..700u32 {
+                let seed = if d < sobol_burley::NUM_DIMENSIONS {
+                    seed
+                } else {
+                    mix(seed ^ mix(d / sobol_burley::NUM_DIMENSIONS))
+                };
+                let own = sobol_burley::sample(index, d % sobol_burley::NUM_DIMENSIONS, seed);
+                assert_eq!(s.next(), f64::from(own), "index {index} dimension {d}");
+            }
+        }
+    }
 }

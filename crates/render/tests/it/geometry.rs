@@ -58,7 +58,7 @@ fn shapes_are_hit_where_geometry_says() {
 }
 
 #[test]
-fn bvh_finds_the_same_nearest_hit_as_brute_force() {
+fn accel_finds_the_same_nearest_hit_as_brute_force() {
     let mut shapes = vec![];
     for i in 0..200 {
         let x = (i as f64 * 0.618).fract() * 10.0 - 5.0;
@@ -85,7 +85,29 @@ fn bvh_finds_the_same_nearest_hit_as_brute_force() {
             },
         });
     }
-    let accel = Accel::new(shapes.clone());
+    let hits = nearest_hits_agree(&shapes);
+    assert!(hits > 100 && hits < 1900, "{hits}");
+    // Large spheres around the rays' origin, overlapping along many rays: 4, which a scene
+    // tests one by one, and 5, through the BVH again.
+    let big: Vec<Shape> = (0..5)
+        .map(|i| {
+            let a = i as f64 * 1.3;
+            Shape::Sphere {
+                centre: DVec3::new(3.0 * a.cos(), 0.5 * i as f64 - 1.0, 3.0 * a.sin()),
+                radius: 1.5,
+            }
+        })
+        .collect();
+    for n in [4, 5] {
+        let hits = nearest_hits_agree(&big[..n]);
+        assert!(hits > 300 && hits < 1900, "{n} spheres: {hits}");
+    }
+}
+
+/// Rays through `shapes` find the same nearest hit and occlusion as testing every shape;
+/// returns how many hit.
+fn nearest_hits_agree(shapes: &[Shape]) -> usize {
+    let accel = Accel::new(shapes.to_vec());
     let mut hits = 0;
     for k in 0..2000 {
         let a = k as f64 * 0.7548776662;
@@ -106,5 +128,5 @@ fn bvh_finds_the_same_nearest_hit_as_brute_force() {
         assert_eq!(accel.occluded(&r, 1e-9, f64::INFINITY), brute.is_some());
         hits += usize::from(brute.is_some());
     }
-    assert!(hits > 100 && hits < 1900, "{hits}");
+    hits
 }
