@@ -338,12 +338,7 @@ fn info(a: InfoArgs) -> Result<()> {
 }
 
 fn import(a: ImportArgs) -> Result<()> {
-    let ext = a
-        .file
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
+    let ext = gonio_io::extension(&a.file);
     let format = match (a.format, ext.as_str()) {
         (ImportFormat::Auto, "astm") => ImportFormat::Astm,
         (ImportFormat::Auto, "binary") => ImportFormat::Merl,
@@ -483,11 +478,7 @@ fn in_plane(brdf: &dyn Brdf, incidence_deg: &[f64], label: &str, markers: bool) 
 /// series of the table's colours: signed scattering angle (+ on the specular side) and the mean
 /// of the table's RGB of each measured spectrum, as the curves are drawn.
 fn measured_in_plane(table: &BrdfTable, path: &Path, incidence_deg: &[f64]) -> Result<Vec<Series>> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
+    let ext = gonio_io::extension(path);
     let samples = match ext.as_str() {
         "astm" => astm::read(path)?.samples,
         "csv" => csv::read_samples(path)?.1,

@@ -52,7 +52,7 @@ pub fn read_lab_target(
 ) -> Result<LabTarget> {
     let name = path.display().to_string();
     let invalid = |e: &dyn std::fmt::Display| FormulationError::Invalid(format!("{name}: {e}"));
-    if target::extension(path) == "csv" {
+    if gonio_io::extension(path) == "csv" {
         let all = Target::read_csv(path)?;
         let (kept, left_out): (Vec<Geometry>, Vec<Geometry>) = all
             .geometries()

@@ -60,7 +60,7 @@ pub fn read_target(path: &Path, geometries: &[Geometry]) -> Result<Target> {
     if geometries.is_empty() {
         return Err(invalid(&"a target needs at least one geometry"));
     }
-    if extension(path) == "csv" {
+    if gonio_io::extension(path) == "csv" {
         return at_geometries(Target::read_csv(path)?, geometries);
     }
     let table = measured_table(path)?;
@@ -69,21 +69,13 @@ pub fn read_target(path: &Path, geometries: &[Geometry]) -> Result<Target> {
     Ok(Target::from_reading(name, &reading))
 }
 
-/// The extension of `path`, lower case ("" without one).
-pub(crate) fn extension(path: &Path) -> String {
-    path.extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase()
-}
-
 /// The measured BRDF `path` as a table: `.astm` (Cornell's ASTM text) imported as `gonio brdf
 /// import` imports it (fitted and resampled onto [`astm::default_resolution`]), `.gbrdf` read;
 /// any other extension refused, naming the target's formats.
 pub(crate) fn measured_table(path: &Path) -> Result<BrdfTable> {
     let name = path.display().to_string();
     let invalid = |e: &dyn std::fmt::Display| FormulationError::Invalid(format!("{name}: {e}"));
-    match extension(path).as_str() {
+    match gonio_io::extension(path).as_str() {
         "astm" => Ok(astm::import(path, astm::default_resolution())
             .map_err(|e| invalid(&e))?
             .0),

@@ -12,6 +12,16 @@ pub mod progress;
 pub use cancel::Cancel;
 pub use progress::{Progress, Report};
 
+/// The extension of `path` in lower case ("" without one, or when it is not UTF-8): how gonio's
+/// readers and writers tell a file's kind (`.exr`, `.gbrdf`, `.toml`, `.csv`…) without regard
+/// to case.
+pub fn extension(path: &Path) -> String {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .unwrap_or_default()
+}
+
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
@@ -74,5 +84,15 @@ mod tests {
         let path = dir.path().join("no/such/folder/x.csv");
         let err = write_atomic(&path, |w| w.write_all(b"x"), |e| e).unwrap_err();
         assert_eq!(err.kind(), std::io::ErrorKind::NotFound);
+    }
+
+    /// A file's kind by its extension, whatever its case; none, or a name ending in a dot, is "".
+    #[test]
+    fn extension_is_lower_case() {
+        use std::path::Path;
+        assert_eq!(extension(Path::new("dir/Panel.EXR")), "exr");
+        assert_eq!(extension(Path::new("a.b.Gbrdf")), "gbrdf");
+        assert_eq!(extension(Path::new("noext")), "");
+        assert_eq!(extension(Path::new(".hidden")), "");
     }
 }

@@ -220,11 +220,7 @@ pub fn import_table(
         Some(nodes) => self::resolution(&nodes)?,
         None => astm::default_resolution(),
     };
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase)
-        .unwrap_or_default();
+    let ext = gonio_io::extension(&path);
     let table = py.detach(|| match ext.as_str() {
         "astm" => astm::import(&path, res).map(|(t, _)| t),
         "csv" => brdf_csv::import(&path, res).map(|(t, _)| t),

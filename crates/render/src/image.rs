@@ -144,7 +144,7 @@ impl Image {
     /// Write the image; the format follows the extension: `.exr` (linear float), `.hdr`
     /// (linear RGBE) or `.png` (with `display`). The write is atomic.
     pub fn write(&self, path: &Path, display: Display) -> Result<()> {
-        let ext = crate::extension::extension(path);
+        let ext = gonio_io::extension(path);
         let (w, h) = (self.width as u32, self.height as u32);
         let floats: Vec<f32> = self.pixels.iter().flatten().copied().collect();
         let (img, format) = match ext.as_str() {

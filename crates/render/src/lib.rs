@@ -23,7 +23,6 @@ pub mod denoise;
 pub mod difference;
 mod env_guide;
 pub mod error;
-mod extension;
 pub mod flakes;
 pub mod geometry;
 pub mod image;

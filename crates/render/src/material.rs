@@ -105,7 +105,7 @@ pub fn from_model(spec: &ModelSpec, scene: &Path, name: &str) -> Result<Arc<dyn 
 /// Read a tabulated BRDF by extension: `.gbrdf` (gonio's format), `.astm` (Cornell, imported
 /// through the smoothing fit onto the default resolution) or `.binary` (MERL).
 pub fn read_table(path: &Path) -> Result<BrdfTable> {
-    let ext = crate::extension::extension(path);
+    let ext = gonio_io::extension(path);
     let wrap = RenderError::Brdf;
     match ext.as_str() {
         "gbrdf" => gbrdf::read(path).map_err(wrap),

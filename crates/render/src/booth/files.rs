@@ -14,9 +14,9 @@
 use super::closure::specimen_mean;
 use super::{BoothPictures, BoothSpec, Run, material, render};
 use crate::error::{RenderError, Result};
-use crate::extension::extension;
 use crate::material::Material;
 use crate::picture::{ViewFiles, XyzPicture, write_manifest, write_view};
+use gonio_io::extension;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 

@@ -35,7 +35,7 @@ impl BoothInput {
     /// every top-level key is a booth's (an empty file is the standard booth); anything else is
     /// an error that says which keys it found and what each kind of file holds.
     pub fn from_file(path: &Path) -> Result<BoothInput> {
-        let ext = crate::extension::extension(path);
+        let ext = gonio_io::extension(path);
         match ext.as_str() {
             "gbrdf" => {
                 if !path.is_file() {

@@ -12,7 +12,7 @@ use std::path::Path;
 
 /// The material in `path`: a coating description (`.toml`) or a `.gbrdf` table.
 pub fn material(path: &Path) -> Result<Material> {
-    let ext = crate::extension::extension(path);
+    let ext = gonio_io::extension(path);
     match ext.as_str() {
         "toml" => {
             let coating = gonio_coating::description::read(path, &default_bands())

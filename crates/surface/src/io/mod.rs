@@ -357,11 +357,7 @@ const MAX_PLAUSIBLE_ASPECT: f64 = 1e3;
 /// Write a height map; the extension picks the format (`.x3p` or `.gsf`). The file is written to
 /// a temporary file beside the target and renamed, so a failure never leaves half a file.
 pub fn write(map: &HeightMap, path: &Path) -> Result<()> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase)
-        .unwrap_or_default();
+    let ext = gonio_io::extension(path);
     let bytes = match ext.as_str() {
         "x3p" => x3p::to_bytes(map).map_err(|m| SurfaceError::format(path, x3p::NAME, m))?,
         "gsf" => gsf::to_bytes(map),
