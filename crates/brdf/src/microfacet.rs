@@ -216,6 +216,32 @@ impl Microfacet {
         ))
     }
 
+    /// The inverse of [`Microfacet::sample_visible`] for GGX: the uniform numbers `u` from which
+    /// it returns the normal `h` seen from `w` (with `w.z > 0` and `w·h > 0`); `None` for
+    /// Beckmann or a normal not visible from `w`. Heitz (2018), listing 1, run backwards: stretch
+    /// `h`, project it on the frame `(t1, t2)` about the stretched `w`, undo the half-disk warp
+    /// `p2 = (1 - s) √(1 - p1²) + s r sin φ` and read `r² = u.x`, `φ = 2π u.y`.
+    pub fn invert_visible(&self, w: DVec3, h: DVec3) -> Option<DVec2> {
+        if self.distribution != Distribution::Ggx || w.z <= 0.0 || w.dot(h) <= 0.0 {
+            return None;
+        }
+        let v = self.stretched(w);
+        let lensq = v.x * v.x + v.y * v.y;
+        let t1 = if lensq > 0.0 {
+            DVec3::new(-v.y, v.x, 0.0) / lensq.sqrt()
+        } else {
+            DVec3::X
+        };
+        let t2 = v.cross(t1);
+        let nh = DVec3::new(h.x / self.alpha_x, h.y / self.alpha_y, h.z).try_normalize()?;
+        let p1 = nh.dot(t1).clamp(-1.0, 1.0);
+        let s = 0.5 * (1.0 + v.z);
+        let r_sin = (nh.dot(t2) - (1.0 - s) * (1.0 - p1 * p1).sqrt()) / s;
+        let u_x = (p1 * p1 + r_sin * r_sin).min(1.0);
+        let u_y = (r_sin.atan2(p1) / (2.0 * PI)).rem_euclid(1.0);
+        Some(DVec2::new(u_x, u_y))
+    }
+
     /// The pdf (per steradian of `h`) of [`Microfacet::sample_visible`] from `w`.
     pub fn pdf_visible(&self, w: DVec3, h: DVec3) -> f64 {
         if w.z <= 0.0 {

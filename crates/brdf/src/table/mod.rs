@@ -21,6 +21,7 @@ pub mod colour;
 pub mod coords;
 mod fit_samples;
 mod sampler;
+mod vndf_warp;
 mod spectral;
 
 pub use analysis::AlbedoCurve;
