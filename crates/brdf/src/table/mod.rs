@@ -21,8 +21,8 @@ pub mod colour;
 pub mod coords;
 mod fit_samples;
 mod sampler;
-mod vndf_warp;
 mod spectral;
+mod vndf_warp;
 
 pub use analysis::AlbedoCurve;
 pub use builder::{Cell, TableBuilder};

@@ -5,22 +5,20 @@
 //! fitted GGX, sampled by E. Heitz, "Sampling the GGX distribution of visible normals", JCGT
 //! 7(4), 2018).
 //!
-//! A point `(a, y)` of the square maps to Heitz's uniforms `u = (1 - (1 - y)², a - ¼)` (the
-//! azimuth taken modulo 1) and so to a normal `h` visible from `wo`. The radial coordinate
-//! `y = 1 - √(1 - u.x)` spreads the rim of the disk of visible normals, where the half vectors
-//! far from the lobe (those of a diffuse remainder) are crowded: `1 - u.x ≈ α² / tan² θ_h` away
-//! from the peak, so `1 - y ≈ α / tan θ_h`. The quarter turn puts the seam of the azimuth on the
-//! side of the disk facing away from `wo`, where at grazing `wo` the reflected direction lies
-//! below the horizon and the density is zero.
-//!
-//! The density of `h` per steradian for a density `p(a, y)` on the square is
-//! `p · D_vis(h) / (2 (1 - y))` (`D_vis = G1(wo) (wo·h) D(h) / cos θo`, Heitz 2018 eq. 1,
-//! the density of Heitz's map of uniform `u`, and `du.x/dy = 2 (1 - y)`); of `wi = reflect(wo, h)`
-//! it is that over `4 (wo·h)` (Walter et al. 2007, eq. 14), in which `wo·h` cancels.
+//! A point of the square maps to the unit disk by Shirley & Chiu's concentric map, and the disk
+//! point to a normal `h` visible from `wo` by Heitz's half-disk warp and projection
+//! ([`Microfacet::visible_normal_on_disk`]). Both steps map a uniform density to a uniform one
+//! and then to the visible normals' `D_vis(h) = G1(wo) (wo·h) D(h) / cos θo` (Heitz 2018,
+//! eq. 1), so a density `p` on the square gives `h` the density `p D_vis(h)` per steradian, and
+//! `wi = reflect(wo, h)` that over `4 (wo·h)` (Walter et al. 2007, eq. 14), in which `wo·h`
+//! cancels. The concentric map rather than Heitz's polar one (`r = √u.x`, `φ = 2π u.y`): a
+//! polar map cuts the lobe about its centre into thin wedges, and the renderer's
+//! low-discrepancy points then stratify it less well (measured in `docs/brdf-tables.md`).
 
 use super::BrdfTable;
 use super::coords::dir;
 use crate::microfacet::Microfacet;
+use crate::sampling::{concentric_disk, concentric_square};
 use glam::{DVec2, DVec3};
 
 /// The warp of the unit square onto visible half vectors of a fitted GGX.
@@ -42,28 +40,23 @@ impl VisibleNormalWarp {
         self.ggx.alpha_x
     }
 
-    /// The half vector at the point `pos = (a, y)` of the square, seen from `wo` (`wo.z > 0`).
+    /// The half vector at the point `pos` of the square, seen from `wo` (`wo.z > 0`).
     pub(super) fn half_vector(&self, wo: DVec3, pos: DVec2) -> DVec3 {
-        let r = 1.0 - pos.y;
-        let u = DVec2::new(1.0 - r * r, (pos.x + 0.75).fract());
-        self.ggx.sample_visible(wo, u)
+        self.ggx.visible_normal_on_disk(wo, concentric_disk(pos))
     }
 
     /// The point of the square that maps to `h` seen from `wo`; `None` if `h` is not visible.
     pub(super) fn point(&self, wo: DVec3, h: DVec3) -> Option<DVec2> {
-        let u = self.ggx.invert_visible(wo, h)?;
-        let a = (u.y + 0.25).fract();
-        Some(DVec2::new(a, 1.0 - (1.0 - u.x).max(0.0).sqrt()))
+        Some(concentric_square(self.ggx.visible_disk_point(wo, h)?))
     }
 
-    /// The density of `wi = reflect(wo, h)` per steradian for a unit density on the square at
-    /// `pos` (module doc): `G1(wo) D(h) / (8 (1 - y) cos θo)`; zero on the rim `y = 1`.
-    pub(super) fn wi_density(&self, wo: DVec3, h: DVec3, pos: DVec2) -> f64 {
-        let rim = 1.0 - pos.y;
-        if rim <= 0.0 || wo.z <= 0.0 {
+    /// The density of `wi = reflect(wo, h)` per steradian for a unit density on the square
+    /// (module doc): `G1(wo) D(h) / (4 cos θo)`.
+    pub(super) fn wi_density(&self, wo: DVec3, h: DVec3) -> f64 {
+        if wo.z <= 0.0 {
             return 0.0;
         }
-        self.ggx.g1(wo) * self.ggx.d(h) / (8.0 * rim * wo.z)
+        self.ggx.g1(wo) * self.ggx.d(h) / (4.0 * wo.z)
     }
 }
 
