@@ -216,6 +216,43 @@ impl Microfacet {
         ))
     }
 
+    /// The GGX normal visible from `w` (with `w.z > 0`) at the point `p` of the unit disk: the
+    /// steps of [`Microfacet::sample_visible`] after its uniform point on the disk (Heitz 2018,
+    /// listing 1: the half-disk warp `p2 → (1 - s) √(1 - p1²) + s p2`, `s = (1 + v.z)/2`, the
+    /// projection onto the hemisphere about the stretched `v = w`, and the unstretch). A uniform
+    /// `p` gives normals with density [`Microfacet::pdf_visible`]; any area-preserving map of the
+    /// square to the disk can feed it. Beckmann has no such disk; it gets `w`'s own normal, `+z`.
+    pub fn visible_normal_on_disk(&self, w: DVec3, p: DVec2) -> DVec3 {
+        if self.distribution != Distribution::Ggx {
+            return DVec3::Z;
+        }
+        let v = self.stretched(w);
+        let (t1, t2) = visible_frame(v);
+        let s = 0.5 * (1.0 + v.z);
+        let p2 = (1.0 - s) * (1.0 - p.x * p.x).max(0.0).sqrt() + s * p.y;
+        let nh = p.x * t1 + p2 * t2 + (1.0 - p.x * p.x - p2 * p2).max(0.0).sqrt() * v;
+        DVec3::new(self.alpha_x * nh.x, self.alpha_y * nh.y, nh.z.max(0.0)).normalize()
+    }
+
+    /// The inverse of [`Microfacet::visible_normal_on_disk`]: the point of the unit disk whose
+    /// normal seen from `w` is `h`; `None` for Beckmann or a normal not visible from `w`. Stretch
+    /// `h`, project it on the frame `(t1, t2)` about the stretched `w`, and undo the half-disk
+    /// warp.
+    pub fn visible_disk_point(&self, w: DVec3, h: DVec3) -> Option<DVec2> {
+        if self.distribution != Distribution::Ggx || w.z <= 0.0 || w.dot(h) <= 0.0 {
+            return None;
+        }
+        let v = self.stretched(w);
+        let (t1, t2) = visible_frame(v);
+        let nh = DVec3::new(h.x / self.alpha_x, h.y / self.alpha_y, h.z).try_normalize()?;
+        let p1 = nh.dot(t1).clamp(-1.0, 1.0);
+        let s = 0.5 * (1.0 + v.z);
+        let p2 = (nh.dot(t2) - (1.0 - s) * (1.0 - p1 * p1).sqrt()) / s;
+        let p = DVec2::new(p1, p2);
+        let len = p.length();
+        Some(if len > 1.0 { p / len } else { p })
+    }
+
     /// The pdf (per steradian of `h`) of [`Microfacet::sample_visible`] from `w`.
     pub fn pdf_visible(&self, w: DVec3, h: DVec3) -> f64 {
         if w.z <= 0.0 {
@@ -223,6 +260,18 @@ impl Microfacet {
         }
         self.g1(w) * w.dot(h).max(0.0) * self.d(h) / w.z
     }
+}
+
+/// Heitz's (2018) frame about the stretched view `v`: `t1` horizontal and normal to the plane
+/// of incidence (`x` at normal incidence), `t2 = v × t1`.
+fn visible_frame(v: DVec3) -> (DVec3, DVec3) {
+    let lensq = v.x * v.x + v.y * v.y;
+    let t1 = if lensq > 0.0 {
+        DVec3::new(-v.y, v.x, 0.0) / lensq.sqrt()
+    } else {
+        DVec3::X
+    };
+    (t1, v.cross(t1))
 }
 
 /// The unit normal of a facet whose height slopes are `slope`: `(-sx, -sy, 1)/|·|`.

@@ -28,7 +28,29 @@ pub fn concentric_disk(u: DVec2) -> DVec2 {
     } else {
         (o.y, FRAC_PI_2 - FRAC_PI_4 * (o.x / o.y))
     };
-    r * DVec2::new(theta.cos(), theta.sin())
+    let (sin, cos) = theta.sin_cos();
+    r * DVec2::new(cos, sin)
+}
+
+/// The inverse of [`concentric_disk`]: the point of [0, 1]² that maps to `d` on the unit disk.
+pub fn concentric_square(d: DVec2) -> DVec2 {
+    let r = d.length();
+    if r == 0.0 {
+        return DVec2::splat(0.5);
+    }
+    let phi = crate::table::coords::atan2(d.y, d.x);
+    let o = if phi.abs() <= FRAC_PI_4 {
+        DVec2::new(r, r * phi / FRAC_PI_4)
+    } else if phi.abs() >= 3.0 * FRAC_PI_4 {
+        let theta = if phi > 0.0 { phi - PI } else { phi + PI };
+        DVec2::new(-r, -r * theta / FRAC_PI_4)
+    } else if phi > 0.0 {
+        DVec2::new(r * (FRAC_PI_2 - phi) / FRAC_PI_4, r)
+    } else {
+        let theta = phi + PI;
+        DVec2::new(-r * (FRAC_PI_2 - theta) / FRAC_PI_4, -r)
+    };
+    ((o + DVec2::ONE) * 0.5).clamp(DVec2::ZERO, DVec2::ONE)
 }
 
 /// A direction on the upper hemisphere with pdf `cos θ / π` (Malley's method: project the

@@ -77,7 +77,7 @@ impl Material {
             .map_or(0.0, |n| gonio_brdf::fresnel::dielectric(cos_o, n))
     }
 
-    /// A material of a tabulated BRDF, importance-sampled by the alias method.
+    /// A material of a tabulated BRDF, importance-sampled by its table sampler.
     pub fn from_table(name: impl Into<String>, table: BrdfTable) -> Material {
         Material::new(name, Arc::new(SampledTable::new(table)))
     }

@@ -1,7 +1,10 @@
 //! The piecewise-bilinear 2D distribution with parameter interpolation that Mitsuba 3
 //! (`Marginal2D<Float, Dim, Continuous = true>` in `include/mitsuba/core/distr_2d.h`) and pbrt-v4
 //! (`PiecewiseLinear2D`) build from the fields of a measured-BRDF tensor file. It must match
-//! theirs exactly for our writer to place values where those renderers will look them up.
+//! theirs exactly for our writer to place values where those renderers will look them up. The
+//! table sampler (`table::sampler`) draws its correction on the square of visible normals from
+//! one too, with theta_o (and phi_o) as the parameters; its lookups run per sample, so they
+//! allocate nothing (at most three parameters).
 //!
 //! Data of `n_x × n_y` nodes on the unit square (node i at `i/(n-1)`), one such slice per
 //! combination of parameter values; between parameter values everything (data and CDFs) is
@@ -28,16 +31,29 @@ pub struct Marginal2D {
 /// of its cell in the parameter grid with a nonzero weight, in corner order (bit k of the
 /// corner's number set for the upper node of parameter k), found once per point so that every
 /// lookup at the point is a short weighted sum.
+/// Held in place, without allocation: a lookup runs per sample in the renderer.
 struct Weights {
-    corners: Vec<(usize, f64)>,
+    corners: [(usize, f64); MAX_CORNERS],
+    len: usize,
 }
 
+/// At most three parameters (Mitsuba's tensors have two angles and a wavelength): eight corners.
+const MAX_PARAMS: usize = 3;
+const MAX_CORNERS: usize = 1 << MAX_PARAMS;
+
 impl Weights {
+    /// The corners with a nonzero weight.
+    fn corners(&self) -> &[(usize, f64)] {
+        &self.corners[..self.len]
+    }
+
     /// The same weights `by` slices further on.
     fn shifted(&self, by: usize) -> Weights {
-        Weights {
-            corners: self.corners.iter().map(|&(s, w)| (s + by, w)).collect(),
-        }
+        let mut out = Weights { ..*self };
+        out.corners[..self.len]
+            .iter_mut()
+            .for_each(|(s, _)| *s += by);
+        out
     }
 }
 
@@ -70,6 +86,12 @@ impl Marginal2D {
     ) -> Result<Self, String> {
         if nx < 2 || ny < 2 {
             return Err(format!("a {nx} × {ny} grid is too small (at least 2 × 2)"));
+        }
+        if params.len() > MAX_PARAMS {
+            return Err(format!(
+                "{} parameters (at most {MAX_PARAMS})",
+                params.len()
+            ));
         }
         let mut strides = vec![0; params.len()];
         let mut slices = 1usize;
@@ -130,41 +152,45 @@ impl Marginal2D {
 
     fn weights(&self, param: &[f64]) -> Weights {
         let mut offset = 0;
-        let mut w = Vec::with_capacity(self.params.len());
+        let d = self.params.len();
+        let mut w = [(1.0, 0.0); MAX_PARAMS];
         for (k, values) in self.params.iter().enumerate() {
             if values.len() == 1 {
-                w.push((1.0, 0.0));
                 continue;
             }
             let i = find_interval(values.len(), |j| values[j] < param[k]);
             let (p0, p1) = (values[i], values[i + 1]);
             let t = ((param[k] - p0) / (p1 - p0)).clamp(0.0, 1.0);
-            w.push((1.0 - t, t));
+            w[k] = (1.0 - t, t);
             offset += self.strides[k] * i;
         }
-        let d = self.params.len();
-        let corners = (0..1usize << d)
-            .filter_map(|corner| {
-                let mut weight = 1.0;
-                let mut slice = offset;
-                for (k, &(lower, upper)) in w.iter().enumerate() {
-                    if corner >> k & 1 == 1 {
-                        weight *= upper;
-                        slice += self.strides[k];
-                    } else {
-                        weight *= lower;
-                    }
+        let mut out = Weights {
+            corners: [(0, 0.0); MAX_CORNERS],
+            len: 0,
+        };
+        for corner in 0..1usize << d {
+            let mut weight = 1.0;
+            let mut slice = offset;
+            for (k, &(lower, upper)) in w[..d].iter().enumerate() {
+                if corner >> k & 1 == 1 {
+                    weight *= upper;
+                    slice += self.strides[k];
+                } else {
+                    weight *= lower;
                 }
-                (weight != 0.0).then_some((slice, weight))
-            })
-            .collect();
-        Weights { corners }
+            }
+            if weight != 0.0 {
+                out.corners[out.len] = (slice, weight);
+                out.len += 1;
+            }
+        }
+        out
     }
 
     /// Parameter-interpolated element `i` of a slice of `size` elements of `array`.
     fn lookup(&self, array: &[f64], size: usize, i: usize, wt: &Weights) -> f64 {
         let mut total = 0.0;
-        for &(slice, w) in &wt.corners {
+        for &(slice, w) in wt.corners() {
             total += w * array[slice * size + i];
         }
         total

@@ -1,13 +1,13 @@
 //! Sampling from tabulated weights: piecewise-constant densities on [0, 1) and [0, 1)², sampled
 //! by inverting their cumulative distributions (pbrt-v4 §A.4.2 "Piecewise-constant 1D and 2D
 //! distributions"). The renderer's environment light draws its pixels from a
-//! [`PiecewiseConstant2D`]; the table sampler inverts mixtures of such distributions in the
-//! same way (`table::sampler`). (Inversion, not Walker's alias method: inversion is monotone,
-//! so it keeps the stratification of low-discrepancy samples.)
+//! [`PiecewiseConstant2D`]. (Inversion, not Walker's alias method: inversion is monotone, so it
+//! keeps the stratification of low-discrepancy samples.)
 //!
-//! The Mitsuba tensor export uses the piecewise-*bilinear* warp beside these
-//! ([`super::bilinear::Marginal2D`]): it must reproduce Mitsuba's `Marginal2D` exactly, which
-//! interpolates its density between nodes rather than holding it constant in cells.
+//! The Mitsuba tensor export and the table sampler (`table::sampler`) use the
+//! piecewise-*bilinear* warp beside these ([`super::bilinear::Marginal2D`]): it must reproduce
+//! Mitsuba's `Marginal2D` exactly, which interpolates its density between nodes rather than
+//! holding it constant in cells, and as a warp it is continuous.
 
 use glam::DVec2;
 

@@ -22,6 +22,7 @@ pub mod coords;
 mod fit_samples;
 mod sampler;
 mod spectral;
+mod vndf_warp;
 
 pub use analysis::AlbedoCurve;
 pub use builder::{Cell, TableBuilder};

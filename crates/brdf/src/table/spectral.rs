@@ -2,10 +2,10 @@
 //! whose channels are spectral bands: the bands interpolated at the pair of directions (as
 //! [`BrdfTable::eval_channels`]), then linearly between bands, the end bands held beyond them
 //! (the convention of the tristimulus band weights, [`gonio_color::SpectralToXyz`], so that a
-//! spectral renderer and the colour of [`Brdf::eval`] read the same spectrum).
+//! spectral renderer and the colour of [`crate::bxdf::Brdf::eval`] read the same spectrum).
 
 use super::{Channels, SampledTable};
-use crate::bxdf::{Brdf, SpectralBrdf};
+use crate::bxdf::SpectralBrdf;
 use glam::{DVec2, DVec3};
 
 impl SampledTable {
@@ -40,9 +40,7 @@ impl SpectralBrdf for SampledTable {
     }
 
     fn sample_direction(&self, wo: DVec3, u: DVec2) -> Option<(DVec3, f64)> {
-        let wi = self.sampler().sample_direction(wo, u)?;
-        let pdf = self.pdf(wo, wi);
-        (pdf > 0.0).then_some((wi, pdf))
+        self.sampler().sample_direction(wo, u)
     }
 }
 
@@ -64,6 +62,7 @@ pub fn band_value(bands: &[f64], values: &[f64], wavelength_nm: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bxdf::Brdf;
     use crate::table::{BrdfTable, Resolution, TableBuilder};
 
     #[test]

@@ -86,3 +86,15 @@ fn every_node_of_the_last_parameter_at_once() {
         }
     }
 }
+
+/// More than three parameters are refused with an error (the interpolation weights are held in
+/// place for at most eight corners), not a panic.
+#[test]
+fn more_than_three_parameters_are_refused() {
+    let data = vec![1.0f32; 16 * 4];
+    let params = vec![vec![0.0]; 4];
+    let err = Marginal2D::new(&data, 2, 2, params, true).unwrap_err();
+    assert!(err.contains("at most 3"), "{err}");
+    let ok = Marginal2D::new(&data[..4 * 8], 2, 2, vec![vec![0.0, 1.0]; 3], true);
+    assert!(ok.is_ok());
+}

@@ -51,3 +51,17 @@ fn reflection_keeps_angle_to_normal() {
     assert!((r.dot(n) - w.dot(n)).abs() < 1e-12);
     assert!(((w + r).normalize() - n).length() < 1e-12);
 }
+
+/// `concentric_square` inverts `concentric_disk` in all eight octants of the disk, at its centre
+/// and on its rim. Tolerance: one `atan2` and a division by π/4 lose a few ulps of the unit
+/// square; 1e-12 leaves a factor 100 above them.
+#[test]
+fn concentric_square_inverts_the_disk() {
+    for i in 0..=40 {
+        for j in 0..=40 {
+            let u = DVec2::new(i as f64 / 40.0, j as f64 / 40.0);
+            let back = concentric_square(concentric_disk(u));
+            assert!((back - u).length() < 1e-12, "{u} -> {back}");
+        }
+    }
+}
