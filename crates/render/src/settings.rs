@@ -8,7 +8,8 @@ use std::sync::Arc;
 /// How BRDF samples are drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum BrdfSampling {
-    /// Each material's own importance sampler (analytic lobes, alias method for tables).
+    /// Each material's own importance sampler (analytic lobes; tables through the visible
+    /// normals of a fitted GGX, `gonio_brdf::table::sampler`).
     #[default]
     Importance,
     /// Cosine-weighted directions for every material (for comparison with importance sampling).

@@ -176,7 +176,8 @@ pub(super) fn copy_scene(scene: &Path, dir: &Path) -> Result<PathBuf> {
 pub(super) fn render_section(dir: &Path, work: &Progress) -> Result<Section> {
     let mut blocks = vec![Block::Text(
         "Pictures by gonio's path tracer (next-event estimation with multiple importance \
-         sampling; tabulated BRDFs sampled by the alias method), 16 samples per pixel, \
+         sampling; tabulated BRDFs sampled through the visible normals of a GGX fitted to \
+         each table), 16 samples per pixel, \
          denoised by an edge-avoiding filter steered by each pixel's noise (measured: within \
          3% relative RMSE of the same pictures with four times the samples, \
          docs/performance.md). First the NIST figure 6: two black epoxy panels whose BRDFs the \
