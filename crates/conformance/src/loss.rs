@@ -8,6 +8,7 @@ use crate::compare;
 use crate::error::Result;
 use crate::export::{self, Format};
 use crate::optics::{coat_radiance, diffuse_reflectance, fresnel, mitsuba_diffuse_reflectance};
+use crate::reference::Reference;
 use crate::scene::{COAT, Material, Scene, SceneId};
 use crate::suite::Route;
 use serde::Serialize;
@@ -40,11 +41,17 @@ fn cannot(text: impl Into<String>) -> Option<Loss> {
     })
 }
 
-/// The loss of `renderer`'s version of `scene` by `route` (its exported files in `dir`), if
-/// any.
-pub fn loss(renderer: Renderer, route: Route, scene: &Scene, dir: &Path) -> Result<Option<Loss>> {
+/// The loss of `renderer`'s version of `scene` (whose analytic picture is `reference`) by
+/// `route` (its exported files in `dir`), if any.
+pub fn loss(
+    renderer: Renderer,
+    route: Route,
+    scene: &Scene,
+    reference: &Reference,
+    dir: &Path,
+) -> Result<Option<Loss>> {
     match route {
-        Route::Own => own_loss(scene),
+        Route::Own => own_loss(scene, reference),
         Route::Export => export_loss(renderer, scene, dir),
         Route::Native => Ok(native_loss(renderer, scene.id)),
     }
@@ -61,7 +68,7 @@ pub fn loss(renderer: Renderer, route: Route, scene: &Scene, dir: &Path) -> Resu
 /// second differences of a at 5° steps give |a''| < 0.5 per rad², so the error is below 5e-6,
 /// 1.3e-5 of a (a ≈ 0.38–0.40). Every other scene's material is exact in gonio (a Lambertian
 /// model, a black base under a delta, a constant spectral table).
-fn own_loss(scene: &Scene) -> Result<Option<Loss>> {
+fn own_loss(scene: &Scene, reference: &Reference) -> Result<Option<Loss>> {
     let Some(coat) = scene.objects.iter().find_map(|o| match &o.material {
         Material::Coat(c) => Some(*c),
         _ => None,
@@ -87,9 +94,8 @@ fn own_loss(scene: &Scene) -> Result<Option<Loss>> {
         let f = x - k as f64;
         under_sky[k] * (1.0 - f) + under_sky[k + 1] * f
     };
-    let model = scene.reference()?;
     let tabulated = scene.reference_with_coat(&of_cos)?;
-    let error = compare::regions(scene, &model, &tabulated.rgb)
+    let error = compare::regions(scene, reference, &tabulated.rgb)
         .iter()
         .map(|r| ((r.value - r.reference) / r.reference).abs())
         .fold(0.0, f64::max);

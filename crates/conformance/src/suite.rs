@@ -253,7 +253,7 @@ pub fn run(options: &Options) -> Result<Results> {
             if scene.is_spectral() {
                 normalise_to_white(&scene, &reference, &mut picture);
             }
-            let loss = loss(renderer, route, &scene, &files)?;
+            let loss = loss(renderer, route, &scene, &reference, &files)?;
             let regions = compare::regions(&scene, &reference, &picture);
             let checks = checks(&scene, &regions, loss.as_ref());
             let (flip_map, flip_mean) = compare::flip(&reference.rgb, &picture, scene.white);

@@ -60,6 +60,7 @@ fn own_coat_loss_is_the_renderers_table() {
         gonio_conformance::Renderer::Gonio,
         Route::Own,
         &scene,
+        &scene.reference().unwrap(),
         dir.path(),
     )
     .unwrap()
@@ -73,6 +74,7 @@ fn own_coat_loss_is_the_renderers_table() {
             gonio_conformance::Renderer::Gonio,
             Route::Own,
             &plate,
+            &plate.reference().unwrap(),
             dir.path()
         )
         .unwrap()
