@@ -275,14 +275,14 @@ const LINEAR_MAX: usize = 4;
 impl Accel {
     /// Build the hierarchy over `shapes`.
     pub fn new(shapes: Vec<Shape>) -> Accel {
-        let boxes: Vec<Bounded> = shapes
-            .iter()
-            .map(|s| {
-                let (lo, hi) = s.bounds();
-                Bounded(Aabb::new(lo.as_vec3a(), hi.as_vec3a()))
-            })
-            .collect();
         let bvh = (shapes.len() > LINEAR_MAX).then(|| {
+            let boxes: Vec<Bounded> = shapes
+                .iter()
+                .map(|s| {
+                    let (lo, hi) = s.bounds();
+                    Bounded(Aabb::new(lo.as_vec3a(), hi.as_vec3a()))
+                })
+                .collect();
             obvhs::cwbvh::builder::build_cwbvh(
                 &boxes,
                 obvhs::BvhBuildParams::medium_build(),
