@@ -40,6 +40,22 @@ pub trait Brdf: Send + Sync {
     /// The pdf (per steradian) with which [`Brdf::sample`] returns `wi` given `wo`.
     fn pdf(&self, wo: DVec3, wi: DVec3) -> f64;
 
+    /// [`Brdf::sample`] with the sampler's constant part (the largest constant under the BRDF,
+    /// drawn by the cosine law) chosen `constant_weight` times as readily against the lobes,
+    /// `constant_weight` in (0, 1]: the MIS compensation of a renderer whose light samples
+    /// already find that part's light ([`crate::table::sampler`], "Compensation"). The
+    /// default, for a BRDF whose sampling has no such part, is [`Brdf::sample`].
+    fn sample_compensated(&self, wo: DVec3, u: DVec2, constant_weight: f64) -> Option<BrdfSample> {
+        let _ = constant_weight;
+        self.sample(wo, u)
+    }
+
+    /// The pdf with which [`Brdf::sample_compensated`] returns `wi` given `wo`.
+    fn pdf_compensated(&self, wo: DVec3, wi: DVec3, constant_weight: f64) -> f64 {
+        let _ = constant_weight;
+        self.pdf(wo, wi)
+    }
+
     /// The BRDF's spectrum, for one that has one; `None` (the default) for a BRDF given in
     /// colour only.
     fn spectral(&self) -> Option<&dyn SpectralBrdf> {
@@ -54,6 +70,7 @@ pub trait SpectralBrdf: Send + Sync {
     /// when either direction is below the surface.
     fn eval_at(&self, wo: DVec3, wi: DVec3, wavelengths_nm: &[f64], out: &mut [f64]);
 
-    /// The direction and pdf of [`Brdf::sample`] for the same `wo` and `u`, without its value.
-    fn sample_direction(&self, wo: DVec3, u: DVec2) -> Option<(DVec3, f64)>;
+    /// The direction and pdf of [`Brdf::sample_compensated`] for the same `wo`, `u` and
+    /// `constant_weight`, without its value.
+    fn sample_direction(&self, wo: DVec3, u: DVec2, constant_weight: f64) -> Option<(DVec3, f64)>;
 }

@@ -26,7 +26,7 @@ impl Assets {
         Assets::default()
     }
 
-    /// A material's `table = "NAME"` is `table` (its alias sampler already built, so that a
+    /// A material's `table = "NAME"` is `table` (its sampler already built, so that a
     /// caller rendering the same table again does not build it again).
     pub fn with_table(mut self, name: impl Into<PathBuf>, table: Arc<SampledTable>) -> Assets {
         self.tables.insert(name.into(), table);

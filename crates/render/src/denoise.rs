@@ -30,9 +30,8 @@
 use crate::error::{RenderError, Result};
 use crate::image::Image;
 use crate::mesoscale::shading_frame;
-use crate::path::sample_brdf;
+use crate::path::{Strategy, sample_brdf};
 use crate::scene::{PrimKind, Scene};
-use crate::settings::BrdfSampling;
 use glam::{DVec2, DVec3};
 use gonio_io::Cancel;
 use rayon::prelude::*;
@@ -123,7 +122,7 @@ fn pixel_features(scene: &Scene, x: usize, y: usize) -> PixelFeatures {
                 ((i % ALBEDO_SAMPLES) as f64 + 0.5) / ALBEDO_SAMPLES as f64,
                 ((i / ALBEDO_SAMPLES) as f64 + 0.5) / ALBEDO_SAMPLES as f64,
             );
-            if let Some(s) = sample_brdf(brdf, wo, u, BrdfSampling::Importance)
+            if let Some(s) = sample_brdf(brdf, wo, u, Strategy::IMPORTANCE)
                 && s.pdf > 0.0
                 && s.wi.z > 0.0
             {

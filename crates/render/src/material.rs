@@ -1,12 +1,12 @@
 //! Materials: what a surface's BRDF is made of. Three kinds: an analytic model of the `brdf`
 //! crate (its [`ModelSpec`]), a tabulated BRDF read from a file (`.gbrdf`, Cornell `.astm`, MERL
-//! `.binary`), importance-sampled with the alias-method sampler of
-//! [`gonio_brdf::table::SampledTable`], or a height map turned into a table by a scattering
-//! method (see [`crate::scene`]). A spectral table is seen at the path's wavelengths in the
-//! spectral colour mode through its [`gonio_brdf::SpectralBrdf`] view. Any of them may lie under
-//! a smooth clear coat ([`Material::coat`]), whose mirror reflection is a delta lobe no table
-//! can hold. Any of them may carry a mesoscale height map ([`Material::mesoscale`], orange
-//! peel), which tilts the shading normal over the BRDF ([`crate::mesoscale`]).
+//! `.binary`), importance-sampled by [`gonio_brdf::table::SampledTable`], or a height map
+//! turned into a table by a scattering method (see [`crate::scene`]). A spectral table is seen
+//! at the path's wavelengths in the spectral colour mode through its
+//! [`gonio_brdf::SpectralBrdf`] view. Any of them may lie under a smooth clear coat
+//! ([`Material::coat`]), whose mirror reflection is a delta lobe no table can hold. Any of them
+//! may carry a mesoscale height map ([`Material::mesoscale`], orange peel), which tilts the
+//! shading normal over the BRDF ([`crate::mesoscale`]).
 
 use crate::error::{RenderError, Result};
 use crate::flakes::FlakeField;

@@ -40,7 +40,7 @@
 
 use crate::flakes::FlakeField;
 use crate::material::Material;
-use crate::path::{Shading, mix, sample_brdf};
+use crate::path::{Shading, Strategy, mix, sample_brdf};
 use crate::settings::{BrdfSampling, Film};
 use glam::{DMat3, DVec2, DVec3, DVec4};
 use gonio_brdf::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
@@ -258,15 +258,17 @@ impl Shading for SpectralPath {
         material: &Material,
         wo: DVec3,
         u: DVec2,
-        how: BrdfSampling,
+        strategy: Strategy,
     ) -> Option<(DVec3, DVec4, f64)> {
         let Some(spectral) = material.brdf.spectral() else {
-            return sample_brdf(material.brdf.as_ref(), wo, u, how)
+            return sample_brdf(material.brdf.as_ref(), wo, u, strategy)
                 .map(|s| (s.wi, self.carry_rgb(s.f), s.pdf));
         };
         // The directions of the tristimulus mode (Brdf::sample), spectral values.
-        let (wi, pdf) = match how {
-            BrdfSampling::Importance => spectral.sample_direction(wo, u)?,
+        let (wi, pdf) = match strategy.how {
+            BrdfSampling::Importance => {
+                spectral.sample_direction(wo, u, strategy.constant_weight)?
+            }
             BrdfSampling::Cosine => {
                 let wi = cosine_hemisphere(u);
                 (wi, cosine_hemisphere_pdf(wi.z))

@@ -39,8 +39,9 @@ impl SpectralBrdf for SampledTable {
         }
     }
 
-    fn sample_direction(&self, wo: DVec3, u: DVec2) -> Option<(DVec3, f64)> {
-        self.sampler().sample_direction(wo, u)
+    fn sample_direction(&self, wo: DVec3, u: DVec2, constant_weight: f64) -> Option<(DVec3, f64)> {
+        self.sampler()
+            .sample_direction_compensated(wo, u, constant_weight)
     }
 }
 
@@ -113,6 +114,6 @@ mod tests {
         }
         let u = DVec2::new(0.3, 0.7);
         let s = t.sample(wo, u).unwrap();
-        assert_eq!(view.sample_direction(wo, u), Some((s.wi, s.pdf)));
+        assert_eq!(view.sample_direction(wo, u, 1.0), Some((s.wi, s.pdf)));
     }
 }

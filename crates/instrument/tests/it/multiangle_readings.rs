@@ -24,7 +24,7 @@ impl SpectralBrdf for Linear {
             };
         }
     }
-    fn sample_direction(&self, _: DVec3, _: glam::DVec2) -> Option<(DVec3, f64)> {
+    fn sample_direction(&self, _: DVec3, _: glam::DVec2, _: f64) -> Option<(DVec3, f64)> {
         None
     }
 }
