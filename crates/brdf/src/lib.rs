@@ -12,6 +12,7 @@ pub mod models;
 pub mod quadrature;
 pub mod sampling;
 pub mod table;
+pub mod trig;
 pub mod validate;
 
 pub use bxdf::{Brdf, BrdfSample, Rgb, SpectralBrdf};

@@ -38,7 +38,7 @@ pub fn concentric_square(d: DVec2) -> DVec2 {
     if r == 0.0 {
         return DVec2::splat(0.5);
     }
-    let phi = crate::table::coords::atan2(d.y, d.x);
+    let phi = crate::trig::atan2(d.y, d.x);
     let o = if phi.abs() <= FRAC_PI_4 {
         DVec2::new(r, r * phi / FRAC_PI_4)
     } else if phi.abs() >= 3.0 * FRAC_PI_4 {

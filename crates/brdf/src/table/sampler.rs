@@ -54,10 +54,11 @@
 //! `path::constant_weight`, with its measurements).
 
 use super::BrdfTable;
-use super::coords::{acos, dir};
+use super::coords::dir;
 use super::vndf_warp::VisibleNormalWarp;
 use crate::bxdf::{Brdf, BrdfSample, Rgb, SpectralBrdf};
 use crate::sampling::{Marginal2D, cosine_hemisphere, cosine_hemisphere_pdf};
+use crate::trig::acos;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
