@@ -15,7 +15,7 @@ use crate::image::Image;
 use glam::{DVec2, DVec3};
 use gonio_brdf::Rgb;
 use gonio_brdf::sampling::{Frame, concentric_disk, cosine_hemisphere, cosine_hemisphere_pdf};
-use gonio_brdf::table::coords::{acos, atan2};
+use gonio_brdf::trig::{acos, atan2};
 use std::f64::consts::{PI, TAU};
 
 /// A light sample seen from a point.
@@ -230,7 +230,11 @@ fn shape_pdf(shape: &Shape, p: DVec3, wi: DVec3, hit: DVec3) -> f64 {
 /// The direction of an equirectangular map's coordinates `(u, v)` in [0, 1]²: θ = πv from +y
 /// (the map's top), φ = 2πu + `rotation` from +x toward +z; [`EnvMap`]'s `dir_to_uv` inverts it.
 pub(crate) fn map_direction(u: f64, v: f64, rotation: f64) -> DVec3 {
-    let (sin_t, cos_t) = (PI * v).sin_cos();
+    map_direction_at(u, (PI * v).sin_cos(), rotation)
+}
+
+/// [`map_direction`] from the sine and cosine of θ = πv, for a caller that has them.
+fn map_direction_at(u: f64, (sin_t, cos_t): (f64, f64), rotation: f64) -> DVec3 {
     let (sin_p, cos_p) = (TAU * u + rotation).sin_cos();
     DVec3::new(sin_t * cos_p, cos_t, sin_t * sin_p)
 }
@@ -295,11 +299,11 @@ impl EnvMap {
         let (uu, v) = (p.x, p.y);
         // Keep off the poles, where the density per steradian is singular.
         let v = v.clamp(1e-9, 1.0 - 1e-9);
-        let sin_t = (PI * v).sin();
+        let (sin_t, cos_t) = (PI * v).sin_cos();
         if sin_t <= 0.0 {
             return None;
         }
-        let wi = map_direction(uu, v, self.rotation);
+        let wi = map_direction_at(uu, (sin_t, cos_t), self.rotation);
         // The radiance of the sampled pixel itself (recomputing it from `wi` could round into a
         // neighbour at a pixel edge).
         Some(LightSample {
