@@ -1,8 +1,9 @@
 //! One light path from the camera: unidirectional path tracing with next-event estimation at
 //! every surface interaction and multiple importance sampling of light and BRDF samples with the
 //! power heuristic (Veach, "Robust Monte Carlo methods for light transport simulation", 1997,
-//! §9.2.4, β = 2), BRDF sampling through [`Brdf::sample`], and Russian roulette after three
-//! bounces (pbrt-v4 §14.5.4).
+//! §9.2.4, β = 2), BRDF sampling through [`Brdf::sample_compensated`] (with the table samplers'
+//! constant part weighted down under an environment map, [`constant_weight`]), and Russian
+//! roulette after three bounces (pbrt-v4 §14.5.4).
 //!
 //! The path is written once for both colour modes: a [`Shading`] says what a path carries (linear
 //! sRGB, or the values at the path's wavelengths, [`crate::spectral`]), how a material is
@@ -234,8 +235,9 @@ impl Strategy {
 /// rises 5.0% → 5.7% (there the light sample was the better of the two over the flake lobe's
 /// broad tail). 0.25 takes most of the gain at the smallest loss.
 ///
-/// Not for other lights. A uniform sky is sampled by the cosine law by both samples, each
-/// exact for the constant part, so compensation only moves samples away from it: the booth light
+/// Not for other lights. Under a uniform sky the light sample and the BRDF's cosine law both
+/// draw the cosine law, each exact for the constant part, so compensation only moves samples
+/// away from it: the booth light
 /// of the benchmark (a uniform sky and a distant source) went 0.42% → 0.65%. Area and point
 /// lights light closed scenes, whose light from other surfaces only BRDF samples find.
 pub(crate) fn constant_weight(lights: &[Light]) -> f64 {
